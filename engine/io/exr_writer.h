@@ -1,0 +1,39 @@
+// OpenEXR output through OpenImageIO: RGBA half (default) or float, selectable compression,
+// metadata; to a file or to bytes in memory (single-part, which OpenImageIO 2.4 writes correctly).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "texture/image.h"
+
+namespace aperture {
+
+enum class ExrCompression { kNone, kRle, kZips, kZip, kPiz, kDwaa };
+enum class ExrPixelType { kHalf, kFloat };
+
+const char* ExrCompressionName(ExrCompression c);
+absl::StatusOr<ExrCompression> ParseExrCompression(const std::string& name);
+
+struct ExrMetadata {
+  std::string scene_name;
+  std::string camera;  // "X,Y,Z,YAW,PITCH,ROLL fov=..."
+  double render_ms = 0;
+  std::vector<std::pair<std::string, std::string>> extra;  // more string attributes
+};
+
+struct ExrOptions {
+  ExrPixelType pixel_type = ExrPixelType::kHalf;
+  ExrCompression compression = ExrCompression::kZip;
+  ExrMetadata metadata;
+};
+
+absl::Status WriteExrFile(const Image& image, const ExrOptions& options, const std::string& path);
+absl::StatusOr<std::vector<uint8_t>> EncodeExr(const Image& image, const ExrOptions& options);
+
+// An 8-bit sRGB PNG for people to look at (linear values clamped to [0, 1]).
+absl::Status WritePngPreview(const Image& image, const std::string& path);
+
+}  // namespace aperture

@@ -1,0 +1,233 @@
+#include "raster/cell_coverage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "raster/polygon_clip.h"
+#include "raster/polygon_moments.h"
+
+namespace aperture {
+namespace {
+
+constexpr double kHalf = 0.5;
+constexpr double kEps = 1e-12;
+
+// Clips the segment p + t (q - p), t in [t0, t1], to a x + b y + c >= 0.
+bool ClipParam(const Vec2& p, const Vec2& q, double a, double b, double c, double& t0,
+               double& t1) {
+  const double dp = a * p.x + b * p.y + c;
+  const double dq = a * q.x + b * q.y + c;
+  if (dp < 0 && dq < 0) return false;
+  if (dp >= 0 && dq >= 0) return true;
+  const double t = dp / (dp - dq);
+  if (dp < 0) t0 = std::max(t0, t);
+  else t1 = std::min(t1, t);
+  return t0 < t1;
+}
+
+}  // namespace
+
+void CellCoverage::Compute(std::span<const ScreenPolygon> polygons,
+                           std::span<const int> candidates, double cx, double cy,
+                           bool with_moments, std::vector<CellPiece>& out) {
+  pieces_.clear();
+  verts_.clear();
+  for (int index : candidates) {
+    const ScreenPolygon& sp = polygons[index];
+    if (sp.max_x <= cx - kHalf || sp.min_x >= cx + kHalf || sp.max_y <= cy - kHalf ||
+        sp.min_y >= cy + kHalf)
+      continue;
+    Piece piece;
+    piece.polygon = index;
+    piece.depth = {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)};
+    piece.full = sp.Contains(cx - kHalf, cy - kHalf) && sp.Contains(cx + kHalf, cy - kHalf) &&
+                 sp.Contains(cx + kHalf, cy + kHalf) && sp.Contains(cx - kHalf, cy + kHalf);
+    piece.begin = verts_.size();
+    if (piece.full) {
+      verts_.insert(verts_.end(), {{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
+    } else {
+      clip_.clear();
+      for (const Vec2& v : sp.vertices) clip_.push_back({v.x - cx, v.y - cy});
+      ClipToRect(clip_, -kHalf, -kHalf, kHalf, kHalf, scratch_);
+      if (clip_.empty()) continue;
+      verts_.insert(verts_.end(), clip_.begin(), clip_.end());
+    }
+    piece.end = verts_.size();
+    pieces_.push_back(piece);
+  }
+  if (pieces_.empty()) return;
+
+  auto moments_of = [&](const Piece& p) {
+    if (p.full) return CellMoments{1, 0, 0, 0};
+    return PolygonMoments(std::span(verts_).subspan(p.begin, p.end - p.begin), with_moments);
+  };
+  if (pieces_.size() == 1) {
+    const CellMoments m = moments_of(pieces_[0]);
+    if (m.area > 0) out.push_back({pieces_[0].polygon, m});
+    return;
+  }
+
+  // A full piece in front of every other at the cell's corners hides them all (depth
+  // differences are linear, so the corners bound them).
+  for (const Piece& p : pieces_) {
+    if (!p.full) continue;
+    bool front = true;
+    for (const Piece& q : pieces_) {
+      if (&q == &p) continue;
+      for (double y : {-kHalf, kHalf})
+        for (double x : {-kHalf, kHalf}) front = front && p.depth.At(x, y) > q.depth.At(x, y);
+      if (!front) break;
+    }
+    if (front) {
+      out.push_back({p.polygon, CellMoments{1, 0, 0, 0}});
+      return;
+    }
+  }
+
+  // Pieces whose interiors are disjoint (neighbours in a mesh) need no visibility at all.
+  bool disjoint = true;
+  for (size_t i = 0; i < pieces_.size() && disjoint; ++i)
+    for (size_t j = i + 1; j < pieces_.size() && disjoint; ++j)
+      disjoint = Separated(pieces_[i], pieces_[j]);
+  if (disjoint) {
+    for (const Piece& p : pieces_) {
+      const CellMoments m = moments_of(p);
+      if (m.area > 0) out.push_back({p.polygon, m});
+    }
+    return;
+  }
+  Decompose(with_moments, out);
+}
+
+// Separating-axis test with the edges of both convex pieces; touching counts as separated.
+bool CellCoverage::Separated(const Piece& a, const Piece& b) const {
+  auto separates = [&](const Piece& edges, const Piece& other) {
+    const size_t n = edges.end - edges.begin;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec2& p = verts_[edges.begin + i];
+      const Vec2& q = verts_[edges.begin + (i + 1) % n];
+      const double ex = q.x - p.x, ey = q.y - p.y;
+      const double tol = kEps * (std::abs(ex) + std::abs(ey));
+      bool all_outside = true;
+      for (size_t k = other.begin; k < other.end && all_outside; ++k) {
+        const Vec2& v = verts_[k];
+        all_outside = ex * (v.y - p.y) - ey * (v.x - p.x) <= tol;
+      }
+      if (all_outside) return true;
+    }
+    return false;
+  };
+  return separates(a, b) || separates(b, a);
+}
+
+// The line where two pieces' depths are equal, clipped to both pieces, becomes a splitting edge.
+void CellCoverage::AddDepthEqualityLine(const Piece& a, const Piece& b) {
+  const double da = a.depth.a - b.depth.a, db = a.depth.b - b.depth.b, dc = a.depth.c - b.depth.c;
+  const double scale = std::abs(a.depth.a) + std::abs(a.depth.b) + std::abs(a.depth.c) +
+                       std::abs(b.depth.a) + std::abs(b.depth.b) + std::abs(b.depth.c);
+  if (std::abs(da) + std::abs(db) <= 1e-14 * scale) return;  // parallel planes never cross
+  Vec2 p, q;
+  if (std::abs(da) >= std::abs(db)) {  // x = -(db y + dc) / da
+    p = {-(db * -kHalf + dc) / da, -kHalf};
+    q = {-(db * kHalf + dc) / da, kHalf};
+  } else {  // y = -(da x + dc) / db
+    p = {-kHalf, -(da * -kHalf + dc) / db};
+    q = {kHalf, -(da * kHalf + dc) / db};
+  }
+  double t0 = 0, t1 = 1;
+  for (const Piece* piece : {&a, &b}) {
+    const size_t n = piece->end - piece->begin;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec2& e0 = verts_[piece->begin + i];
+      const Vec2& e1 = verts_[piece->begin + (i + 1) % n];
+      // Inside of a counter-clockwise edge: cross(e1 - e0, v - e0) >= 0.
+      const double ea = -(e1.y - e0.y), eb = e1.x - e0.x;
+      const double ec = -(ea * e0.x + eb * e0.y);
+      if (!ClipParam(p, q, ea, eb, ec, t0, t1)) return;
+    }
+  }
+  const Vec2 s{p.x + (q.x - p.x) * t0, p.y + (q.y - p.y) * t0};
+  const Vec2 e{p.x + (q.x - p.x) * t1, p.y + (q.y - p.y) * t1};
+  if (s.y == e.y) {
+    breaks_.push_back(s.y);  // horizontal: a slab boundary is enough
+  } else if (s.y < e.y) {
+    segments_.push_back({s.x, s.y, e.x, e.y, -1});
+  } else {
+    segments_.push_back({e.x, e.y, s.x, s.y, -1});
+  }
+}
+
+void CellCoverage::Decompose(bool with_moments, std::vector<CellPiece>& out) {
+  segments_.clear();
+  breaks_.assign({-kHalf, kHalf});
+  for (size_t pi = 0; pi < pieces_.size(); ++pi) {
+    const Piece& p = pieces_[pi];
+    const size_t n = p.end - p.begin;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec2& a = verts_[p.begin + i];
+      const Vec2& b = verts_[p.begin + (i + 1) % n];
+      breaks_.push_back(a.y);
+      if (a.y == b.y) continue;
+      if (a.y < b.y) segments_.push_back({a.x, a.y, b.x, b.y, static_cast<int>(pi)});
+      else segments_.push_back({b.x, b.y, a.x, a.y, static_cast<int>(pi)});
+    }
+  }
+  for (size_t i = 0; i < pieces_.size(); ++i)
+    for (size_t j = i + 1; j < pieces_.size(); ++j)
+      if (!Separated(pieces_[i], pieces_[j])) AddDepthEqualityLine(pieces_[i], pieces_[j]);
+  for (const Segment& s : segments_)
+    if (s.piece < 0) breaks_.push_back(s.y0), breaks_.push_back(s.y1);
+
+  // Every crossing of two segments is a slab boundary, so no two edges cross inside a slab.
+  for (size_t i = 0; i < segments_.size(); ++i) {
+    const Segment& s = segments_[i];
+    for (size_t j = i + 1; j < segments_.size(); ++j) {
+      const Segment& t = segments_[j];
+      if (s.piece >= 0 && s.piece == t.piece) continue;  // edges of one convex piece
+      const double lo = std::max(s.y0, t.y0), hi = std::min(s.y1, t.y1);
+      if (!(lo < hi)) continue;
+      const double d_lo = s.XAt(lo) - t.XAt(lo), d_hi = s.XAt(hi) - t.XAt(hi);
+      if ((d_lo < 0 && d_hi > 0) || (d_lo > 0 && d_hi < 0))
+        breaks_.push_back(lo + (hi - lo) * (d_lo / (d_lo - d_hi)));
+    }
+  }
+  std::sort(breaks_.begin(), breaks_.end());
+  breaks_.erase(std::unique(breaks_.begin(), breaks_.end()), breaks_.end());
+
+  sums_.assign(pieces_.size(), CellMoments{});
+  inside_.assign(pieces_.size(), 0);
+  for (size_t k = 0; k + 1 < breaks_.size(); ++k) {
+    const double ya = std::max(breaks_[k], -kHalf), yb = std::min(breaks_[k + 1], kHalf);
+    if (!(ya < yb)) continue;
+    const double ym = 0.5 * (ya + yb);
+    active_.clear();
+    for (const Segment& s : segments_) {
+      if (!(s.y0 < ym && ym < s.y1)) continue;
+      active_.push_back({s.XAt(ya), s.XAt(yb), s.XAt(ym), s.piece});
+    }
+    std::sort(active_.begin(), active_.end(),
+              [](const Active& l, const Active& r) { return l.xm < r.xm; });
+    std::fill(inside_.begin(), inside_.end(), 0);
+    for (size_t i = 0; i + 1 < active_.size(); ++i) {
+      if (active_[i].piece >= 0) inside_[active_[i].piece] ^= 1;
+      const Active& l = active_[i];
+      const Active& r = active_[i + 1];
+      if (!(r.xa - l.xa + r.xb - l.xb > 0)) continue;
+      const double xc = 0.25 * (l.xa + r.xa + l.xb + r.xb);
+      int front = -1;
+      double best = 0;
+      for (size_t p = 0; p < pieces_.size(); ++p) {
+        if (!inside_[p]) continue;
+        const double d = pieces_[p].depth.At(xc, ym);
+        if (front < 0 || d > best) front = static_cast<int>(p), best = d;
+      }
+      if (front < 0) continue;
+      const Vec2 trapezoid[4] = {{l.xa, ya}, {r.xa, ya}, {r.xb, yb}, {l.xb, yb}};
+      Accumulate(sums_[front], PolygonMoments(trapezoid, with_moments));
+    }
+  }
+  for (size_t p = 0; p < pieces_.size(); ++p)
+    if (sums_[p].area > 0) out.push_back({pieces_[p].polygon, sums_[p]});
+}
+
+}  // namespace aperture

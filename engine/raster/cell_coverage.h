@@ -1,0 +1,62 @@
+// Exact visible-area integrals in one unit cell of the screen: which parts of the polygons that
+// overlap the cell are visible, with their areas and first moments (for seed 002's eq. 2).
+//
+// Visibility inside the cell is resolved exactly by a trapezoid decomposition: the cell is cut
+// into horizontal slabs at every vertex, every edge crossing and every line where two polygons'
+// depths are equal (the intersection line of interpenetrating polygons), and each slab into
+// trapezoids between consecutive edges. Inside a trapezoid the set of covering polygons and their
+// depth order are constant, so the front polygon is found at its centre and receives the
+// trapezoid's exact area and moments. Interpenetrating polygons are therefore exact as well.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "raster/aa_filter.h"
+#include "raster/screen_polygon.h"
+
+namespace aperture {
+
+struct CellPiece {
+  int polygon;  // index into the frame's polygons
+  CellMoments moments;
+};
+
+class CellCoverage {
+ public:
+  // Visible pieces in the cell [cx - 0.5, cx + 0.5] x [cy - 0.5, cy + 0.5]. `candidates` are
+  // indices into `polygons`; pieces with zero visible area are omitted. Output is appended.
+  void Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
+               double cx, double cy, bool with_moments, std::vector<CellPiece>& out);
+
+ private:
+  struct Piece {
+    int polygon;
+    bool full;                 // covers the whole cell
+    ScreenLinear depth;        // inv_depth in cell-local coordinates
+    size_t begin, end;         // vertex range in verts_
+  };
+  struct Segment {
+    double x0, y0, x1, y1;     // y0 < y1
+    int piece;                 // -1: a depth-equality line (splits, does not toggle)
+    double XAt(double y) const { return x0 + (x1 - x0) * ((y - y0) / (y1 - y0)); }
+  };
+
+  bool Separated(const Piece& a, const Piece& b) const;
+  void AddDepthEqualityLine(const Piece& a, const Piece& b);
+  void Decompose(bool with_moments, std::vector<CellPiece>& out);
+
+  std::vector<Piece> pieces_;
+  std::vector<Vec2> verts_, clip_, scratch_;
+  std::vector<Segment> segments_;
+  std::vector<double> breaks_;
+  std::vector<CellMoments> sums_;
+  std::vector<uint8_t> inside_;
+  struct Active {
+    double xa, xb, xm;
+    int piece;
+  };
+  std::vector<Active> active_;
+};
+
+}  // namespace aperture

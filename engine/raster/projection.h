@@ -1,0 +1,29 @@
+// Frame setup: transform the scene's polygons into camera space, clip them to the near (and far)
+// plane in 3D, project, clip to the screen, and set up their screen-linear functions.
+#pragma once
+
+#include <vector>
+
+#include "raster/screen_polygon.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+namespace aperture {
+
+struct FrameGeometry {
+  int width = 0, height = 0;
+  FrustumTangents frustum;
+  std::vector<ScreenPolygon> polygons;
+
+  // Camera-space direction through screen point (x, y), with z = -1: P = depth * Ray(x, y).
+  Vec3 Ray(double x, double y) const {
+    return {frustum.left + x / width * (frustum.right - frustum.left),
+            frustum.top - y / height * (frustum.top - frustum.bottom), -1.0};
+  }
+};
+
+// `margin`: how far beyond the image (in pixels) polygons must be kept for the filter aperture.
+FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, int height,
+                           double margin);
+
+}  // namespace aperture

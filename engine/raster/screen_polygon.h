@@ -1,0 +1,33 @@
+// A polygon after projection: convex, in screen pixels (x right, y down, pixel centres at +0.5),
+// with the screen-linear functions of seed 000 eq. 1 for depth and texture coordinates.
+#pragma once
+
+#include <vector>
+
+#include "scene/vec.h"
+#include "texture/image.h"
+
+namespace aperture {
+
+// f(x, y) = a x + b y + c over the screen.
+struct ScreenLinear {
+  double a = 0, b = 0, c = 0;
+  double At(double x, double y) const { return a * x + b * y + c; }
+};
+
+struct ScreenPolygon {
+  std::vector<Vec2> vertices;  // convex, counter-clockwise in screen space (y down)
+  double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+  // 1 / view depth: the denominator of seed 000 eq. 1. Larger is nearer.
+  ScreenLinear inv_depth;
+  // seed 000, eq. 1: U = u_num / inv_depth, V = v_num / inv_depth (texture repeats, shifted by
+  // whole periods so that U, V stay small near the camera).
+  ScreenLinear u_num, v_num;
+  int material = 0;
+  int scene_polygon = 0;
+  Rgba light{1, 1, 1, 1};  // ambient + sun * cos(angle), constant over a flat polygon
+
+  bool Contains(double x, double y) const;
+};
+
+}  // namespace aperture

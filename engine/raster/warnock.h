@@ -1,0 +1,37 @@
+// Warnock-style screen subdivision: a window is split into quadrants until it is empty, fully
+// covered by one polygon in front of all others, or small. Leaves are the units of parallel work.
+#pragma once
+
+#include <vector>
+
+#include "raster/aa_filter.h"
+#include "raster/projection.h"
+
+namespace aperture {
+
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  long long pixels() const { return static_cast<long long>(width()) * height(); }
+};
+
+struct LeafWindow {
+  enum class Kind { kEmpty, kCovered, kMixed };
+  PixelRect rect;
+  Kind kind = Kind::kEmpty;
+  int cover = -1;             // kCovered: the polygon seen in every aperture of the window
+  std::vector<int> polygons;  // kMixed: polygons reaching into the window's apertures
+};
+
+struct WarnockOptions {
+  int leaf_size = 8;    // a mixed window at most this wide and high is not split further
+  int root_size = 64;   // the screen is first cut into root windows of this size
+};
+
+// Leaves in a deterministic order (independent of the thread count). Runs in parallel on the
+// calling oneTBB arena.
+std::vector<LeafWindow> SubdivideWarnock(const FrameGeometry& geometry, const AaFilterShape& aa,
+                                         const PixelRect& region, const WarnockOptions& options);
+
+}  // namespace aperture

@@ -1,0 +1,55 @@
+#include "render/polygon_shader.h"
+
+#include <cmath>
+
+namespace aperture {
+
+PolygonShader::PolygonShader(const Scene& scene, const FrameGeometry& geometry,
+                             const ShadingOptions& options)
+    : scene_(scene), geo_(geometry), aperture_(options.texture_aperture) {
+  for (const Material& m : scene.materials) {
+    MaterialState state{m.base_color, nullptr};
+    if (m.texture >= 0) {
+      const FilterMode mode = options.override_filter ? options.filter : m.filter;
+      state.sampler = &scene.textures[m.texture]->Sampler(mode);
+    }
+    materials_.push_back(state);
+  }
+  min_inv_depth_.reserve(geometry.polygons.size());
+  for (const ScreenPolygon& p : geometry.polygons) {
+    double w = INFINITY;
+    for (const Vec2& v : p.vertices) w = std::min(w, p.inv_depth.At(v.x, v.y));
+    min_inv_depth_.push_back(w);
+  }
+}
+
+Rgba PolygonShader::Shade(int index, double x, double y) const {
+  const ScreenPolygon& p = geo_.polygons[index];
+  const MaterialState& mat = materials_[p.material];
+  const double w = std::max(p.inv_depth.At(x, y), min_inv_depth_[index]);
+  Rgba colour = mat.base;
+  if (mat.sampler != nullptr) {
+    // seed 000, eq. 1: U = (A_u x + B_u y + C_u) / (A_z x + B_z y + C_z).
+    const double u = p.u_num.At(x, y) / w, v = p.v_num.At(x, y) / w;
+    // seed 000, eq. 2: dU/dx = (A_u - A_z U) / z0, scaled by the aperture a.
+    const double s = aperture_ / w;
+    TextureFootprint f;
+    f.u = u - std::floor(u);
+    f.v = v - std::floor(v);
+    f.dudx = static_cast<float>((p.u_num.a - p.inv_depth.a * u) * s);
+    f.dvdx = static_cast<float>((p.v_num.a - p.inv_depth.a * v) * s);
+    f.dudy = static_cast<float>((p.u_num.b - p.inv_depth.b * u) * s);
+    f.dvdy = static_cast<float>((p.v_num.b - p.inv_depth.b * v) * s);
+    colour = colour * mat.sampler->Sample(f);
+  }
+  colour = colour * p.light;
+  if (scene_.fog_density > 0) {
+    const double distance = Length(geo_.Ray(x, y)) / w;
+    const float keep = static_cast<float>(std::exp(-scene_.fog_density * distance));
+    colour = colour * keep + scene_.fog_color * (1.0f - keep);
+  }
+  colour.a = 1.0f;
+  return colour;
+}
+
+}  // namespace aperture

@@ -1,0 +1,40 @@
+// Shading of one polygon at one pixel centre: perspective-correct texture coordinates and their
+// derivatives (seed 000, eq. 1-2), the texture filter, Lambert sun plus ambient, distance fog.
+#pragma once
+
+#include <vector>
+
+#include "raster/projection.h"
+#include "scene/scene.h"
+#include "texture/texture_sampler.h"
+
+namespace aperture {
+
+struct ShadingOptions {
+  bool override_filter = false;
+  FilterMode filter = FilterMode::kTrilinear;
+  double texture_aperture = 2.0;  // a: derivatives are scaled by it (DESIGN.md fairness rule)
+};
+
+class PolygonShader {
+ public:
+  PolygonShader(const Scene& scene, const FrameGeometry& geometry, const ShadingOptions& options);
+
+  // Colour of polygon `index` at screen point (x, y) (a pixel centre), which may lie outside the
+  // polygon: then its plane is extrapolated, as seed 002 takes each colour constant over the
+  // aperture.
+  Rgba Shade(int index, double x, double y) const;
+
+ private:
+  struct MaterialState {
+    Rgba base;
+    const TextureSampler* sampler;  // null: untextured
+  };
+  const Scene& scene_;
+  const FrameGeometry& geo_;
+  double aperture_;
+  std::vector<MaterialState> materials_;
+  std::vector<double> min_inv_depth_;  // per polygon: over its vertices, to keep extrapolation sane
+};
+
+}  // namespace aperture

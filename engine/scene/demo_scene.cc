@@ -1,0 +1,158 @@
+#include "scene/demo_scene.h"
+
+#include <cmath>
+
+#include "texture/procedural.h"
+
+namespace aperture {
+namespace {
+
+void SetColor(v1::Color* c, float r, float g, float b) {
+  c->set_r(r);
+  c->set_g(g);
+  c->set_b(b);
+}
+
+v1::Polygon* AddPolygon(v1::Mesh* mesh, std::initializer_list<Vec3> vertices) {
+  v1::Polygon* p = mesh->add_polygons();
+  for (const Vec3& v : vertices) {
+    v1::Vec3* pv = p->add_vertices();
+    pv->set_x(v.x);
+    pv->set_y(v.y);
+    pv->set_z(v.z);
+  }
+  return p;
+}
+
+// A horizontal rectangle at height y, counter-clockwise seen from above.
+void AddFlatRect(v1::Mesh* mesh, double x0, double z0, double x1, double z1, double y) {
+  AddPolygon(mesh, {{x0, y, z1}, {x1, y, z1}, {x1, y, z0}, {x0, y, z0}});
+}
+
+// A closed box on the ground without its bottom face.
+void AddBox(v1::Mesh* mesh, double x0, double z0, double x1, double z1, double height) {
+  const double y = height;
+  AddPolygon(mesh, {{x0, 0, z1}, {x1, 0, z1}, {x1, y, z1}, {x0, y, z1}});  // +z
+  AddPolygon(mesh, {{x1, 0, z0}, {x0, 0, z0}, {x0, y, z0}, {x1, y, z0}});  // -z
+  AddPolygon(mesh, {{x1, 0, z1}, {x1, 0, z0}, {x1, y, z0}, {x1, y, z1}});  // +x
+  AddPolygon(mesh, {{x0, 0, z0}, {x0, 0, z1}, {x0, y, z1}, {x0, y, z0}});  // -x
+  AddPolygon(mesh, {{x0, y, z1}, {x1, y, z1}, {x1, y, z0}, {x0, y, z0}});  // roof
+}
+
+// A vertical cylinder of `sides` facets with a flat top.
+void AddTank(v1::Mesh* mesh, double cx, double cz, double radius, double height, int sides) {
+  v1::Polygon* top = mesh->add_polygons();
+  for (int i = 0; i < sides; ++i) {
+    const double a0 = 2 * kPi * i / sides, a1 = 2 * kPi * (i + 1) / sides;
+    const Vec3 p0{cx + radius * std::cos(a0), 0, cz - radius * std::sin(a0)};
+    const Vec3 p1{cx + radius * std::cos(a1), 0, cz - radius * std::sin(a1)};
+    AddPolygon(mesh, {p0, p1, {p1.x, height, p1.z}, {p0.x, height, p0.z}});
+    v1::Vec3* v = top->add_vertices();
+    v->set_x(p0.x);
+    v->set_y(height);
+    v->set_z(p0.z);
+  }
+}
+
+v1::Material* AddMaterial(v1::Scene& scene, const char* id, float r, float g, float b,
+                          const char* texture = nullptr, double repeat = 1) {
+  v1::Material* m = scene.add_materials();
+  m->set_id(id);
+  SetColor(m->mutable_base_color(), r, g, b);
+  if (texture != nullptr) {
+    m->set_texture_id(texture);
+    m->mutable_texture_transform()->set_repeat_u(repeat);
+  }
+  return m;
+}
+
+void AddEncodedTexture(v1::Scene& scene, const char* id, const Image& image) {
+  v1::Texture* t = scene.add_textures();
+  t->set_id(id);
+  auto png = EncodePng(image);
+  if (png.ok()) t->set_encoded(std::string(png->begin(), png->end()));
+}
+
+}  // namespace
+
+v1::Scene MakeDemoScene() {
+  v1::Scene scene;
+  scene.set_name("demo-airfield");
+  SetColor(scene.mutable_sky(), 0.50f, 0.66f, 0.90f);
+  SetColor(scene.mutable_ambient(), 0.35f, 0.38f, 0.45f);
+  scene.mutable_sun()->mutable_direction()->set_x(0.45);
+  scene.mutable_sun()->mutable_direction()->set_y(0.8);
+  scene.mutable_sun()->mutable_direction()->set_z(0.35);
+  SetColor(scene.mutable_sun()->mutable_color(), 0.95f, 0.9f, 0.8f);
+  SetColor(scene.mutable_fog()->mutable_color(), 0.62f, 0.70f, 0.82f);
+  scene.mutable_fog()->set_density(1.0 / 9000.0);
+
+  AddEncodedTexture(scene, "grass", MakeNoiseTexture(512, 11, {0.10f, 0.20f, 0.05f, 1}, {0.35f, 0.50f, 0.18f, 1}));
+  AddEncodedTexture(scene, "asphalt", MakeNoiseTexture(512, 23, {0.12f, 0.12f, 0.13f, 1}, {0.32f, 0.32f, 0.33f, 1}));
+  v1::Texture* checker = scene.add_textures();
+  checker->set_id("checker");
+  checker->mutable_checkerboard()->set_size(1024);
+  checker->mutable_checkerboard()->set_cells(8);
+
+  AddMaterial(scene, "grass", 1, 1, 1, "grass", 8);
+  AddMaterial(scene, "asphalt", 1, 1, 1, "asphalt", 20);
+  AddMaterial(scene, "checker", 0.9f, 0.9f, 0.9f, "checker", 200);
+  AddMaterial(scene, "paint", 0.85f, 0.85f, 0.82f);
+  AddMaterial(scene, "hangar", 0.55f, 0.57f, 0.60f);
+  AddMaterial(scene, "tank", 0.80f, 0.80f, 0.76f);
+
+  v1::Mesh* ground = scene.add_meshes();
+  ground->set_id("ground");
+  ground->set_material_id("grass");
+  AddFlatRect(ground, -10000, -10000, 10000, 10000, 0);
+
+  // Runway 3000 m x 45 m along -z, its threshold at z = 200; a parallel taxiway.
+  v1::Mesh* runway = scene.add_meshes();
+  runway->set_id("runway");
+  runway->set_material_id("asphalt");
+  AddFlatRect(runway, -22.5, -2800, 22.5, 200, 0.05);
+  AddFlatRect(runway, -172.5, -2700, -149.5, 100, 0.05);
+  for (double z : {100.0, -1300.0, -2600.0}) AddFlatRect(runway, -149.5, z - 11.5, -22.5, z + 11.5, 0.05);
+
+  v1::Mesh* marks = scene.add_meshes();
+  marks->set_id("markings");
+  marks->set_material_id("paint");
+  for (int i = 0; i < 8; ++i) {  // threshold bars, both sides of the centreline
+    const double x = 3.0 + i * 2.3;
+    AddFlatRect(marks, x, 150, x + 1.8, 190, 0.1);
+    AddFlatRect(marks, -x - 1.8, 150, -x, 190, 0.1);
+  }
+  for (double z = 100; z > -2700; z -= 50) AddFlatRect(marks, -0.45, z - 30, 0.45, z, 0.1);
+  for (double z : {-100.0, -250.0, -400.0}) {  // touchdown zone pairs
+    AddFlatRect(marks, 6, z - 22.5, 10, z, 0.1);
+    AddFlatRect(marks, -10, z - 22.5, -6, z, 0.1);
+  }
+  for (double x : {-22.0, 21.1}) AddFlatRect(marks, x, -2800, x + 0.9, 200, 0.1);  // edge lines
+
+  v1::Mesh* test_area = scene.add_meshes();
+  test_area->set_id("checker-area");
+  test_area->set_material_id("checker");
+  AddFlatRect(test_area, 60, -600, 260, -400, 0.05);
+
+  v1::Mesh* hangars = scene.add_meshes();
+  hangars->set_id("hangars");
+  hangars->set_material_id("hangar");
+  for (int i = 0; i < 4; ++i) AddBox(hangars, -320, -200.0 - i * 90, -260, -140.0 - i * 90, 18);
+
+  v1::Mesh* tanks = scene.add_meshes();
+  tanks->set_id("tanks");
+  tanks->set_material_id("tank");
+  for (int i = 0; i < 3; ++i) AddTank(tanks, 320 + i * 35.0, -900, 12, 14, 32);
+  return scene;
+}
+
+Camera DemoCamera() {
+  Camera camera;
+  camera.position = {0, 25, 650};
+  camera.pitch_deg = -3;
+  camera.vertical_fov_deg = 60;
+  camera.near = 0.5;
+  return camera;
+}
+
+}  // namespace aperture

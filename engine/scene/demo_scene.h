@@ -1,0 +1,15 @@
+// The built-in demo: an airfield seen from a camera on final approach (a low grazing angle,
+// where texture filtering matters most). A proto Scene, self-contained (its textures are
+// generated and embedded as PNG bytes), so the client can send it to a server as it is.
+#pragma once
+
+#include "aperture/v1/scene.pb.h"
+#include "scene/camera.h"
+
+namespace aperture {
+
+v1::Scene MakeDemoScene();
+// On final approach, 3 degrees above the runway threshold.
+Camera DemoCamera();
+
+}  // namespace aperture

@@ -1,0 +1,62 @@
+// The engine's scene: world-space convex polygons with materials, textures and lights, built from
+// the proto `Scene` by scene_builder and validated there. Immutable once built.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/vec.h"
+#include "texture/image.h"
+#include "texture/mip_pyramid.h"
+#include "texture/texture_sampler.h"
+
+namespace aperture {
+
+struct SceneTexture {
+  std::string id;
+  std::shared_ptr<const MipPyramid> pyramid;
+  std::unique_ptr<TextureSampler> nearest, bilinear, trilinear;
+
+  const TextureSampler& Sampler(FilterMode mode) const;
+};
+
+struct Material {
+  std::string id;
+  Rgba base_color{1, 1, 1, 1};
+  int texture = -1;  // index into Scene::textures, -1: untextured
+  FilterMode filter = FilterMode::kTrilinear;
+  bool unlit = false;
+};
+
+// Affine world-to-texture map over a polygon's plane: u = dot(su, P) + u0 (texture repeats).
+struct TextureMapping {
+  Vec3 su, sv;
+  double u0 = 0, v0 = 0;
+};
+
+// A convex planar polygon in world space (concave input is triangulated on load).
+struct ScenePolygon {
+  std::vector<Vec3> vertices;
+  Vec3 normal;  // unit, from the vertex order
+  int material = 0;
+  TextureMapping mapping;
+};
+
+struct Scene {
+  std::string name;
+  std::vector<std::shared_ptr<const SceneTexture>> textures;
+  std::vector<Material> materials;
+  std::vector<ScenePolygon> polygons;
+  Vec3 sun_direction{0, 1, 0};  // unit, towards the sun
+  Rgba sun_color{0, 0, 0, 1};
+  Rgba ambient{1, 1, 1, 1};
+  Rgba fog_color{0, 0, 0, 1};
+  double fog_density = 0;
+  Rgba sky{0, 0, 0, 1};
+};
+
+// Builds a texture's pyramid (resampled to a power of two when needed) and its samplers.
+std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image);
+
+}  // namespace aperture

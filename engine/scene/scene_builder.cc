@@ -1,0 +1,452 @@
+#include "scene/scene_builder.h"
+
+#include <cmath>
+#include <filesystem>
+#include <unordered_map>
+
+#include "absl/strings/str_cat.h"
+#include "scene/triangulate.h"
+
+namespace aperture {
+namespace {
+
+constexpr int kMaxCheckerboardSize = 16384;
+
+absl::Status Invalid(const std::string& where, const std::string& what) {
+  return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
+}
+
+Vec3 FromProto(const v1::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+absl::StatusOr<Rgba> ColorFromProto(const v1::Color& c, const std::string& where) {
+  const float values[] = {c.r(), c.g(), c.b()};
+  for (float v : values)
+    if (!std::isfinite(v) || v < 0)
+      return Invalid(where, "colour components must be finite and >= 0");
+  return Rgba{c.r(), c.g(), c.b(), 1.0f};
+}
+
+absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Texture& t,
+                                                                 const std::string& where,
+                                                                 const SceneBuildOptions& opt) {
+  switch (t.source_case()) {
+    case v1::Texture::kFile: {
+      std::filesystem::path path(t.file());
+      if (path.is_relative() && !opt.base_dir.empty()) path = opt.base_dir / path;
+      auto image = LoadImageFile(path.string());
+      if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(where, ": ", image.status().message()));
+      return MakeSceneTexture(t.id(), std::move(*image));
+    }
+    case v1::Texture::kEncoded: {
+      auto bytes = std::span(reinterpret_cast<const uint8_t*>(t.encoded().data()), t.encoded().size());
+      auto image = DecodeImage(bytes);
+      if (!image.ok()) return Invalid(where, std::string(image.status().message()));
+      return MakeSceneTexture(t.id(), std::move(*image));
+    }
+    case v1::Texture::kCheckerboard: {
+      const v1::Checkerboard& c = t.checkerboard();
+      const int size = c.size() == 0 ? 1024 : static_cast<int>(std::min<uint32_t>(c.size(), 1u << 30));
+      const int cells = c.cells() == 0 ? 8 : static_cast<int>(std::min<uint32_t>(c.cells(), 1u << 30));
+      if (size > kMaxCheckerboardSize)
+        return Invalid(where, absl::StrCat("checkerboard size ", size, " is above ", kMaxCheckerboardSize));
+      if (cells > size) return Invalid(where, "checkerboard has more cells than texels");
+      Rgba a{1, 1, 1, 1}, b{0, 0, 0, 1};
+      if (c.has_color_a()) {
+        auto ca = ColorFromProto(c.color_a(), where + ".checkerboard.color_a");
+        if (!ca.ok()) return ca.status();
+        a = *ca;
+      }
+      if (c.has_color_b()) {
+        auto cb = ColorFromProto(c.color_b(), where + ".checkerboard.color_b");
+        if (!cb.ok()) return cb.status();
+        b = *cb;
+      }
+      return MakeSceneTexture(t.id(), MakeCheckerboard(size, cells, a, b));
+    }
+    case v1::Texture::SOURCE_NOT_SET:
+      break;
+  }
+  return Invalid(where, "texture has no source (file, encoded or checkerboard)");
+}
+
+// Where no uvs are given: project onto the world axis plane the polygon faces most.
+// Walls use -y as t so that images stand upright.
+Vec2 PlanarProjection(const Vec3& p, const Vec3& n) {
+  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+  if (ay >= ax && ay >= az) return {p.x, p.z};
+  if (az >= ax) return {p.x, -p.y};
+  return {p.z, -p.y};
+}
+
+// Fits the affine map world -> (s, t) over the polygon's plane from three well-spread vertices.
+void FitMapping(const std::vector<Vec3>& pts, const std::vector<Vec2>& st, const Vec3& normal,
+                Vec3* ss, Vec3* tt, double* s0, double* t0) {
+  size_t i1 = 1, i2 = 2;
+  double best = -1;
+  for (size_t i = 1; i < pts.size(); ++i) {
+    double d = Length(pts[i] - pts[0]);
+    if (d > best) best = d, i1 = i;
+  }
+  best = -1;
+  for (size_t i = 1; i < pts.size(); ++i) {
+    double a = Length(Cross(pts[i1] - pts[0], pts[i] - pts[0]));
+    if (a > best) best = a, i2 = i;
+  }
+  const Vec3 e1 = pts[i1] - pts[0], e2 = pts[i2] - pts[0];
+  // Dual basis within the plane: dot(g1, e1) = 1, dot(g1, e2) = 0, and likewise for g2.
+  const Vec3 c2 = Cross(e2, normal), c1 = Cross(normal, e1);
+  const Vec3 g1 = c2 * (1.0 / Dot(e1, c2)), g2 = c1 * (1.0 / Dot(e2, c1));
+  const double ds1 = st[i1].x - st[0].x, ds2 = st[i2].x - st[0].x;
+  const double dt1 = st[i1].y - st[0].y, dt2 = st[i2].y - st[0].y;
+  *ss = g1 * ds1 + g2 * ds2;
+  *tt = g1 * dt1 + g2 * dt2;
+  *s0 = st[0].x - Dot(*ss, pts[0]);
+  *t0 = st[0].y - Dot(*tt, pts[0]);
+}
+
+// Newell's normal (length = twice the area): robust for any planar polygon, convex or not.
+Vec3 NewellNormal(const std::vector<Vec3>& pts) {
+  Vec3 n;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const Vec3& a = pts[i];
+    const Vec3& b = pts[(i + 1) % pts.size()];
+    n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+  }
+  return n;
+}
+
+struct ObjectPlacement {
+  Mat3 linear;  // rotation * scale
+  Vec3 translation;
+};
+
+class Builder {
+ public:
+  Builder(const v1::Scene& proto, const SceneBuildOptions& options)
+      : proto_(proto), options_(options) {}
+
+  absl::StatusOr<Scene> Build() {
+    scene_.name = proto_.name();
+    if (auto s = BuildTextures(); !s.ok()) return s;
+    if (auto s = BuildMaterials(); !s.ok()) return s;
+    if (auto s = BuildLights(); !s.ok()) return s;
+    if (auto s = BuildObjects(); !s.ok()) return s;
+    return std::move(scene_);
+  }
+
+ private:
+  absl::Status BuildTextures() {
+    for (int i = 0; i < proto_.textures_size(); ++i) {
+      const v1::Texture& t = proto_.textures(i);
+      const std::string where = absl::StrCat("textures[", i, "] ('", t.id(), "')");
+      if (t.id().empty()) return Invalid(where, "texture id is empty");
+      if (texture_index_.count(t.id())) return Invalid(where, "duplicate texture id");
+      auto texture = BuildTexture(t, where, options_);
+      if (!texture.ok()) return texture.status();
+      texture_index_[t.id()] = static_cast<int>(scene_.textures.size());
+      scene_.textures.push_back(std::move(*texture));
+    }
+    return absl::OkStatus();
+  }
+
+  absl::Status BuildMaterials() {
+    Material fallback;
+    fallback.id = "";
+    fallback.base_color = {0.7f, 0.7f, 0.7f, 1};
+    scene_.materials.push_back(fallback);  // index 0: polygons without a material
+    transforms_.push_back({});
+    material_index_[""] = 0;
+    for (int i = 0; i < proto_.materials_size(); ++i) {
+      const v1::Material& m = proto_.materials(i);
+      const std::string where = absl::StrCat("materials[", i, "] ('", m.id(), "')");
+      if (m.id().empty()) return Invalid(where, "material id is empty");
+      if (material_index_.count(m.id())) return Invalid(where, "duplicate material id");
+      Material mat;
+      mat.id = m.id();
+      mat.unlit = m.unlit();
+      if (m.has_base_color()) {
+        auto c = ColorFromProto(m.base_color(), where + ".base_color");
+        if (!c.ok()) return c.status();
+        mat.base_color = *c;
+      }
+      if (!m.texture_id().empty()) {
+        auto it = texture_index_.find(m.texture_id());
+        if (it == texture_index_.end())
+          return absl::NotFoundError(
+              absl::StrCat(where, ": texture_id '", m.texture_id(), "' is not a texture of the scene"));
+        mat.texture = it->second;
+      }
+      switch (m.filter()) {
+        case v1::TEXTURE_FILTER_NEAREST: mat.filter = FilterMode::kNearest; break;
+        case v1::TEXTURE_FILTER_BILINEAR: mat.filter = FilterMode::kBilinear; break;
+        default: mat.filter = FilterMode::kTrilinear; break;
+      }
+      const v1::TextureTransform& tt = m.texture_transform();
+      const double values[] = {tt.repeat_u(), tt.repeat_v(), tt.rotation_deg(), tt.offset_u(), tt.offset_v()};
+      for (double v : values)
+        if (!std::isfinite(v)) return Invalid(where, "texture_transform has a non-finite value");
+      if (tt.repeat_u() < 0 || tt.repeat_v() < 0)
+        return Invalid(where, "texture_transform repeats must be > 0");
+      material_index_[m.id()] = static_cast<int>(scene_.materials.size());
+      transforms_.push_back(tt);
+      scene_.materials.push_back(mat);
+    }
+    return absl::OkStatus();
+  }
+
+  absl::Status BuildLights() {
+    if (proto_.has_sun()) {
+      const Vec3 dir = FromProto(proto_.sun().direction());
+      if (!IsFinite(dir)) return Invalid("sun.direction", "is not finite");
+      if (Length(dir) > 0) {
+        scene_.sun_direction = Normalize(dir);
+        auto c = ColorFromProto(proto_.sun().color(), "sun.color");
+        if (!c.ok()) return c.status();
+        scene_.sun_color = *c;
+      }
+    }
+    if (proto_.has_ambient()) {
+      auto c = ColorFromProto(proto_.ambient(), "ambient");
+      if (!c.ok()) return c.status();
+      scene_.ambient = *c;
+    } else if (proto_.has_sun()) {
+      scene_.ambient = {0, 0, 0, 1};
+    }
+    if (proto_.has_fog()) {
+      auto c = ColorFromProto(proto_.fog().color(), "fog.color");
+      if (!c.ok()) return c.status();
+      scene_.fog_color = *c;
+      const double d = proto_.fog().density();
+      if (!std::isfinite(d) || d < 0) return Invalid("fog.density", "must be finite and >= 0");
+      scene_.fog_density = d;
+    }
+    if (proto_.has_sky()) {
+      auto c = ColorFromProto(proto_.sky(), "sky");
+      if (!c.ok()) return c.status();
+      scene_.sky = *c;
+    }
+    return absl::OkStatus();
+  }
+
+  absl::Status BuildObjects() {
+    std::unordered_map<std::string, int> mesh_index;
+    for (int i = 0; i < proto_.meshes_size(); ++i) {
+      const std::string& id = proto_.meshes(i).id();
+      const std::string where = absl::StrCat("meshes[", i, "] ('", id, "')");
+      if (id.empty()) return Invalid(where, "mesh id is empty");
+      if (mesh_index.count(id)) return Invalid(where, "duplicate mesh id");
+      mesh_index[id] = i;
+    }
+    if (proto_.objects_size() == 0) {  // no objects: every mesh once, untransformed
+      for (int i = 0; i < proto_.meshes_size(); ++i)
+        if (auto s = PlaceMesh(i, ObjectPlacement{}, "", absl::StrCat("meshes[", i, "]")); !s.ok())
+          return s;
+      return absl::OkStatus();
+    }
+    for (int i = 0; i < proto_.objects_size(); ++i) {
+      const v1::Object& o = proto_.objects(i);
+      const std::string where = absl::StrCat("objects[", i, "]");
+      auto it = mesh_index.find(o.mesh_id());
+      if (it == mesh_index.end())
+        return absl::NotFoundError(absl::StrCat(where, ": mesh_id '", o.mesh_id(), "' is not a mesh of the scene"));
+      const v1::Transform& t = o.transform();
+      ObjectPlacement placement;
+      const Vec3 scale = t.has_scale() ? FromProto(t.scale()) : Vec3{1, 1, 1};
+      placement.translation = FromProto(t.translation());
+      const double angles[] = {t.yaw_deg(), t.pitch_deg(), t.roll_deg()};
+      for (double a : angles)
+        if (!std::isfinite(a)) return Invalid(where, "transform angles are not finite");
+      if (!IsFinite(placement.translation)) return Invalid(where, "transform translation is not finite");
+      if (!IsFinite(scale) || scale.x == 0 || scale.y == 0 || scale.z == 0)
+        return Invalid(where, "transform scale must be finite and non-zero");
+      placement.linear = YawPitchRoll(t.yaw_deg(), t.pitch_deg(), t.roll_deg()) * Mat3::Scale(scale);
+      if (auto s = PlaceMesh(it->second, placement, o.material_id(),
+                             absl::StrCat(where, " mesh '", o.mesh_id(), "'"));
+          !s.ok())
+        return s;
+    }
+    return absl::OkStatus();
+  }
+
+  absl::StatusOr<int> MaterialIndex(const std::string& id, const std::string& where) {
+    auto it = material_index_.find(id);
+    if (it == material_index_.end())
+      return absl::NotFoundError(absl::StrCat(where, ": material_id '", id, "' is not a material of the scene"));
+    return it->second;
+  }
+
+  absl::Status PlaceMesh(int mesh, const ObjectPlacement& placement, const std::string& material_override,
+                         const std::string& where_object) {
+    const v1::Mesh& m = proto_.meshes(mesh);
+    for (int p = 0; p < m.polygons_size(); ++p) {
+      const v1::Polygon& poly = m.polygons(p);
+      const std::string where = absl::StrCat(where_object, ".polygons[", p, "]");
+      std::string material_id = !material_override.empty() ? material_override
+                                : !poly.material_id().empty() ? poly.material_id()
+                                                              : m.material_id();
+      auto material = MaterialIndex(material_id, where);
+      if (!material.ok()) return material.status();
+      if (auto s = PlacePolygon(poly, placement, *material, where); !s.ok()) return s;
+    }
+    return absl::OkStatus();
+  }
+
+  absl::Status PlacePolygon(const v1::Polygon& poly, const ObjectPlacement& placement, int material,
+                            const std::string& where) {
+    if (poly.vertices_size() < 3)
+      return Invalid(where, absl::StrCat("polygon has ", poly.vertices_size(), " vertices, needs at least 3"));
+    if (poly.uvs_size() != 0 && poly.uvs_size() != poly.vertices_size())
+      return Invalid(where, absl::StrCat("polygon has ", poly.uvs_size(), " uvs for ",
+                                         poly.vertices_size(), " vertices"));
+    std::vector<Vec3> local;
+    std::vector<Vec2> uv;
+    for (int i = 0; i < poly.vertices_size(); ++i) {
+      const Vec3 v = FromProto(poly.vertices(i));
+      if (!IsFinite(v))
+        return Invalid(absl::StrCat(where, ".vertices[", i, "]"), "coordinate is NaN or infinite");
+      Vec2 t;
+      if (poly.uvs_size() != 0) {
+        t = {poly.uvs(i).u(), poly.uvs(i).v()};
+        if (!std::isfinite(t.x) || !std::isfinite(t.y))
+          return Invalid(absl::StrCat(where, ".uvs[", i, "]"), "is NaN or infinite");
+      }
+      if (!local.empty() && local.back() == v) continue;  // repeated vertex
+      local.push_back(v);
+      uv.push_back(t);
+    }
+    while (local.size() > 1 && local.front() == local.back()) local.pop_back(), uv.pop_back();
+    if (local.size() < 3)
+      return Invalid(where, "polygon has fewer than 3 distinct vertices");
+
+    std::vector<Vec3> world(local.size());
+    for (size_t i = 0; i < local.size(); ++i)
+      world[i] = placement.linear * local[i] + placement.translation;
+
+    const Vec3 newell = NewellNormal(world);
+    double extent = 0;
+    for (const Vec3& v : world) extent = std::max(extent, Length(v - world[0]));
+    const double twice_area = Length(newell);
+    if (!(twice_area > 1e-12 * extent * extent) || extent == 0)
+      return Invalid(where, "polygon is degenerate (zero area: collinear or coincident vertices)");
+    const Vec3 normal = newell * (1.0 / twice_area);
+    for (const Vec3& v : world)
+      if (std::abs(Dot(normal, v - world[0])) > 1e-6 * extent)
+        return Invalid(where, "polygon is not planar");
+
+    if (poly.uvs_size() == 0) {
+      const Vec3 ln = NewellNormal(local);
+      for (size_t i = 0; i < local.size(); ++i) uv[i] = PlanarProjection(local[i], ln);
+    }
+    // seed 003's F2: rotation, scale (repeats) and shift in the texture plane.
+    const v1::TextureTransform& tt = transforms_[material];
+    const double ru = tt.repeat_u() > 0 ? tt.repeat_u() : 1.0;
+    const double rv = tt.repeat_v() > 0 ? tt.repeat_v() : ru;
+    const double cr = std::cos(Radians(tt.rotation_deg())), sr = std::sin(Radians(tt.rotation_deg()));
+    for (Vec2& t : uv)
+      t = {(cr * t.x - sr * t.y) / ru + tt.offset_u(), (sr * t.x + cr * t.y) / rv + tt.offset_v()};
+
+    ScenePolygon base;
+    base.normal = normal;
+    base.material = material;
+    FitMapping(world, uv, normal, &base.mapping.su, &base.mapping.sv, &base.mapping.u0, &base.mapping.v0);
+
+    // Convexity and triangulation in the 2D plane the polygon faces most.
+    std::vector<Vec2> flat(world.size());
+    for (size_t i = 0; i < world.size(); ++i) {
+      const double ax = std::abs(normal.x), ay = std::abs(normal.y), az = std::abs(normal.z);
+      flat[i] = (az >= ax && az >= ay) ? Vec2{world[i].x, world[i].y}
+                : (ay >= ax)           ? Vec2{world[i].z, world[i].x}
+                                       : Vec2{world[i].y, world[i].z};
+    }
+    if (IsConvex(flat)) {
+      base.vertices = std::move(world);
+      scene_.polygons.push_back(std::move(base));
+      return absl::OkStatus();
+    }
+    auto triangles = TriangulateEarClipping(flat);
+    if (!triangles.ok()) return Invalid(where, std::string(triangles.status().message()));
+    for (const auto& tri : *triangles) {
+      ScenePolygon piece = base;
+      piece.vertices = {world[tri[0]], world[tri[1]], world[tri[2]]};
+      scene_.polygons.push_back(std::move(piece));
+    }
+    return absl::OkStatus();
+  }
+
+  const v1::Scene& proto_;
+  const SceneBuildOptions& options_;
+  Scene scene_;
+  std::unordered_map<std::string, int> texture_index_, material_index_;
+  std::vector<v1::TextureTransform> transforms_;
+};
+
+}  // namespace
+
+const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
+  switch (mode) {
+    case FilterMode::kNearest:
+      return *nearest;
+    case FilterMode::kBilinear:
+      return *bilinear;
+    case FilterMode::kTrilinear:
+      break;
+  }
+  return *trilinear;
+}
+
+std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image) {
+  auto texture = std::make_shared<SceneTexture>();
+  texture->id = std::move(id);
+  auto pyramid = std::make_shared<MipPyramid>(ResizeToPowerOfTwo(image));
+  texture->nearest = std::make_unique<NearestSampler>(*pyramid);
+  texture->bilinear = std::make_unique<BilinearSampler>(*pyramid);
+  texture->trilinear = std::make_unique<TrilinearSampler>(*pyramid);
+  texture->pyramid = std::move(pyramid);
+  return texture;
+}
+
+absl::StatusOr<Scene> BuildScene(const v1::Scene& proto, const SceneBuildOptions& options) {
+  return Builder(proto, options).Build();
+}
+
+absl::StatusOr<Camera> CameraFromProto(const v1::Camera& p) {
+  Camera c;
+  c.position = FromProto(p.position());
+  c.yaw_deg = p.yaw_deg();
+  c.pitch_deg = p.pitch_deg();
+  c.roll_deg = p.roll_deg();
+  if (p.vertical_fov_deg() != 0) c.vertical_fov_deg = p.vertical_fov_deg();
+  if (p.has_frustum()) {
+    c.off_axis = true;
+    c.left_deg = p.frustum().left_deg();
+    c.right_deg = p.frustum().right_deg();
+    c.bottom_deg = p.frustum().bottom_deg();
+    c.top_deg = p.frustum().top_deg();
+  }
+  if (p.near() != 0) c.near = p.near();
+  c.far = p.far();
+  if (auto s = ValidateCamera(c); !s.ok()) return s;
+  return c;
+}
+
+v1::Camera CameraToProto(const Camera& c) {
+  v1::Camera p;
+  p.mutable_position()->set_x(c.position.x);
+  p.mutable_position()->set_y(c.position.y);
+  p.mutable_position()->set_z(c.position.z);
+  p.set_yaw_deg(c.yaw_deg);
+  p.set_pitch_deg(c.pitch_deg);
+  p.set_roll_deg(c.roll_deg);
+  p.set_vertical_fov_deg(c.vertical_fov_deg);
+  if (c.off_axis) {
+    p.mutable_frustum()->set_left_deg(c.left_deg);
+    p.mutable_frustum()->set_right_deg(c.right_deg);
+    p.mutable_frustum()->set_bottom_deg(c.bottom_deg);
+    p.mutable_frustum()->set_top_deg(c.top_deg);
+  }
+  p.set_near(c.near);
+  p.set_far(c.far);
+  return p;
+}
+
+}  // namespace aperture

@@ -1,0 +1,24 @@
+// Turns a proto `Scene` into the engine's `Scene`: validates every field (naming the offending
+// one in the error), loads textures, applies object transforms, triangulates concave polygons.
+#pragma once
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "aperture/v1/scene.pb.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+namespace aperture {
+
+struct SceneBuildOptions {
+  std::string base_dir;  // relative texture paths are resolved against this folder
+};
+
+absl::StatusOr<Scene> BuildScene(const v1::Scene& proto, const SceneBuildOptions& options = {});
+
+// Camera from its proto form (defaults: fov 60, near 0.1), validated.
+absl::StatusOr<Camera> CameraFromProto(const v1::Camera& proto);
+v1::Camera CameraToProto(const Camera& camera);
+
+}  // namespace aperture

@@ -1,0 +1,20 @@
+// Scene files: the proto3 JSON mapping of aperture.v1.Scene, parsed by protobuf's own parser.
+#pragma once
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "aperture/v1/scene.pb.h"
+#include "scene/scene.h"
+
+namespace aperture {
+
+// Parses JSON text into the proto (unknown fields are errors).
+absl::StatusOr<v1::Scene> ParseSceneJson(const std::string& json);
+absl::StatusOr<v1::Scene> ReadSceneFile(const std::string& path);
+std::string SceneToJson(const v1::Scene& scene);
+
+// Reads, validates and builds: textures relative to the file's folder.
+absl::StatusOr<Scene> LoadSceneFile(const std::string& path);
+
+}  // namespace aperture

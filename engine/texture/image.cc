@@ -1,0 +1,111 @@
+#include "texture/image.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <cstring>
+
+#include "absl/strings/str_cat.h"
+
+namespace aperture {
+namespace {
+
+// OpenImageIO picks a reader by file name; for bytes in memory we name the format by its magic.
+const char* FormatNameForMagic(std::span<const uint8_t> b) {
+  auto starts = [&](std::initializer_list<uint8_t> magic) {
+    if (b.size() < magic.size()) return false;
+    return std::equal(magic.begin(), magic.end(), b.begin());
+  };
+  if (starts({0x89, 'P', 'N', 'G'})) return "memory.png";
+  if (starts({0x76, 0x2f, 0x31, 0x01})) return "memory.exr";
+  if (starts({0xff, 0xd8, 0xff})) return "memory.jpg";
+  if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42})) return "memory.tif";
+  return nullptr;
+}
+
+absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    return absl::InvalidArgumentError(absl::StrCat(what, ": image has no pixels"));
+  if (spec.width > 65536 || spec.height > 65536)
+    return absl::InvalidArgumentError(absl::StrCat(what, ": image is ", spec.width, "x",
+                                                   spec.height, ", above 65536 per side"));
+  const int channels = spec.nchannels;
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    return absl::InvalidArgumentError(absl::StrCat(what, ": ", in->geterror()));
+  Image image(spec.width, spec.height);
+  for (int y = 0; y < spec.height; ++y) {
+    for (int x = 0; x < spec.width; ++x) {
+      const float* p = &pixels[(static_cast<size_t>(y) * spec.width + x) * channels];
+      Rgba& t = image.at(x, y);
+      if (channels >= 3) {
+        t = {p[0], p[1], p[2], channels >= 4 ? p[3] : 1.0f};
+      } else {
+        t = {p[0], p[0], p[0], channels == 2 ? p[1] : 1.0f};
+      }
+    }
+  }
+  return image;
+}
+
+}  // namespace
+
+Image::Image(int width, int height, Rgba fill)
+    : width_(width), height_(height), texels_(static_cast<size_t>(width) * height, fill) {}
+
+absl::StatusOr<Image> LoadImageFile(const std::string& path) {
+  if (!OIIO::Filesystem::exists(path))
+    return absl::NotFoundError(absl::StrCat("texture file '", path, "' does not exist"));
+  auto in = OIIO::ImageInput::open(path);
+  if (!in)
+    return absl::InvalidArgumentError(
+        absl::StrCat("cannot read texture file '", path, "': ", OIIO::geterror()));
+  return ReadFrom(in.get(), absl::StrCat("texture file '", path, "'"));
+}
+
+absl::StatusOr<Image> DecodeImage(std::span<const uint8_t> bytes) {
+  const char* name = FormatNameForMagic(bytes);
+  if (name == nullptr)
+    return absl::InvalidArgumentError(
+        "encoded texture is not PNG, JPEG, EXR or TIFF (unknown magic bytes)");
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  OIIO::ImageSpec config;
+  void* proxy = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto in = OIIO::ImageInput::open(name, &config, &reader);
+  if (!in)
+    return absl::InvalidArgumentError(
+        absl::StrCat("cannot decode encoded texture: ", OIIO::geterror()));
+  return ReadFrom(in.get(), "encoded texture");
+}
+
+Image MakeCheckerboard(int size, int cells, Rgba a, Rgba b) {
+  Image image(size, size);
+  const int cell = std::max(1, size / std::max(1, cells));
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) image.at(x, y) = ((x / cell + y / cell) % 2 == 0) ? a : b;
+  return image;
+}
+
+bool IsPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+Image ResizeToPowerOfTwo(const Image& image) {
+  if (IsPowerOfTwo(image.width()) && IsPowerOfTwo(image.height())) return image;
+  auto next = [](int n) {
+    int p = 1;
+    while (p < n) p *= 2;
+    return p;
+  };
+  OIIO::ImageSpec src_spec(image.width(), image.height(), 4, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageBuf src(src_spec, const_cast<Rgba*>(image.texels().data()));
+  OIIO::ROI roi(0, next(image.width()), 0, next(image.height()), 0, 1, 0, 4);
+  OIIO::ImageBuf dst = OIIO::ImageBufAlgo::resize(src, "", 0.0f, roi);
+  Image out(roi.width(), roi.height());
+  dst.get_pixels(roi, OIIO::TypeDesc::FLOAT, out.texels().data());
+  return out;
+}
+
+}  // namespace aperture

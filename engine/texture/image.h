@@ -1,0 +1,58 @@
+// A linear-float RGBA image: the in-memory form of every raster texture before prefiltering.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+
+namespace aperture {
+
+struct Rgba {
+  float r = 0, g = 0, b = 0, a = 0;
+
+  Rgba operator+(const Rgba& o) const { return {r + o.r, g + o.g, b + o.b, a + o.a}; }
+  Rgba operator*(float s) const { return {r * s, g * s, b * s, a * s}; }
+  Rgba operator*(const Rgba& o) const { return {r * o.r, g * o.g, b * o.b, a * o.a}; }
+  bool operator==(const Rgba&) const = default;
+};
+
+class Image {
+ public:
+  Image() = default;
+  Image(int width, int height, Rgba fill = {});
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool empty() const { return width_ == 0 || height_ == 0; }
+
+  Rgba& at(int x, int y) { return texels_[static_cast<size_t>(y) * width_ + x]; }
+  const Rgba& at(int x, int y) const { return texels_[static_cast<size_t>(y) * width_ + x]; }
+  std::span<const Rgba> texels() const { return texels_; }
+  std::span<Rgba> texels() { return texels_; }
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<Rgba> texels_;
+};
+
+// Reads an image file through OpenImageIO. 8-bit values are taken as linear (value / 255).
+// Greyscale becomes grey RGB, missing alpha becomes 1.
+absl::StatusOr<Image> LoadImageFile(const std::string& path);
+// The same for an encoded image held in memory (PNG, JPEG, EXR, TIFF, ...).
+absl::StatusOr<Image> DecodeImage(std::span<const uint8_t> bytes);
+
+// `cells` x `cells` squares on a `size` x `size` image; the top-left square has colour `a`.
+Image MakeCheckerboard(int size, int cells, Rgba a, Rgba b);
+
+// Resamples to the next power of two per side (OpenImageIO's default resize filter) when needed;
+// returns the image unchanged otherwise.
+Image ResizeToPowerOfTwo(const Image& image);
+
+bool IsPowerOfTwo(int n);
+
+}  // namespace aperture

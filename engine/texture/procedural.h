@@ -1,0 +1,18 @@
+// Procedural textures for built-in scenes: tileable value noise tinted as grass or asphalt.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "texture/image.h"
+
+namespace aperture {
+
+// Periodic (tileable) multi-octave value noise in [0, 1], `size` a power of two.
+Image MakeNoiseTexture(int size, uint32_t seed, Rgba dark, Rgba light);
+
+// Encodes an image as 8-bit PNG bytes (values clamped to [0, 1], stored linearly).
+absl::StatusOr<std::vector<uint8_t>> EncodePng(const Image& image);
+
+}  // namespace aperture

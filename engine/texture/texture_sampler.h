@@ -1,0 +1,26 @@
+// The sampling interface every texture filter mode implements.
+#pragma once
+
+#include "texture/image.h"
+
+namespace aperture {
+
+enum class FilterMode { kNearest, kBilinear, kTrilinear };
+
+const char* FilterModeName(FilterMode mode);
+
+// Where and how wide one sample is. (u, v) in texture repeats (the texture is the unit square
+// repeated periodically); derivatives in repeats per pixel, already multiplied by the filter
+// aperture a (DESIGN.md: every mode is driven with the same aperture).
+struct TextureFootprint {
+  double u = 0, v = 0;
+  float dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
+};
+
+class TextureSampler {
+ public:
+  virtual ~TextureSampler() = default;
+  virtual Rgba Sample(const TextureFootprint& footprint) const = 0;
+};
+
+}  // namespace aperture

@@ -1,0 +1,35 @@
+#include "support/reference_render.h"
+
+#include <cmath>
+
+namespace aperture::testing {
+
+Rgba DenseReferencePixel(const FrameGeometry& geo, const FlatColour& colour, Rgba sky,
+                         AntiAliasing aa, int px, int py, int n) {
+  const double half = aa == AntiAliasing::kBox1 ? 0.5 : 1.0;  // aperture half-width
+  const double cx = px + 0.5, cy = py + 0.5;
+  double r = 0, g = 0, b = 0, total = 0;
+  for (int j = 0; j < n; ++j) {
+    const double dy = -half + (j + 0.5) * (2 * half / n);
+    for (int i = 0; i < n; ++i) {
+      const double dx = -half + (i + 0.5) * (2 * half / n);
+      const double w = aa == AntiAliasing::kTent2 ? (1 - std::abs(dx)) * (1 - std::abs(dy)) : 1.0;
+      const double x = cx + dx, y = cy + dy;
+      int best = -1;
+      double best_depth = 0;
+      for (size_t k = 0; k < geo.polygons.size(); ++k) {
+        const ScreenPolygon& p = geo.polygons[k];
+        if (x < p.min_x || x > p.max_x || y < p.min_y || y > p.max_y || !p.Contains(x, y)) continue;
+        const double d = p.inv_depth.At(x, y);
+        if (best < 0 || d > best_depth) best = static_cast<int>(k), best_depth = d;
+      }
+      const Rgba c = best < 0 ? sky : colour(best);
+      r += w * c.r, g += w * c.g, b += w * c.b;
+      total += w;
+    }
+  }
+  return {static_cast<float>(r / total), static_cast<float>(g / total),
+          static_cast<float>(b / total), 1.0f};
+}
+
+}  // namespace aperture::testing
