@@ -132,24 +132,36 @@ v1::Scene MakeDemoScene() {
   v1::Mesh* test_area = scene.add_meshes();
   test_area->set_id("checker-area");
   test_area->set_material_id("checker");
-  AddFlatRect(test_area, 60, -600, 260, -400, 0.05);
+  AddFlatRect(test_area, 50, -150, 250, 50, 0.05);
 
   v1::Mesh* hangars = scene.add_meshes();
   hangars->set_id("hangars");
   hangars->set_material_id("hangar");
-  for (int i = 0; i < 4; ++i) AddBox(hangars, -320, -200.0 - i * 90, -260, -140.0 - i * 90, 18);
+  for (int i = 0; i < 4; ++i) AddBox(hangars, -190, -60.0 - i * 90, -130, 0.0 - i * 90, 18);
 
   v1::Mesh* tanks = scene.add_meshes();
   tanks->set_id("tanks");
   tanks->set_material_id("tank");
-  for (int i = 0; i < 3; ++i) AddTank(tanks, 320 + i * 35.0, -900, 12, 14, 32);
+  for (int i = 0; i < 3; ++i) AddTank(tanks, 160 + i * 35.0, -420, 12, 14, 32);
+
+  // A town beyond the airfield: a 16 x 16 grid of buildings of varied height.
+  v1::Mesh* town = scene.add_meshes();
+  town->set_id("town");
+  town->set_material_id("hangar");
+  for (int i = 0; i < 16; ++i) {
+    for (int j = 0; j < 16; ++j) {
+      const double x = -900 + i * 28.0, z = -1700 + j * 28.0;
+      const double height = 8 + ((i * 7 + j * 13) % 11) * 3.0;
+      AddBox(town, x, z, x + 18, z + 18, height);
+    }
+  }
   return scene;
 }
 
 Camera DemoCamera() {
   Camera camera;
-  camera.position = {0, 25, 650};
-  camera.pitch_deg = -3;
+  camera.position = {0, 14, 420};
+  camera.pitch_deg = -5;
   camera.vertical_fov_deg = 60;
   camera.near = 0.5;
   return camera;

@@ -1,0 +1,46 @@
+// aperture-tex: texture tools (prefiltered tables, packed vector textures, benchmarks).
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "tools/tex_commands.h"
+
+namespace aperture {
+namespace {
+
+std::vector<TexCommand> AllCommands() {
+  std::vector<TexCommand> all = PrefilteredTableCommands();
+  for (const TexCommand& c : PackedTextureCommands()) all.push_back(c);
+  return all;
+}
+
+int Usage(FILE* out) {
+  std::fprintf(out, "usage: aperture-tex COMMAND [ARGS...]\n\ncommands:\n");
+  for (const TexCommand& c : AllCommands()) std::fprintf(out, "  %-14s %s\n", c.name, c.summary);
+  std::fprintf(out, "\n'aperture-tex COMMAND --help' describes one command.\n");
+  return out == stdout ? 0 : 2;
+}
+
+}  // namespace
+}  // namespace aperture
+
+int main(int argc, char** argv) {
+  using namespace aperture;
+  if (argc < 2) return Usage(stderr);
+  const std::string command = argv[1];
+  if (command == "help" || command == "--help" || command == "-h") return Usage(stdout);
+  // `info` is shared: a file's magic tells which family describes it; each family's `info`
+  // returns 3 for "not mine" so the next one can try.
+  int last = -1;
+  for (const TexCommand& c : AllCommands()) {
+    if (command != c.name) continue;
+    last = c.run(argc - 1, argv + 1);
+    if (last != 3) return last;
+  }
+  if (last == 3) {
+    std::fprintf(stderr, "aperture-tex %s: file format not recognised\n", command.c_str());
+    return 2;
+  }
+  std::fprintf(stderr, "aperture-tex: unknown command '%s'\n\n", command.c_str());
+  return Usage(stderr);
+}

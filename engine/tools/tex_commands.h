@@ -1,0 +1,19 @@
+// Subcommands of `aperture-tex`. Each texture family registers its own in its own file.
+#pragma once
+
+#include <vector>
+
+namespace aperture {
+
+struct TexCommand {
+  const char* name;
+  const char* summary;        // one line for `aperture-tex help`
+  int (*run)(int argc, char** argv);  // argv[0] is the subcommand name; returns the exit code
+};
+
+// Prefiltered anisotropic tables (seed 000): prefilter, info, bench-filter, bake.
+std::vector<TexCommand> PrefilteredTableCommands();
+// Packed vector textures (seed 001): pack, unpack, info, bench-packed.
+std::vector<TexCommand> PackedTextureCommands();
+
+}  // namespace aperture
