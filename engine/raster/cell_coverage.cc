@@ -108,6 +108,7 @@ bool CellCoverage::Separated(const Piece& a, const Piece& b) const {
       const Vec2& q = verts_[edges.begin + (i + 1) % n];
       const double ex = q.x - p.x, ey = q.y - p.y;
       const double tol = kEps * (std::abs(ex) + std::abs(ey));
+      if (tol == 0) continue;  // clipping can repeat a vertex: a zero-length edge separates nothing
       bool all_outside = true;
       for (size_t k = other.begin; k < other.end && all_outside; ++k) {
         const Vec2& v = verts_[k];
