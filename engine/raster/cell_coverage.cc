@@ -84,12 +84,33 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons,
     }
   }
 
+  // Layers: a full piece behind all others over the whole cell (ground under runway paint,
+  // under a building's edge), the others disjoint: each front piece keeps its own moments and
+  // the background gets the rest of the cell.
+  for (size_t b = 0; b < pieces_.size(); ++b) {
+    const Piece& back = pieces_[b];
+    if (!back.full) continue;
+    bool behind = true;
+    for (size_t q = 0; q < pieces_.size() && behind; ++q) {
+      if (q == b) continue;
+      for (double y : {-kHalf, kHalf})
+        for (double x : {-kHalf, kHalf})
+          behind = behind && pieces_[q].depth.At(x, y) > back.depth.At(x, y);
+    }
+    if (!behind || !PairwiseDisjoint(b)) break;
+    CellMoments rest{1, 0, 0, 0};
+    for (size_t q = 0; q < pieces_.size(); ++q) {
+      if (q == b) continue;
+      const CellMoments m = moments_of(pieces_[q]);
+      if (m.area > 0) out.push_back({pieces_[q].polygon, m});
+      rest = {rest.area - m.area, rest.mx - m.mx, rest.my - m.my, rest.mxy - m.mxy};
+    }
+    if (rest.area > 0) out.push_back({back.polygon, rest});
+    return;
+  }
+
   // Pieces whose interiors are disjoint (neighbours in a mesh) need no visibility at all.
-  bool disjoint = true;
-  for (size_t i = 0; i < pieces_.size() && disjoint; ++i)
-    for (size_t j = i + 1; j < pieces_.size() && disjoint; ++j)
-      disjoint = Separated(pieces_[i], pieces_[j]);
-  if (disjoint) {
+  if (PairwiseDisjoint(pieces_.size())) {
     for (const Piece& p : pieces_) {
       const CellMoments m = moments_of(p);
       if (m.area > 0) out.push_back({p.polygon, m});
@@ -97,6 +118,13 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons,
     return;
   }
   Decompose(with_moments, out);
+}
+
+bool CellCoverage::PairwiseDisjoint(size_t skip) const {
+  for (size_t i = 0; i < pieces_.size(); ++i)
+    for (size_t j = i + 1; j < pieces_.size(); ++j)
+      if (i != skip && j != skip && !Separated(pieces_[i], pieces_[j])) return false;
+  return true;
 }
 
 // Separating-axis test with the edges of both convex pieces; touching counts as separated.

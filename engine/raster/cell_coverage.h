@@ -43,6 +43,8 @@ class CellCoverage {
   };
 
   bool Separated(const Piece& a, const Piece& b) const;
+  // Every pair of pieces (but piece `skip`) has disjoint interiors.
+  bool PairwiseDisjoint(size_t skip) const;
   void AddDepthEqualityLine(const Piece& a, const Piece& b);
   void Decompose(bool with_moments, std::vector<CellPiece>& out);
 

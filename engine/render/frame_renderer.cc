@@ -40,7 +40,7 @@ absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& came
   if (auto s = ValidateCamera(camera); !s.ok()) return s;
 
   RenderedFrame frame;
-  frame.image = Image(settings.width, settings.height);
+  frame.image = Image::Uninitialized(settings.width, settings.height);
   const AaFilterShape shape = ShapeOf(settings.aa);
   tbb::task_arena arena(settings.threads > 0 ? settings.threads
                                              : tbb::task_arena::automatic);

@@ -56,6 +56,14 @@ absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
 Image::Image(int width, int height, Rgba fill)
     : width_(width), height_(height), texels_(static_cast<size_t>(width) * height, fill) {}
 
+Image Image::Uninitialized(int width, int height) {
+  Image image;
+  image.width_ = width;
+  image.height_ = height;
+  image.texels_.resize(static_cast<size_t>(width) * height);
+  return image;
+}
+
 absl::StatusOr<Image> LoadImageFile(const std::string& path) {
   if (!OIIO::Filesystem::exists(path))
     return absl::NotFoundError(absl::StrCat("texture file '", path, "' does not exist"));

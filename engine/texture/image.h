@@ -4,7 +4,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -20,10 +22,28 @@ struct Rgba {
   bool operator==(const Rgba&) const = default;
 };
 
+// Leaves elements unconstructed when no value is given, so that a frame buffer is first touched
+// (and its pages faulted in) by the parallel workers that write it, not serially up front.
+template <typename T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  template <typename U>
+  void construct(U*) noexcept {}
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
 class Image {
  public:
   Image() = default;
   Image(int width, int height, Rgba fill = {});
+  // Every texel must be written before it is read.
+  static Image Uninitialized(int width, int height);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -37,7 +57,7 @@ class Image {
  private:
   int width_ = 0;
   int height_ = 0;
-  std::vector<Rgba> texels_;
+  std::vector<Rgba, UninitializedAllocator<Rgba>> texels_;
 };
 
 // Reads an image file through OpenImageIO. 8-bit values are taken as linear (value / 255).
