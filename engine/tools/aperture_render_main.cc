@@ -43,12 +43,9 @@ int Fail(const absl::Status& status) {
 }
 
 int Run() {
+  // Options first, so that a mistake is reported before any work is done.
   const std::string scene_arg = absl::GetFlag(FLAGS_scene);
   const bool demo = scene_arg == "demo";
-  auto built = demo ? BuildScene(MakeDemoScene()) : LoadSceneFile(scene_arg);
-  if (!built.ok()) return Fail(built.status());
-  if (built->name.empty()) built->name = scene_arg;
-
   Camera camera = demo ? DemoCamera() : Camera{.position = {0, 1.7, 0}};
   if (const std::string spec = absl::GetFlag(FLAGS_camera); !spec.empty()) {
     auto parsed = ParseCameraSpec(spec);
@@ -83,6 +80,10 @@ int Run() {
   exr.compression = *compression;
   exr.pixel_type = absl::GetFlag(FLAGS_float_pixels) ? ExrPixelType::kFloat : ExrPixelType::kHalf;
   if (auto s = ValidateRenderSettings(settings); !s.ok()) return Fail(s);
+
+  auto built = demo ? BuildScene(MakeDemoScene()) : LoadSceneFile(scene_arg);
+  if (!built.ok()) return Fail(built.status());
+  if (built->name.empty()) built->name = scene_arg;
 
   const int repeat = std::max(1, absl::GetFlag(FLAGS_repeat));
   absl::StatusOr<RenderedFrame> best;

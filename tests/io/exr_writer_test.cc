@@ -1,0 +1,115 @@
+#include "io/exr_writer.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace aperture {
+namespace {
+
+Image Gradient(int w, int h) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      img.at(x, y) = {x / float(w), y / float(h), 0.25f + 1e-3f * float(x + y), 1.0f};
+  return img;
+}
+
+struct ReadBack {
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;
+};
+
+ReadBack ReadExr(const std::string& path, OIIO::Filesystem::IOProxy* proxy = nullptr) {
+  OIIO::ImageSpec config;
+  if (proxy != nullptr) {
+    void* p = proxy;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
+  }
+  auto in = OIIO::ImageInput::open(path, &config, proxy);
+  EXPECT_TRUE(in) << OIIO::geterror();
+  ReadBack r;
+  if (!in) return r;
+  r.spec = in->spec();
+  r.pixels.resize(static_cast<size_t>(r.spec.width) * r.spec.height * r.spec.nchannels);
+  EXPECT_TRUE(in->read_image(0, 0, 0, r.spec.nchannels, OIIO::TypeDesc::FLOAT, r.pixels.data()));
+  return r;
+}
+
+class ExrWriterTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("aperture_exr_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
+  const Image img = Gradient(67, 41);
+  for (ExrCompression c : {ExrCompression::kNone, ExrCompression::kRle, ExrCompression::kZips,
+                           ExrCompression::kZip, ExrCompression::kPiz, ExrCompression::kDwaa}) {
+    for (ExrPixelType type : {ExrPixelType::kHalf, ExrPixelType::kFloat}) {
+      ExrOptions options;
+      options.compression = c;
+      options.pixel_type = type;
+      options.metadata.scene_name = "gradient";
+      options.metadata.camera = "0,1,0,0,-5,0 fov=60";
+      options.metadata.render_ms = 12.5;
+      const std::string path = (dir_ / (std::string(ExrCompressionName(c)) + ".exr")).string();
+      ASSERT_TRUE(WriteExrFile(img, options, path).ok());
+      ReadBack r = ReadExr(path);
+      ASSERT_EQ(r.spec.width, 67);
+      ASSERT_EQ(r.spec.nchannels, 4);
+      EXPECT_EQ(r.spec.format, type == ExrPixelType::kHalf ? OIIO::TypeDesc::HALF
+                                                           : OIIO::TypeDesc::FLOAT);
+      EXPECT_EQ(r.spec.get_string_attribute("compression"), ExrCompressionName(c));
+      EXPECT_EQ(r.spec.get_string_attribute("aperture:scene"), "gradient");
+      EXPECT_EQ(r.spec.get_string_attribute("aperture:camera"), "0,1,0,0,-5,0 fov=60");
+      EXPECT_FLOAT_EQ(r.spec.get_float_attribute("aperture:render_ms"), 12.5f);
+      // Lossless codecs keep half precision (dwaa is lossy).
+      const float tolerance = c == ExrCompression::kDwaa ? 2e-2f
+                              : type == ExrPixelType::kHalf ? 1e-3f : 0.0f;
+      float worst = 0;
+      for (size_t i = 0; i < r.pixels.size(); ++i) {
+        const Rgba& t = img.texels()[i / 4];
+        const float want = (&t.r)[i % 4];
+        worst = std::max(worst, std::abs(r.pixels[i] - want));
+      }
+      EXPECT_LE(worst, tolerance) << ExrCompressionName(c);
+    }
+  }
+}
+
+TEST_F(ExrWriterTest, InMemoryBytesEqualTheFile) {
+  const Image img = Gradient(33, 20);
+  ExrOptions options;
+  auto bytes = EncodeExr(img, options);
+  ASSERT_TRUE(bytes.ok()) << bytes.status();
+  ASSERT_GT(bytes->size(), 100u);
+  OIIO::Filesystem::IOMemReader reader(bytes->data(), bytes->size());
+  ReadBack from_memory = ReadExr("frame.exr", &reader);
+  const std::string path = (dir_ / "f.exr").string();
+  ASSERT_TRUE(WriteExrFile(img, options, path).ok());
+  ReadBack from_file = ReadExr(path);
+  ASSERT_EQ(from_memory.pixels.size(), from_file.pixels.size());
+  EXPECT_EQ(from_memory.pixels, from_file.pixels);
+}
+
+TEST_F(ExrWriterTest, UnwritablePathIsAnError) {
+  auto status = WriteExrFile(Gradient(4, 4), {}, (dir_ / "no/such/dir/x.exr").string());
+  EXPECT_FALSE(status.ok());
+}
+
+TEST(ExrCompression, ParsesKnownNamesOnly) {
+  EXPECT_EQ(*ParseExrCompression("piz"), ExrCompression::kPiz);
+  EXPECT_FALSE(ParseExrCompression("lzw").ok());
+}
+
+}  // namespace
+}  // namespace aperture

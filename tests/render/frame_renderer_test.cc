@@ -1,0 +1,119 @@
+#include "render/frame_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "scene/demo_scene.h"
+#include "scene/scene_builder.h"
+#include "support/test_scenes.h"
+
+namespace aperture {
+namespace {
+
+bool BitIdentical(const Image& a, const Image& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         std::memcmp(a.texels().data(), b.texels().data(), a.texels().size_bytes()) == 0;
+}
+
+TEST(FrameRenderer, BitIdenticalAcrossThreadCountsAndRuns) {
+  auto scene = BuildScene(MakeDemoScene());
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  RenderSettings settings;
+  settings.width = 480;
+  settings.height = 270;
+  for (AntiAliasing aa : {AntiAliasing::kBox2, AntiAliasing::kTent2}) {
+    settings.aa = aa;
+    settings.threads = 1;
+    auto one = RenderFrame(*scene, DemoCamera(), settings);
+    settings.threads = 2;
+    auto two = RenderFrame(*scene, DemoCamera(), settings);
+    auto again = RenderFrame(*scene, DemoCamera(), settings);
+    ASSERT_TRUE(one.ok() && two.ok() && again.ok());
+    EXPECT_TRUE(BitIdentical(one->image, two->image)) << AntiAliasingName(aa);
+    EXPECT_TRUE(BitIdentical(two->image, again->image)) << AntiAliasingName(aa);
+    EXPECT_GT(one->stats.mixed_leaves, 0u);
+  }
+}
+
+TEST(FrameRenderer, PrecisionFarFromTheOrigin) {
+  // DESIGN.md's grazing plane as one 100 km polygon; moving the camera by 2,500 texture periods
+  // (10 km along x) must leave the frame unchanged.
+  auto scene = BuildScene(testing::MakeGrazingPlaneScene(50000, 5000, 0));
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  RenderSettings settings;
+  settings.width = 256;
+  settings.height = 192;
+  settings.shading.override_filter = true;
+  settings.shading.filter = FilterMode::kTrilinear;
+  Camera near_origin, far_away;
+  near_origin.position = {0, 1, 0};
+  near_origin.pitch_deg = -5;
+  far_away = near_origin;
+  far_away.position.x = 10000;
+  auto a = RenderFrame(*scene, near_origin, settings);
+  auto b = RenderFrame(*scene, far_away, settings);
+  ASSERT_TRUE(a.ok() && b.ok());
+  float worst = 0;
+  double mean = 0;
+  for (size_t i = 0; i < a->image.texels().size(); ++i) {
+    const Rgba& p = a->image.texels()[i];
+    const Rgba& q = b->image.texels()[i];
+    worst = std::max({worst, std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
+    mean += p.r;
+  }
+  mean /= static_cast<double>(a->image.texels().size());
+  EXPECT_LE(worst, 1.0f / 256);
+  EXPECT_GT(mean, 0.1);  // the checkerboard is there, not an empty frame
+}
+
+TEST(FrameRenderer, RejectsBadSettings) {
+  auto scene = BuildScene(MakeDemoScene());
+  ASSERT_TRUE(scene.ok());
+  RenderSettings settings;
+  settings.width = 0;
+  auto r = RenderFrame(*scene, DemoCamera(), settings);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("image size"), std::string::npos);
+  settings.width = 16385;
+  settings.height = 10;
+  EXPECT_FALSE(RenderFrame(*scene, DemoCamera(), settings).ok());
+  settings.width = 64;
+  Camera bad = DemoCamera();
+  bad.position.y = NAN;
+  r = RenderFrame(*scene, bad, settings);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("position"), std::string::npos);
+}
+
+TEST(FrameRenderer, OffAxisFrustumShiftsTheImage) {
+  // A single far square straight ahead: an off-axis frustum looking more to the right moves it
+  // left in the image.
+  auto scene = BuildScene(testing::MakeFlatScene(
+      {{{{-1, -1, -20}, {1, -1, -20}, {1, 1, -20}, {-1, 1, -20}}, {1, 1, 1, 1}}}, {0, 0, 0, 1}));
+  ASSERT_TRUE(scene.ok());
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 64;
+  Camera symmetric;
+  Camera shifted;
+  shifted.off_axis = true;
+  shifted.left_deg = -10, shifted.right_deg = 40, shifted.bottom_deg = -25, shifted.top_deg = 25;
+  auto a = RenderFrame(*scene, symmetric, settings);
+  auto b = RenderFrame(*scene, shifted, settings);
+  ASSERT_TRUE(a.ok() && b.ok());
+  auto centroid_x = [](const Image& img) {
+    double sum = 0, weight = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) sum += img.at(x, y).r * (x + 0.5), weight += img.at(x, y).r;
+    return sum / weight;
+  };
+  EXPECT_NEAR(centroid_x(a->image), 32.0, 0.01);
+  // tan(0) maps to (0 - tan(-10)) / (tan(40) - tan(-10)) of the width.
+  const double expected = std::tan(Radians(10)) / (std::tan(Radians(40)) + std::tan(Radians(10))) * 64;
+  EXPECT_NEAR(centroid_x(b->image), expected, 0.2);
+}
+
+}  // namespace
+}  // namespace aperture

@@ -1,0 +1,114 @@
+// aperture-render as a user runs it: a real process, real files.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+struct Result {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result RunRender(const std::string& args) {
+  const std::string command = std::string(APERTURE_RENDER_BIN) + " " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) r.output += buffer.data();
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+class RenderCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("aperture_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string WriteScene(const std::string& name, const std::string& json) const {
+    std::ofstream(Path(name)) << json;
+    return Path(name);
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(RenderCli, RendersTheDemoToAnExrAndAPreview) {
+  const Result r = RunRender("--scene demo --size 160x90 --filter trilinear -o " + Path("demo.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("setup"), std::string::npos);
+  EXPECT_NE(r.output.find("raster"), std::string::npos);
+  EXPECT_NE(r.output.find("encode"), std::string::npos);
+  auto in = OIIO::ImageInput::open(Path("demo.exr"));
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().width, 160);
+  EXPECT_EQ(in->spec().height, 90);
+  EXPECT_EQ(in->spec().nchannels, 4);
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::HALF);
+  EXPECT_EQ(in->spec().get_string_attribute("aperture:scene"), "demo-airfield");
+  EXPECT_TRUE(std::filesystem::exists(Path("demo.png")));
+}
+
+TEST_F(RenderCli, FloatPixelsAndCompressionAreHonoured) {
+  const Result r = RunRender("--size 32x24 --filter bilinear --float_pixels --compression piz "
+                       "--nopreview -o " + Path("f.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto in = OIIO::ImageInput::open(Path("f.exr"));
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(in->spec().get_string_attribute("compression"), "piz");
+  EXPECT_FALSE(std::filesystem::exists(Path("f.png")));
+}
+
+struct BadRun {
+  std::string args;
+  const char* message;
+};
+
+TEST_F(RenderCli, BadInputExitsNonZeroNamingTheProblem) {
+  const std::string quad_tail =
+      R"(, {"x": 1, "y": 0, "z": -5}, {"x": 1, "y": 1, "z": -5}, {"x": 0, "y": 1, "z": -5}]}]}]})";
+  const std::string head = R"({"meshes": [{"id": "m", "polygons": [{"vertices": [)";
+  const std::vector<BadRun> runs = {
+      {"--size 0x10", "image size 0x10"},
+      {"--size 16385x10", "outside 1..16384"},
+      {"--size big", "WIDTHxHEIGHT"},
+      {"--aa box3", "unknown anti-aliasing 'box3'"},
+      {"--filter sharp", "unknown texture filter 'sharp'"},
+      {"--camera 1,2,3", "X,Y,Z,YAW,PITCH,ROLL"},
+      {"--fov 0", "field of view"},
+      {"--compression lzw", "unknown EXR compression"},
+      {"--scene " + Path("missing.json"), "cannot open scene file"},
+      {"--scene " + WriteScene("syntax.json", "{\"meshes\": ["), "scene JSON is invalid"},
+      {"--scene " + WriteScene("unknown.json", R"({"meshs": []})"), "meshs"},
+      {"--scene " + WriteScene("nan.json", head + R"({"x": "NaN", "y": 0, "z": -5})" + quad_tail),
+       "vertices[0]"},
+      {"--scene " + WriteScene("two.json", head + R"({"x": 0}, {"x": 1}]}]}]})"),
+       "needs at least 3"},
+      {"--scene " + WriteScene("degenerate.json", head + R"({"x": 0}, {"x": 1}, {"x": 2}]}]}]})"),
+       "degenerate"},
+      {"--scene " + WriteScene("texture.json", R"({"textures": [{"id": "t", "file": "gone.png"}]})"),
+       "gone.png"},
+  };
+  for (const BadRun& run : runs) {
+    const Result r = RunRender(run.args + " --nopreview -o " + Path("bad.exr"));
+    EXPECT_NE(r.exit_code, 0) << run.args;
+    EXPECT_NE(r.output.find(run.message), std::string::npos) << run.args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("Aborted"), std::string::npos) << run.args;
+  }
+  EXPECT_FALSE(std::filesystem::exists(Path("bad.exr")));
+}
+
+}  // namespace
