@@ -1,0 +1,71 @@
+#include "scene/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+#include "scene/demo_scene.h"
+#include "support/test_scenes.h"
+
+namespace aperture {
+namespace {
+
+double U(const ScenePolygon& p, const Vec3& x) { return Dot(p.mapping.su, x) + p.mapping.u0; }
+double V(const ScenePolygon& p, const Vec3& x) { return Dot(p.mapping.sv, x) + p.mapping.v0; }
+
+TEST(SceneBuilder, GroundPlaneMapsUAndVAsInDesign) {
+  auto scene = BuildScene(testing::MakeGrazingPlaneScene(100));
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  ASSERT_EQ(scene->polygons.size(), 1u);
+  const ScenePolygon& p = scene->polygons[0];
+  EXPECT_NEAR(U(p, {10, 0, -6}), 2.5, 1e-12);   // u = x / 4
+  EXPECT_NEAR(V(p, {10, 0, -6}), -1.5, 1e-12);  // v = z / 4
+}
+
+TEST(SceneBuilder, ExplicitUvsAreReproducedAtTheVertices) {
+  v1::Scene proto;
+  v1::Mesh* mesh = proto.add_meshes();
+  mesh->set_id("m");
+  v1::Polygon* poly = mesh->add_polygons();
+  const Vec3 vs[4] = {{0, 0, 0}, {2, 0, 0}, {2, 3, 1}, {0, 3, 1}};
+  const Vec2 uvs[4] = {{0.1, 0.2}, {0.9, 0.2}, {0.9, 1.7}, {0.1, 1.7}};
+  for (int i = 0; i < 4; ++i) {
+    v1::Vec3* v = poly->add_vertices();
+    v->set_x(vs[i].x), v->set_y(vs[i].y), v->set_z(vs[i].z);
+    v1::Vec2* t = poly->add_uvs();
+    t->set_u(uvs[i].x), t->set_v(uvs[i].y);
+  }
+  auto scene = BuildScene(proto);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  const ScenePolygon& p = scene->polygons[0];
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(U(p, vs[i]), uvs[i].x, 1e-12);
+    EXPECT_NEAR(V(p, vs[i]), uvs[i].y, 1e-12);
+  }
+}
+
+TEST(SceneBuilder, ObjectTransformsPlaceMeshes) {
+  auto proto = testing::MakeFlatScene({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {1, 1, 1, 1}}}, {});
+  v1::Object* o = proto.add_objects();
+  o->set_mesh_id("mesh");
+  o->mutable_transform()->mutable_translation()->set_x(10);
+  o->mutable_transform()->set_yaw_deg(90);
+  o->mutable_transform()->mutable_scale()->set_x(2);
+  o->mutable_transform()->mutable_scale()->set_y(1);
+  o->mutable_transform()->mutable_scale()->set_z(1);
+  auto scene = BuildScene(proto);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  ASSERT_EQ(scene->polygons.size(), 1u);
+  // (1, 0, 0) scaled to (2, 0, 0), yawed 90 degrees to (0, 0, -2), moved to (10, 0, -2).
+  const Vec3 v = scene->polygons[0].vertices[1];
+  EXPECT_NEAR(v.x, 10, 1e-12);
+  EXPECT_NEAR(v.z, -2, 1e-12);
+}
+
+TEST(SceneBuilder, DemoSceneBuilds) {
+  auto scene = BuildScene(MakeDemoScene());
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  EXPECT_GT(scene->polygons.size(), 1000u);
+  EXPECT_EQ(scene->textures.size(), 3u);
+}
+
+}  // namespace
+}  // namespace aperture
