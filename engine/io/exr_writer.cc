@@ -25,10 +25,10 @@ OIIO::ImageSpec MakeSpec(const Image& image, const ExrOptions& options) {
   return spec;
 }
 
-absl::Status WriteTo(OIIO::ImageOutput* out, const Image& image, const OIIO::ImageSpec& spec,
+absl::Status WriteTo(OIIO::ImageOutput* out, const Image& image, const ExrOptions& options,
                      const std::string& name, OIIO::Filesystem::IOProxy* proxy) {
-  // Leave the threads to oneTBB: OpenEXR's own pool would fight the renderer's workers.
-  OIIO::attribute("exr_threads", 1);
+  OIIO::attribute("exr_threads", options.threads);
+  const OIIO::ImageSpec spec = MakeSpec(image, options);
   OIIO::ImageSpec config = spec;
   if (proxy != nullptr) {
     void* p = proxy;
@@ -68,7 +68,7 @@ absl::StatusOr<ExrCompression> ParseExrCompression(const std::string& name) {
 absl::Status WriteExrFile(const Image& image, const ExrOptions& options, const std::string& path) {
   auto out = OIIO::ImageOutput::create("x.exr");
   if (!out) return absl::InternalError("OpenImageIO has no EXR writer");
-  return WriteTo(out.get(), image, MakeSpec(image, options), path, nullptr);
+  return WriteTo(out.get(), image, options, path, nullptr);
 }
 
 absl::StatusOr<std::vector<uint8_t>> EncodeExr(const Image& image, const ExrOptions& options) {
@@ -76,7 +76,7 @@ absl::StatusOr<std::vector<uint8_t>> EncodeExr(const Image& image, const ExrOpti
   OIIO::Filesystem::IOVecOutput proxy(bytes);
   auto out = OIIO::ImageOutput::create("frame.exr", &proxy);
   if (!out) return absl::InternalError("OpenImageIO has no EXR writer");
-  if (auto s = WriteTo(out.get(), image, MakeSpec(image, options), "frame.exr", &proxy); !s.ok())
+  if (auto s = WriteTo(out.get(), image, options, "frame.exr", &proxy); !s.ok())
     return s;
   return std::vector<uint8_t>(bytes.begin(), bytes.end());
 }

@@ -27,6 +27,9 @@ struct ExrMetadata {
 struct ExrOptions {
   ExrPixelType pixel_type = ExrPixelType::kHalf;
   ExrCompression compression = ExrCompression::kZip;
+  // OpenEXR's own thread pool for compression (0: all cores). A process-wide setting of
+  // OpenImageIO: a server encoding beside busy render workers keeps it at 1.
+  int threads = 1;
   ExrMetadata metadata;
 };
 

@@ -90,12 +90,16 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons,
   for (size_t b = 0; b < pieces_.size(); ++b) {
     const Piece& back = pieces_[b];
     if (!back.full) continue;
+    // Depth differences are linear, so a piece is in front over all of itself when it is at its
+    // vertices; touching (a wall standing on the ground) counts as in front.
     bool behind = true;
     for (size_t q = 0; q < pieces_.size() && behind; ++q) {
       if (q == b) continue;
-      for (double y : {-kHalf, kHalf})
-        for (double x : {-kHalf, kHalf})
-          behind = behind && pieces_[q].depth.At(x, y) > back.depth.At(x, y);
+      for (size_t k = pieces_[q].begin; k < pieces_[q].end && behind; ++k) {
+        const Vec2& v = verts_[k];
+        const double front = pieces_[q].depth.At(v.x, v.y), rear = back.depth.At(v.x, v.y);
+        behind = front >= rear - 1e-9 * std::abs(rear);
+      }
     }
     if (!behind || !PairwiseDisjoint(b)) break;
     CellMoments rest{1, 0, 0, 0};

@@ -30,9 +30,10 @@ Rgba PolygonShader::Shade(int index, double x, double y) const {
   Rgba colour = mat.base;
   if (mat.sampler != nullptr) {
     // seed 000, eq. 1: U = (A_u x + B_u y + C_u) / (A_z x + B_z y + C_z).
-    const double u = p.u_num.At(x, y) / w, v = p.v_num.At(x, y) / w;
+    const double inv_w = 1.0 / w;
+    const double u = p.u_num.At(x, y) * inv_w, v = p.v_num.At(x, y) * inv_w;
     // seed 000, eq. 2: dU/dx = (A_u - A_z U) / z0, scaled by the aperture a.
-    const double s = aperture_ / w;
+    const double s = aperture_ * inv_w;
     TextureFootprint f;
     f.u = u - std::floor(u);
     f.v = v - std::floor(v);

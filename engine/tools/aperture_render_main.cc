@@ -79,6 +79,7 @@ int Run() {
   if (!compression.ok()) return Fail(compression.status());
   exr.compression = *compression;
   exr.pixel_type = absl::GetFlag(FLAGS_float_pixels) ? ExrPixelType::kFloat : ExrPixelType::kHalf;
+  exr.threads = settings.threads;  // encoding follows rendering: the cores are free again
   if (auto s = ValidateRenderSettings(settings); !s.ok()) return Fail(s);
 
   auto built = demo ? BuildScene(MakeDemoScene()) : LoadSceneFile(scene_arg);
@@ -101,10 +102,14 @@ int Run() {
                                         camera.pitch_deg, camera.roll_deg, camera.vertical_fov_deg);
   exr.metadata.render_ms = stats.setup_ms + stats.raster_ms;
   const std::string out = absl::GetFlag(FLAGS_o);
-  const auto encode_start = std::chrono::steady_clock::now();
-  if (auto s = WriteExrFile(best->image, exr, out); !s.ok()) return Fail(s);
-  const double encode_ms = std::chrono::duration<double, std::milli>(
-                               std::chrono::steady_clock::now() - encode_start).count();
+  double encode_ms = 0;
+  for (int i = 0; i < repeat; ++i) {
+    const auto encode_start = std::chrono::steady_clock::now();
+    if (auto s = WriteExrFile(best->image, exr, out); !s.ok()) return Fail(s);
+    const double ms = std::chrono::duration<double, std::milli>(
+                          std::chrono::steady_clock::now() - encode_start).count();
+    encode_ms = i == 0 ? ms : std::min(encode_ms, ms);
+  }
   std::string preview;
   if (absl::GetFlag(FLAGS_preview)) {
     preview = std::filesystem::path(out).replace_extension(".png").string();
