@@ -37,21 +37,32 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons,
     if (sp.max_x <= cx - kHalf || sp.min_x >= cx + kHalf || sp.max_y <= cy - kHalf ||
         sp.min_y >= cy + kHalf)
       continue;
+    // Over the cell each edge function ranges over e(centre) +- r: the cell is outside the
+    // polygon when one edge is negative all over it, inside when all are non-negative; only
+    // the edges that cross the cell clip it.
+    bool outside = false;
+    crossing_.clear();
+    for (const ScreenLinear& e : sp.edges) {
+      const double d = e.At(cx, cy), r = kHalf * (std::abs(e.a) + std::abs(e.b));
+      if (d + r <= 0) {
+        outside = true;
+        break;
+      }
+      if (d - r < 0) crossing_.push_back({e.a, e.b, d});
+    }
+    if (outside) continue;
     Piece piece;
     piece.polygon = index;
     piece.depth = {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)};
-    piece.full = sp.Contains(cx - kHalf, cy - kHalf) && sp.Contains(cx + kHalf, cy - kHalf) &&
-                 sp.Contains(cx + kHalf, cy + kHalf) && sp.Contains(cx - kHalf, cy + kHalf);
+    piece.full = crossing_.empty();
     piece.begin = verts_.size();
-    if (piece.full) {
-      verts_.insert(verts_.end(), {{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
-    } else {
-      clip_.clear();
-      for (const Vec2& v : sp.vertices) clip_.push_back({v.x - cx, v.y - cy});
-      ClipToRect(clip_, -kHalf, -kHalf, kHalf, kHalf, scratch_);
-      if (clip_.empty()) continue;
-      verts_.insert(verts_.end(), clip_.begin(), clip_.end());
+    clip_.assign({{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
+    for (const ScreenLinear& e : crossing_) {
+      ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
+      if (clip_.empty()) break;
     }
+    if (clip_.empty()) continue;
+    verts_.insert(verts_.end(), clip_.begin(), clip_.end());
     piece.end = verts_.size();
     pieces_.push_back(piece);
   }
@@ -121,7 +132,91 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons,
     }
     return;
   }
+  if (FrontToBackOrder()) {
+    PaintFrontToBack(with_moments, out);
+    return;
+  }
   Decompose(with_moments, out);
+}
+
+// Pieces that overlap must not interpenetrate: their depth difference, linear, keeps one sign
+// at the vertices of both (hence over their convex hull, hence where they overlap). Then a
+// topological sort of "in front of" gives the painter's order, unless the order is cyclic.
+bool CellCoverage::FrontToBackOrder() {
+  const size_t n = pieces_.size();
+  in_front_.assign(n * n, 0);  // in_front_[i * n + j]: i is in front of j
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      if (Separated(pieces_[i], pieces_[j])) continue;
+      bool i_front = true, j_front = true;
+      for (const Piece* piece : {&pieces_[i], &pieces_[j]}) {
+        for (size_t k = piece->begin; k < piece->end; ++k) {
+          const Vec2& v = verts_[k];
+          const double wi = pieces_[i].depth.At(v.x, v.y), wj = pieces_[j].depth.At(v.x, v.y);
+          const double tol = 1e-9 * (std::abs(wi) + std::abs(wj));
+          i_front = i_front && wi >= wj - tol;
+          j_front = j_front && wj >= wi - tol;
+        }
+      }
+      if (i_front == j_front) return false;  // interpenetrating (or coplanar): decompose
+      in_front_[i_front ? i * n + j : j * n + i] = 1;
+    }
+  }
+  order_.clear();
+  placed_.assign(n, 0);
+  while (order_.size() < n) {
+    bool progress = false;
+    for (size_t i = 0; i < n; ++i) {
+      if (placed_[i]) continue;
+      bool free = true;  // nothing unplaced is in front of i
+      for (size_t j = 0; j < n && free; ++j) free = placed_[j] || !in_front_[j * n + i];
+      if (!free) continue;
+      placed_[i] = 1;
+      order_.push_back(i);
+      progress = true;
+    }
+    if (!progress) return false;  // cyclic overlap
+  }
+  return true;
+}
+
+// Painter's algorithm front to back with exact convex clipping: each piece sees what the pieces
+// in front of it left of the cell; what it covers is removed from the rest.
+void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out) {
+  std::vector<Vec2>& pool = pool_a_;
+  pool.assign({{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
+  regions_a_.assign({{0, 4}});
+  for (size_t index : order_) {
+    const Piece& piece = pieces_[index];
+    pool_b_.clear();
+    regions_b_.clear();
+    CellMoments visible;
+    const size_t n = piece.end - piece.begin;
+    for (const auto& [begin, end] : regions_a_) {
+      clip_.assign(pool_a_.begin() + static_cast<long>(begin), pool_a_.begin() + static_cast<long>(end));
+      for (size_t i = 0; i < n && !clip_.empty(); ++i) {
+        const Vec2& p = verts_[piece.begin + i];
+        const Vec2& q = verts_[piece.begin + (i + 1) % n];
+        if ((p.x == q.x && std::abs(p.x) == kHalf) || (p.y == q.y && std::abs(p.y) == kHalf))
+          continue;  // on the cell's border: cuts nothing inside
+        const double a = -(q.y - p.y), b = q.x - p.x;
+        if (a == 0 && b == 0) continue;
+        const double c = -(a * p.x + b * p.y);
+        outside_.assign(clip_.begin(), clip_.end());
+        ClipByHalfPlane(outside_, -a, -b, -c, scratch_);
+        if (!outside_.empty()) {
+          regions_b_.push_back({pool_b_.size(), pool_b_.size() + outside_.size()});
+          pool_b_.insert(pool_b_.end(), outside_.begin(), outside_.end());
+        }
+        ClipByHalfPlane(clip_, a, b, c, scratch_);
+      }
+      if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
+    }
+    if (visible.area > 0) out.push_back({piece.polygon, visible});
+    std::swap(pool_a_, pool_b_);
+    std::swap(regions_a_, regions_b_);
+    if (regions_a_.empty()) break;
+  }
 }
 
 bool CellCoverage::PairwiseDisjoint(size_t skip) const {

@@ -9,7 +9,9 @@
 // trapezoid's exact area and moments. Interpenetrating polygons are therefore exact as well.
 #pragma once
 
+#include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "raster/aa_filter.h"
@@ -46,10 +48,17 @@ class CellCoverage {
   // Every pair of pieces (but piece `skip`) has disjoint interiors.
   bool PairwiseDisjoint(size_t skip) const;
   void AddDepthEqualityLine(const Piece& a, const Piece& b);
+  bool FrontToBackOrder();
+  void PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out);
   void Decompose(bool with_moments, std::vector<CellPiece>& out);
 
   std::vector<Piece> pieces_;
   std::vector<Vec2> verts_, clip_, scratch_;
+  std::vector<ScreenLinear> crossing_;
+  std::vector<uint8_t> in_front_, placed_;
+  std::vector<size_t> order_;
+  std::vector<Vec2> pool_a_, pool_b_, outside_;  // painter's remaining regions, flat
+  std::vector<std::pair<size_t, size_t>> regions_a_, regions_b_;  // edges of one polygon that cross the cell, cell-local
   std::vector<Segment> segments_;
   std::vector<double> breaks_;
   std::vector<CellMoments> sums_;

@@ -7,14 +7,20 @@
 
 namespace aperture {
 
-bool ScreenPolygon::Contains(double x, double y) const {
-  const size_t n = vertices.size();
-  for (size_t i = 0; i < n; ++i) {
+void ScreenPolygon::Finalize() {
+  min_x = max_x = vertices[0].x;
+  min_y = max_y = vertices[0].y;
+  for (const Vec2& v : vertices) {
+    min_x = std::min(min_x, v.x), max_x = std::max(max_x, v.x);
+    min_y = std::min(min_y, v.y), max_y = std::max(max_y, v.y);
+  }
+  edges.clear();
+  for (size_t i = 0, n = vertices.size(); i < n; ++i) {
     const Vec2& p = vertices[i];
     const Vec2& q = vertices[(i + 1) % n];
-    if ((q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x) < 0) return false;
+    const double dx = q.x - p.x, dy = q.y - p.y;
+    edges.push_back({-dy, dx, dy * p.x - dx * p.y});
   }
-  return true;
 }
 
 FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, int height,
@@ -57,12 +63,7 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
     if (std::abs(area) < 1e-12) continue;
     // Screen y points down, so counter-clockwise on screen is positive SignedArea in (x, y).
     if (area < 0) std::reverse(sp.vertices.begin(), sp.vertices.end());
-    sp.min_x = sp.max_x = sp.vertices[0].x;
-    sp.min_y = sp.max_y = sp.vertices[0].y;
-    for (const Vec2& v : sp.vertices) {
-      sp.min_x = std::min(sp.min_x, v.x), sp.max_x = std::max(sp.max_x, v.x);
-      sp.min_y = std::min(sp.min_y, v.y), sp.max_y = std::max(sp.max_y, v.y);
-    }
+    sp.Finalize();
 
     // Ray through (x, y): d = (left + sx x, top - sy y, -1). 1 / depth = dot(n, d) / h.
     auto linear_of = [&](const Vec3& k, double k0) {

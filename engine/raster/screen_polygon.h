@@ -26,8 +26,16 @@ struct ScreenPolygon {
   int material = 0;
   int scene_polygon = 0;
   Rgba light{1, 1, 1, 1};  // ambient + sun * cos(angle), constant over a flat polygon
+  // One per edge (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
+  std::vector<ScreenLinear> edges;
 
-  bool Contains(double x, double y) const;
+  // Sets the bounding box and edge functions from `vertices` (call after filling them).
+  void Finalize();
+  bool Contains(double x, double y) const {
+    for (const ScreenLinear& e : edges)
+      if (e.At(x, y) < 0) return false;
+    return true;
+  }
 };
 
 }  // namespace aperture

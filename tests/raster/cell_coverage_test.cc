@@ -15,8 +15,7 @@ ScreenPolygon Triangle(Vec2 a, Vec2 b, Vec2 c, ScreenLinear inv_depth) {
   ScreenPolygon p;
   p.vertices = {a, b, c};
   if (SignedArea(p.vertices) < 0) std::swap(p.vertices[1], p.vertices[2]);
-  p.min_x = std::min({a.x, b.x, c.x}), p.max_x = std::max({a.x, b.x, c.x});
-  p.min_y = std::min({a.y, b.y, c.y}), p.max_y = std::max({a.y, b.y, c.y});
+  p.Finalize();
   p.inv_depth = inv_depth;
   return p;
 }
@@ -67,7 +66,7 @@ TEST(CellCoverage, HalfPlaneMomentsAreAnalytic) {
 // Random overlapping, interpenetrating triangles: exact areas against dense sampling.
 // `snap` > 0 puts vertices on a grid of that step, so that edges run along the cell's sides and
 // through its corners (clipping then repeats vertices: a regression of the separating-axis test).
-void CheckRandomTriangles(uint32_t seed, double snap) {
+void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pos(-1.5, 1.5), slope(-0.3, 0.3), depth(1, 2);
   auto p = [&] {
@@ -82,7 +81,10 @@ void CheckRandomTriangles(uint32_t seed, double snap) {
     for (int k = 0; k < count; ++k) {
       const Vec2 a = p(), b = p(), c = p();
       if (std::abs(SignedArea({a, b, c})) < 1e-9) continue;
-      polys.push_back(Triangle(a, b, c, {slope(rng), slope(rng), depth(rng)}));
+      // Layered: constant depths, so the painter's order exists; else planes that cross.
+      const ScreenLinear w = layered ? ScreenLinear{0, 0, depth(rng)}
+                                     : ScreenLinear{slope(rng), slope(rng), depth(rng)};
+      polys.push_back(Triangle(a, b, c, w));
     }
     std::vector<int> candidates(polys.size());
     for (size_t k = 0; k < polys.size(); ++k) candidates[k] = static_cast<int>(k);
@@ -98,7 +100,10 @@ void CheckRandomTriangles(uint32_t seed, double snap) {
 
 TEST(CellCoverage, RandomInterpenetratingTrianglesMatchSampling) { CheckRandomTriangles(1234, 0); }
 
+TEST(CellCoverage, LayeredTrianglesMatchSampling) { CheckRandomTriangles(77, 0, true); }
+
 TEST(CellCoverage, TrianglesOnCellSidesAndCornersMatchSampling) {
+  CheckRandomTriangles(98, 0.25, true);
   CheckRandomTriangles(99, 0.25);
 }
 
