@@ -11,12 +11,15 @@
 #include "absl/strings/str_format.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
+#include "scene/benchmark_scenes.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
 #include "tools/cli_options.h"
 
-ABSL_FLAG(std::string, scene, "demo", "'demo' (built-in airfield) or a scene JSON file");
+ABSL_FLAG(std::string, scene, "demo",
+          "'demo' (built-in airfield), 'triangles' (10,000 random triangles, a benchmark) or a "
+          "scene JSON file");
 ABSL_FLAG(std::string, camera, "", "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
                                    "or 0,1.7,0,0,0,0 for a scene file");
 ABSL_FLAG(double, fov, 60, "vertical field of view, degrees");
@@ -45,8 +48,8 @@ int Fail(const absl::Status& status) {
 int Run() {
   // Options first, so that a mistake is reported before any work is done.
   const std::string scene_arg = absl::GetFlag(FLAGS_scene);
-  const bool demo = scene_arg == "demo";
-  Camera camera = demo ? DemoCamera() : Camera{.position = {0, 1.7, 0}};
+  const bool demo = scene_arg == "demo", triangles = scene_arg == "triangles";
+  Camera camera = demo ? DemoCamera() : Camera{.position = {0, triangles ? 0.0 : 1.7, 0}};
   if (const std::string spec = absl::GetFlag(FLAGS_camera); !spec.empty()) {
     auto parsed = ParseCameraSpec(spec);
     if (!parsed.ok()) return Fail(parsed.status());
@@ -82,7 +85,9 @@ int Run() {
   exr.threads = settings.threads;  // encoding follows rendering: the cores are free again
   if (auto s = ValidateRenderSettings(settings); !s.ok()) return Fail(s);
 
-  auto built = demo ? BuildScene(MakeDemoScene()) : LoadSceneFile(scene_arg);
+  auto built = demo        ? BuildScene(MakeDemoScene())
+               : triangles ? BuildScene(MakeTriangleFieldScene(10000))
+                           : LoadSceneFile(scene_arg);
   if (!built.ok()) return Fail(built.status());
   if (built->name.empty()) built->name = scene_arg;
 

@@ -1,0 +1,15 @@
+// Synthetic scenes for benchmarks: a field of random triangles (the software-rasterizer
+// comparison of issue 2) seen by a camera at the origin looking along -z.
+#pragma once
+
+#include <cstdint>
+
+#include "aperture/v1/scene.pb.h"
+
+namespace aperture {
+
+// `count` triangles scattered over the view at depths 10..100, each about `screen_size` pixels
+// across on a 1920 x 1080 image with a 60 degree vertical field of view; lit, untextured.
+v1::Scene MakeTriangleFieldScene(int count, double screen_size = 40, uint32_t seed = 1);
+
+}  // namespace aperture
