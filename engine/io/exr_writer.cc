@@ -12,9 +12,9 @@ namespace aperture {
 namespace {
 
 OIIO::ImageSpec MakeSpec(const Image& image, const ExrOptions& options) {
-  OIIO::ImageSpec spec(image.width(), image.height(), 4,
-                       options.pixel_type == ExrPixelType::kHalf ? OIIO::TypeDesc::HALF
-                                                                 : OIIO::TypeDesc::FLOAT);
+  OIIO::ImageSpec spec(
+      image.width(), image.height(), 4,
+      options.pixel_type == ExrPixelType::kHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
   spec.attribute("compression", ExrCompressionName(options.compression));
   const ExrMetadata& m = options.metadata;
   if (!m.scene_name.empty()) spec.attribute("aperture:scene", m.scene_name);
@@ -35,7 +35,8 @@ absl::Status WriteTo(OIIO::ImageOutput* out, const Image& image, const ExrOption
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
   }
   if (!out->open(name, config))
-    return absl::InternalError(absl::StrCat("cannot open EXR output '", name, "': ", out->geterror()));
+    return absl::InternalError(
+        absl::StrCat("cannot open EXR output '", name, "': ", out->geterror()));
   if (!out->write_image(OIIO::TypeDesc::FLOAT, image.texels().data()))
     return absl::InternalError(absl::StrCat("cannot write EXR '", name, "': ", out->geterror()));
   if (!out->close())
@@ -47,12 +48,18 @@ absl::Status WriteTo(OIIO::ImageOutput* out, const Image& image, const ExrOption
 
 const char* ExrCompressionName(ExrCompression c) {
   switch (c) {
-    case ExrCompression::kNone: return "none";
-    case ExrCompression::kRle: return "rle";
-    case ExrCompression::kZips: return "zips";
-    case ExrCompression::kZip: return "zip";
-    case ExrCompression::kPiz: return "piz";
-    case ExrCompression::kDwaa: return "dwaa";
+    case ExrCompression::kNone:
+      return "none";
+    case ExrCompression::kRle:
+      return "rle";
+    case ExrCompression::kZips:
+      return "zips";
+    case ExrCompression::kZip:
+      return "zip";
+    case ExrCompression::kPiz:
+      return "piz";
+    case ExrCompression::kDwaa:
+      return "dwaa";
   }
   return "zip";
 }
@@ -76,8 +83,7 @@ absl::StatusOr<std::vector<uint8_t>> EncodeExr(const Image& image, const ExrOpti
   OIIO::Filesystem::IOVecOutput proxy(bytes);
   auto out = OIIO::ImageOutput::create("frame.exr", &proxy);
   if (!out) return absl::InternalError("OpenImageIO has no EXR writer");
-  if (auto s = WriteTo(out.get(), image, options, "frame.exr", &proxy); !s.ok())
-    return s;
+  if (auto s = WriteTo(out.get(), image, options, "frame.exr", &proxy); !s.ok()) return s;
   return std::vector<uint8_t>(bytes.begin(), bytes.end());
 }
 

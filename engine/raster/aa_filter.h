@@ -22,10 +22,10 @@ struct CellMoments {
 };
 
 struct AaFilterShape {
-  double cell_offset;   // cell k covers [k + offset, k + offset + 1] on each axis
-  int cells_per_axis;   // pixel i reads cells i .. i + cells_per_axis - 1
-  double margin;        // how far the aperture reaches beyond the pixel square
-  bool needs_moments;   // only the tent needs more than the area
+  double cell_offset;  // cell k covers [k + offset, k + offset + 1] on each axis
+  int cells_per_axis;  // pixel i reads cells i .. i + cells_per_axis - 1
+  double margin;       // how far the aperture reaches beyond the pixel square
+  bool needs_moments;  // only the tent needs more than the area
 };
 
 inline AaFilterShape ShapeOf(AntiAliasing aa) {

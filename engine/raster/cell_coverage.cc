@@ -13,23 +13,23 @@ constexpr double kHalf = 0.5;
 constexpr double kEps = 1e-12;
 
 // Clips the segment p + t (q - p), t in [t0, t1], to a x + b y + c >= 0.
-bool ClipParam(const Vec2& p, const Vec2& q, double a, double b, double c, double& t0,
-               double& t1) {
+bool ClipParam(const Vec2& p, const Vec2& q, double a, double b, double c, double& t0, double& t1) {
   const double dp = a * p.x + b * p.y + c;
   const double dq = a * q.x + b * q.y + c;
   if (dp < 0 && dq < 0) return false;
   if (dp >= 0 && dq >= 0) return true;
   const double t = dp / (dp - dq);
-  if (dp < 0) t0 = std::max(t0, t);
-  else t1 = std::min(t1, t);
+  if (dp < 0)
+    t0 = std::max(t0, t);
+  else
+    t1 = std::min(t1, t);
   return t0 < t1;
 }
 
 }  // namespace
 
-void CellCoverage::Compute(std::span<const ScreenPolygon> polygons,
-                           std::span<const int> candidates, double cx, double cy,
-                           bool with_moments, std::vector<CellPiece>& out) {
+void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
+                           double cx, double cy, bool with_moments, std::vector<CellPiece>& out) {
   pieces_.clear();
   verts_.clear();
   for (int index : candidates) {
@@ -193,7 +193,8 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
     CellMoments visible;
     const size_t n = piece.end - piece.begin;
     for (const auto& [begin, end] : regions_a_) {
-      clip_.assign(pool_a_.begin() + static_cast<long>(begin), pool_a_.begin() + static_cast<long>(end));
+      clip_.assign(pool_a_.begin() + static_cast<long>(begin),
+                   pool_a_.begin() + static_cast<long>(end));
       for (size_t i = 0; i < n && !clip_.empty(); ++i) {
         const Vec2& p = verts_[piece.begin + i];
         const Vec2& q = verts_[piece.begin + (i + 1) % n];
@@ -296,8 +297,10 @@ void CellCoverage::Decompose(bool with_moments, std::vector<CellPiece>& out) {
       const Vec2& b = verts_[p.begin + (i + 1) % n];
       breaks_.push_back(a.y);
       if (a.y == b.y) continue;
-      if (a.y < b.y) segments_.push_back({a.x, a.y, b.x, b.y, static_cast<int>(pi)});
-      else segments_.push_back({b.x, b.y, a.x, a.y, static_cast<int>(pi)});
+      if (a.y < b.y)
+        segments_.push_back({a.x, a.y, b.x, b.y, static_cast<int>(pi)});
+      else
+        segments_.push_back({b.x, b.y, a.x, a.y, static_cast<int>(pi)});
     }
   }
   for (size_t i = 0; i < pieces_.size(); ++i)

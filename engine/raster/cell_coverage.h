@@ -28,19 +28,19 @@ class CellCoverage {
  public:
   // Visible pieces in the cell [cx - 0.5, cx + 0.5] x [cy - 0.5, cy + 0.5]. `candidates` are
   // indices into `polygons`; pieces with zero visible area are omitted. Output is appended.
-  void Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
-               double cx, double cy, bool with_moments, std::vector<CellPiece>& out);
+  void Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates, double cx,
+               double cy, bool with_moments, std::vector<CellPiece>& out);
 
  private:
   struct Piece {
     int polygon;
-    bool full;                 // covers the whole cell
-    ScreenLinear depth;        // inv_depth in cell-local coordinates
-    size_t begin, end;         // vertex range in verts_
+    bool full;           // covers the whole cell
+    ScreenLinear depth;  // inv_depth in cell-local coordinates
+    size_t begin, end;   // vertex range in verts_
   };
   struct Segment {
-    double x0, y0, x1, y1;     // y0 < y1
-    int piece;                 // -1: a depth-equality line (splits, does not toggle)
+    double x0, y0, x1, y1;  // y0 < y1
+    int piece;              // -1: a depth-equality line (splits, does not toggle)
     double XAt(double y) const { return x0 + (x1 - x0) * ((y - y0) / (y1 - y0)); }
   };
 
@@ -58,7 +58,8 @@ class CellCoverage {
   std::vector<uint8_t> in_front_, placed_;
   std::vector<size_t> order_;
   std::vector<Vec2> pool_a_, pool_b_, outside_;  // painter's remaining regions, flat
-  std::vector<std::pair<size_t, size_t>> regions_a_, regions_b_;  // edges of one polygon that cross the cell, cell-local
+  std::vector<std::pair<size_t, size_t>> regions_a_,
+      regions_b_;  // edges of one polygon that cross the cell, cell-local
   std::vector<Segment> segments_;
   std::vector<double> breaks_;
   std::vector<CellMoments> sums_;

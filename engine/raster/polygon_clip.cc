@@ -53,7 +53,8 @@ void ClipToRect(std::vector<Vec2>& poly, double x0, double y0, double x1, double
 }
 
 void ClipByPlane(std::vector<Vec3>& poly, const Vec3& n, double d, std::vector<Vec3>& scratch) {
-  ClipGeneric(poly, [&](const Vec3& p) { return Dot(n, p) + d; }, scratch);
+  ClipGeneric(
+      poly, [&](const Vec3& p) { return Dot(n, p) + d; }, scratch);
 }
 
 }  // namespace aperture

@@ -44,7 +44,7 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
     for (const Vec3& p : poly.vertices) cam_pts.push_back(to_camera * (p - camera.position));
 
     const Vec3 n = to_camera * poly.normal;
-    const double h = Dot(n, cam_pts[0]);  // plane: dot(n, P) = h
+    const double h = Dot(n, cam_pts[0]);                             // plane: dot(n, P) = h
     if (std::abs(h) < 1e-12 * (1.0 + Length(cam_pts[0]))) continue;  // seen edge-on
 
     ClipByPlane(cam_pts, {0, 0, -1}, -camera.near, scratch3);

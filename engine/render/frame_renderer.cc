@@ -42,8 +42,7 @@ absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& came
   RenderedFrame frame;
   frame.image = Image::Uninitialized(settings.width, settings.height);
   const AaFilterShape shape = ShapeOf(settings.aa);
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads
-                                             : tbb::task_arena::automatic);
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     auto start = std::chrono::steady_clock::now();
     const FrameGeometry geometry =
@@ -58,15 +57,20 @@ absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& came
         SubdivideWarnock(geometry, shape, whole, settings.warnock);
     tbb::enumerable_thread_specific<LeafRenderer> renderers(
         [&] { return LeafRenderer(geometry, shader, settings.aa, scene.sky); });
-    tbb::parallel_for(size_t{0}, leaves.size(), [&](size_t i) {
-      renderers.local().Render(leaves[i], frame.image);
-    });
+    tbb::parallel_for(size_t{0}, leaves.size(),
+                      [&](size_t i) { renderers.local().Render(leaves[i], frame.image); });
     frame.stats.raster_ms = MillisecondsSince(start);
     for (const LeafWindow& leaf : leaves) {
       switch (leaf.kind) {
-        case LeafWindow::Kind::kEmpty: ++frame.stats.empty_leaves; break;
-        case LeafWindow::Kind::kCovered: ++frame.stats.covered_leaves; break;
-        case LeafWindow::Kind::kMixed: ++frame.stats.mixed_leaves; break;
+        case LeafWindow::Kind::kEmpty:
+          ++frame.stats.empty_leaves;
+          break;
+        case LeafWindow::Kind::kCovered:
+          ++frame.stats.covered_leaves;
+          break;
+        case LeafWindow::Kind::kMixed:
+          ++frame.stats.mixed_leaves;
+          break;
       }
     }
   });

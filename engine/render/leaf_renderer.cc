@@ -11,7 +11,8 @@ void LeafRenderer::Render(const LeafWindow& leaf, Image& frame) {
       return;
     case LeafWindow::Kind::kCovered:
       for (int y = r.y0; y < r.y1; ++y)
-        for (int x = r.x0; x < r.x1; ++x) frame.at(x, y) = shader_.Shade(leaf.cover, x + 0.5, y + 0.5);
+        for (int x = r.x0; x < r.x1; ++x)
+          frame.at(x, y) = shader_.Shade(leaf.cover, x + 0.5, y + 0.5);
       return;
     case LeafWindow::Kind::kMixed:
       RenderMixed(leaf, frame);

@@ -49,7 +49,8 @@ v1::Scene MakeTriangleFieldScene(int count, double screen_size, uint32_t seed) {
       v1::Vec3* v = p->add_vertices();
       v->set_x(cx + dx);
       v->set_y(cy + dy);
-      v->set_z(-depth + tilt_x * dx + tilt_y * dy);  // tilted: triangles interpenetrate now and then
+      v->set_z(-depth + tilt_x * dx +
+               tilt_y * dy);  // tilted: triangles interpenetrate now and then
     }
   }
   return scene;

@@ -33,11 +33,9 @@ absl::Status ValidateCamera(const Camera& c) {
             "camera frustum angles must be finite and within (-89, 89) degrees");
     if (c.left_deg >= c.right_deg || c.bottom_deg >= c.top_deg)
       return absl::InvalidArgumentError("camera frustum needs left < right and bottom < top");
-  } else if (!finite(c.vertical_fov_deg) || c.vertical_fov_deg <= 0 ||
-             c.vertical_fov_deg >= 179) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("camera vertical field of view ", c.vertical_fov_deg,
-                     " is outside (0, 179) degrees"));
+  } else if (!finite(c.vertical_fov_deg) || c.vertical_fov_deg <= 0 || c.vertical_fov_deg >= 179) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "camera vertical field of view ", c.vertical_fov_deg, " is outside (0, 179) degrees"));
   }
   if (!finite(c.near) || c.near <= 0)
     return absl::InvalidArgumentError("camera near plane must be finite and > 0");

@@ -30,8 +30,8 @@ absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     return absl::InvalidArgumentError(absl::StrCat(what, ": image has no pixels"));
   if (spec.width > 65536 || spec.height > 65536)
-    return absl::InvalidArgumentError(absl::StrCat(what, ": image is ", spec.width, "x",
-                                                   spec.height, ", above 65536 per side"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(what, ": image is ", spec.width, "x", spec.height, ", above 65536 per side"));
   const int channels = spec.nchannels;
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))

@@ -44,9 +44,7 @@ class NearestSampler final : public TextureSampler {
 class BilinearSampler final : public TextureSampler {
  public:
   explicit BilinearSampler(const MipPyramid& p) : pyramid_(p) {}
-  Rgba Sample(const TextureFootprint& f) const override {
-    return pyramid_.Bilinear(0, f.u, f.v);
-  }
+  Rgba Sample(const TextureFootprint& f) const override { return pyramid_.Bilinear(0, f.u, f.v); }
 
  private:
   const MipPyramid& pyramid_;

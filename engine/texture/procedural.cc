@@ -29,7 +29,8 @@ Image MakeNoiseTexture(int size, uint32_t seed, Rgba dark, Rgba light) {
     for (int x = 0; x < size; ++x) {
       float value = 0, amplitude = 0.5f, norm = 0;
       for (int octave = 0, period = 8; octave < 6 && period <= size; ++octave, period *= 2) {
-        const float fx = static_cast<float>(x) * period / size, fy = static_cast<float>(y) * period / size;
+        const float fx = static_cast<float>(x) * period / size,
+                    fy = static_cast<float>(y) * period / size;
         const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
         const float tx = fx - ix, ty = fy - iy;
         const float sx = tx * tx * (3 - 2 * tx), sy = ty * ty * (3 - 2 * ty);

@@ -20,14 +20,16 @@
 ABSL_FLAG(std::string, scene, "demo",
           "'demo' (built-in airfield), 'triangles' (10,000 random triangles, a benchmark) or a "
           "scene JSON file");
-ABSL_FLAG(std::string, camera, "", "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
-                                   "or 0,1.7,0,0,0,0 for a scene file");
+ABSL_FLAG(std::string, camera, "",
+          "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
+          "or 0,1.7,0,0,0,0 for a scene file");
 ABSL_FLAG(double, fov, 60, "vertical field of view, degrees");
 ABSL_FLAG(double, near, 0, "near plane distance (0: 0.5 for the demo, else 0.1)");
 ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT (each 1..16384)");
 ABSL_FLAG(std::string, aa, "box2", "edge anti-aliasing: box2 (2x2 box), box1 (pixel box), tent2");
-ABSL_FLAG(std::string, filter, "", "texture filter for every material: nearest, bilinear, "
-                                   "trilinear (default: each material's own)");
+ABSL_FLAG(std::string, filter, "",
+          "texture filter for every material: nearest, bilinear, "
+          "trilinear (default: each material's own)");
 ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1: pixel, 2: 2x2 square)");
 ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
 ABSL_FLAG(bool, float_pixels, false, "write 32-bit float channels instead of half");
@@ -111,8 +113,9 @@ int Run() {
   for (int i = 0; i < repeat; ++i) {
     const auto encode_start = std::chrono::steady_clock::now();
     if (auto s = WriteExrFile(best->image, exr, out); !s.ok()) return Fail(s);
-    const double ms = std::chrono::duration<double, std::milli>(
-                          std::chrono::steady_clock::now() - encode_start).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - encode_start)
+            .count();
     encode_ms = i == 0 ? ms : std::min(encode_ms, ms);
   }
   std::string preview;

@@ -7,7 +7,7 @@ namespace aperture {
 
 struct TexCommand {
   const char* name;
-  const char* summary;        // one line for `aperture-tex help`
+  const char* summary;                // one line for `aperture-tex help`
   int (*run)(int argc, char** argv);  // argv[0] is the subcommand name; returns the exit code
 };
 

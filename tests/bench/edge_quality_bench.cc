@@ -69,9 +69,10 @@ int Main(int repeat, int edge_pixels) {
       ++measured;
     }
     const double mse = sum_sq / (3.0 * measured);
-    std::printf("%-5s frame %.1f ms (2 threads, fastest of %d); %d edge pixels vs dense reference: "
-                "PSNR %.1f dB, max error %.2e\n",
-                AntiAliasingName(aa), best_ms, repeat, measured, 10 * std::log10(1.0 / mse), worst);
+    std::printf(
+        "%-5s frame %.1f ms (2 threads, fastest of %d); %d edge pixels vs dense reference: "
+        "PSNR %.1f dB, max error %.2e\n",
+        AntiAliasingName(aa), best_ms, repeat, measured, 10 * std::log10(1.0 / mse), worst);
   }
   return 0;
 }

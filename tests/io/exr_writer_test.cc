@@ -66,15 +66,16 @@ TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
       ReadBack r = ReadExr(path);
       ASSERT_EQ(r.spec.width, 67);
       ASSERT_EQ(r.spec.nchannels, 4);
-      EXPECT_EQ(r.spec.format, type == ExrPixelType::kHalf ? OIIO::TypeDesc::HALF
-                                                           : OIIO::TypeDesc::FLOAT);
+      EXPECT_EQ(r.spec.format,
+                type == ExrPixelType::kHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
       EXPECT_EQ(r.spec.get_string_attribute("compression"), ExrCompressionName(c));
       EXPECT_EQ(r.spec.get_string_attribute("aperture:scene"), "gradient");
       EXPECT_EQ(r.spec.get_string_attribute("aperture:camera"), "0,1,0,0,-5,0 fov=60");
       EXPECT_FLOAT_EQ(r.spec.get_float_attribute("aperture:render_ms"), 12.5f);
       // Lossless codecs keep half precision (dwaa is lossy).
-      const float tolerance = c == ExrCompression::kDwaa ? 2e-2f
-                              : type == ExrPixelType::kHalf ? 1e-3f : 0.0f;
+      const float tolerance = c == ExrCompression::kDwaa    ? 2e-2f
+                              : type == ExrPixelType::kHalf ? 1e-3f
+                                                            : 0.0f;
       float worst = 0;
       for (size_t i = 0; i < r.pixels.size(); ++i) {
         const Rgba& t = img.texels()[i / 4];

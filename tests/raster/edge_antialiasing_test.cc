@@ -77,8 +77,7 @@ Errors Compare(const std::vector<FlatPolygon>& polygons, AntiAliasing aa) {
         if (got.r != want.r || got.g != want.g || got.b != want.b) ++e.interior_mismatches;
         continue;
       }
-      const Rgba want =
-          testing::DenseReferencePixel(geo, colour, kSky, aa, x, y, kSamplesPerAxis);
+      const Rgba want = testing::DenseReferencePixel(geo, colour, kSky, aa, x, y, kSamplesPerAxis);
       for (double d : {got.r - want.r, got.g - want.g, got.b - want.b}) {
         e.max_edge = std::max(e.max_edge, std::abs(d));
         sum_sq += d * d;
@@ -130,9 +129,10 @@ TEST(EdgeAntiAliasing, FanOfTrianglesMeetingAtAVertex) {
   const int n = 13;
   for (int i = 0; i < n; ++i) {
     const double a0 = 2 * kPi * i / n + 0.1, a1 = 2 * kPi * (i + 1) / n + 0.1;
-    polys.push_back({{At(20.3, 14.7, 10), At(20.3 + 12 * std::cos(a0), 14.7 + 12 * std::sin(a0), 10),
-                      At(20.3 + 12 * std::cos(a1), 14.7 + 12 * std::sin(a1), 10)},
-                     RandomColour(rng)});
+    polys.push_back(
+        {{At(20.3, 14.7, 10), At(20.3 + 12 * std::cos(a0), 14.7 + 12 * std::sin(a0), 10),
+          At(20.3 + 12 * std::cos(a1), 14.7 + 12 * std::sin(a1), 10)},
+         RandomColour(rng)});
   }
   ExpectAccurate(polys, "fan");
 }

@@ -106,12 +106,14 @@ TEST(FrameRenderer, OffAxisFrustumShiftsTheImage) {
   auto centroid_x = [](const Image& img) {
     double sum = 0, weight = 0;
     for (int y = 0; y < img.height(); ++y)
-      for (int x = 0; x < img.width(); ++x) sum += img.at(x, y).r * (x + 0.5), weight += img.at(x, y).r;
+      for (int x = 0; x < img.width(); ++x)
+        sum += img.at(x, y).r * (x + 0.5), weight += img.at(x, y).r;
     return sum / weight;
   };
   EXPECT_NEAR(centroid_x(a->image), 32.0, 0.01);
   // tan(0) maps to (0 - tan(-10)) / (tan(40) - tan(-10)) of the width.
-  const double expected = std::tan(Radians(10)) / (std::tan(Radians(40)) + std::tan(Radians(10))) * 64;
+  const double expected =
+      std::tan(Radians(10)) / (std::tan(Radians(40)) + std::tan(Radians(10))) * 64;
   EXPECT_NEAR(centroid_x(b->image), expected, 0.2);
 }
 

@@ -79,11 +79,10 @@ INSTANTIATE_TEST_SUITE_P(
                    {"x": 0}, {"x": 1}, {"x": 1, "z": 1}, {"y": 1, "z": 1}]}]}]})",
                  "not planar"},
         BadScene{"missing texture file",
-                 R"({"textures": [{"id": "t", "file": "no_such_file.png"}]})",
-                 "does not exist"},
+                 R"({"textures": [{"id": "t", "file": "no_such_file.png"}]})", "does not exist"},
         BadScene{"texture without source", R"({"textures": [{"id": "t"}]})", "no source"},
-        BadScene{"unknown texture id",
-                 R"({"materials": [{"id": "m", "texture_id": "nope"}]})", "'nope'"},
+        BadScene{"unknown texture id", R"({"materials": [{"id": "m", "texture_id": "nope"}]})",
+                 "'nope'"},
         BadScene{"unknown material id",
                  R"({"meshes": [{"id": "m", "material_id": "nope", "polygons": [{"vertices": [
                    {"x": 0}, {"x": 1}, {"y": 1}]}]}]})",
@@ -94,13 +93,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "scale"},
         BadScene{"negative fog", R"({"fog": {"density": -1}})", "fog.density"},
         BadScene{"huge checkerboard",
-                 R"({"textures": [{"id": "t", "checkerboard": {"size": 100000}}]})",
-                 "above 16384"},
+                 R"({"textures": [{"id": "t", "checkerboard": {"size": 100000}}]})", "above 16384"},
         BadScene{"uv count", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
                    {"x": 0}, {"x": 1}, {"y": 1}], "uvs": [{"u": 0}]}]}]})",
                  "1 uvs for 3 vertices"},
-        BadScene{"duplicate material",
-                 R"({"materials": [{"id": "a"}, {"id": "a"}]})", "duplicate material id"}),
+        BadScene{"duplicate material", R"({"materials": [{"id": "a"}, {"id": "a"}]})",
+                 "duplicate material id"}),
     [](const ::testing::TestParamInfo<BadScene>& param) {
       std::string name = param.param.name;
       for (char& c : name)

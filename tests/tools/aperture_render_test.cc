@@ -46,7 +46,8 @@ class RenderCli : public ::testing::Test {
 };
 
 TEST_F(RenderCli, RendersTheDemoToAnExrAndAPreview) {
-  const Result r = RunRender("--scene demo --size 160x90 --filter trilinear -o " + Path("demo.exr"));
+  const Result r =
+      RunRender("--scene demo --size 160x90 --filter trilinear -o " + Path("demo.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("setup"), std::string::npos);
   EXPECT_NE(r.output.find("raster"), std::string::npos);
@@ -62,8 +63,10 @@ TEST_F(RenderCli, RendersTheDemoToAnExrAndAPreview) {
 }
 
 TEST_F(RenderCli, FloatPixelsAndCompressionAreHonoured) {
-  const Result r = RunRender("--size 32x24 --filter bilinear --float_pixels --compression piz "
-                       "--nopreview -o " + Path("f.exr"));
+  const Result r = RunRender(
+      "--size 32x24 --filter bilinear --float_pixels --compression piz "
+      "--nopreview -o " +
+      Path("f.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   auto in = OIIO::ImageInput::open(Path("f.exr"));
   ASSERT_TRUE(in);
@@ -99,7 +102,8 @@ TEST_F(RenderCli, BadInputExitsNonZeroNamingTheProblem) {
        "needs at least 3"},
       {"--scene " + WriteScene("degenerate.json", head + R"({"x": 0}, {"x": 1}, {"x": 2}]}]}]})"),
        "degenerate"},
-      {"--scene " + WriteScene("texture.json", R"({"textures": [{"id": "t", "file": "gone.png"}]})"),
+      {"--scene " +
+           WriteScene("texture.json", R"({"textures": [{"id": "t", "file": "gone.png"}]})"),
        "gone.png"},
   };
   for (const BadRun& run : runs) {
