@@ -9,6 +9,7 @@
 #include "absl/flags/usage.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "cost/frame_statistics.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -38,6 +39,9 @@ ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR")
 ABSL_FLAG(int, threads, 0, "worker threads (0: all cores)");
 ABSL_FLAG(int, repeat, 1, "render this many times and report the fastest (for benchmarks)");
 ABSL_FLAG(int, leaf, 8, "largest Warnock leaf window, pixels");
+ABSL_FLAG(bool, stats, false,
+          "print seed 002's frame statistics (F, kappa, l_cp), its predicted polygons per "
+          "aperture and the measured mean");
 
 namespace aperture {
 namespace {
@@ -45,6 +49,16 @@ namespace {
 int Fail(const absl::Status& status) {
   std::fprintf(stderr, "aperture-render: error: %s\n", std::string(status.message()).c_str());
   return 2;
+}
+
+void PrintStatistics(const Scene& scene, const Camera& camera, const RenderSettings& settings) {
+  const double a = settings.aa == AntiAliasing::kBox1 ? 1.0 : 2.0;
+  const FrameGeometry geo = ProjectScene(scene, camera, settings.width, settings.height, a);
+  const FrameStatistics s = ComputeFrameStatistics(geo, a);
+  std::printf("seed 002 statistics (a = %g): F = %d faces, kappa = %.4f, l_cp = %.3f, m = %.1f\n",
+              a, s.faces, s.kappa, s.mean_shape_factor, s.image_side);
+  std::printf("polygons per aperture: predicted n_square = %.4f, n_circle = %.4f; measured %.4f\n",
+              s.predicted_square, s.predicted_circle, MeasurePolygonsPerAperture(geo, a));
 }
 
 int Run() {
@@ -131,6 +145,7 @@ int Run() {
               exr.pixel_type == ExrPixelType::kHalf ? "half" : "float",
               repeat > 1 ? absl::StrFormat(" [fastest of %d]", repeat).c_str() : "");
   std::printf("wrote %s%s%s\n", out.c_str(), preview.empty() ? "" : " and ", preview.c_str());
+  if (absl::GetFlag(FLAGS_stats)) PrintStatistics(*built, camera, settings);
   return 0;
 }
 
