@@ -1,8 +1,7 @@
 #include "raster/warnock.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
+#include <cmath>
 
 namespace aperture {
 namespace {
@@ -14,6 +13,13 @@ struct Rect {
 // Does convex `p` reach into rectangle `r`? Bounding boxes, then the polygon's edges as
 // separating axes (the rectangle's own axes are the bounding-box test).
 bool Overlaps(const ScreenPolygon& p, const Rect& r) {
+  return PolygonOverlapsRect(p, r.x0, r.y0, r.x1, r.y1);
+}
+
+}  // namespace
+
+bool PolygonOverlapsRect(const ScreenPolygon& p, double x0, double y0, double x1, double y1) {
+  const Rect r{x0, y0, x1, y1};
   if (p.max_x <= r.x0 || p.min_x >= r.x1 || p.max_y <= r.y0 || p.min_y >= r.y1) return false;
   const size_t n = p.vertices.size();
   for (size_t i = 0; i < n; ++i) {
@@ -26,6 +32,8 @@ bool Overlaps(const ScreenPolygon& p, const Rect& r) {
   }
   return true;
 }
+
+namespace {
 
 class Subdivider {
  public:
@@ -100,41 +108,34 @@ class Subdivider {
 
 }  // namespace
 
-std::vector<LeafWindow> SubdivideWarnock(const FrameGeometry& geo, const AaFilterShape& aa,
-                                         const PixelRect& region, const WarnockOptions& options) {
-  const int root = std::max(options.root_size, options.leaf_size);
-  const int cols = (region.width() + root - 1) / root, rows = (region.height() + root - 1) / root;
+std::vector<std::vector<int>> BinPolygons(const FrameGeometry& geo, double margin,
+                                          const PixelRect& region, int tile, int* columns) {
+  const int cols = (region.width() + tile - 1) / tile, rows = (region.height() + tile - 1) / tile;
+  *columns = std::max(cols, 0);
   if (cols <= 0 || rows <= 0) return {};
-  // Bin polygons into root windows by their bounding boxes.
   std::vector<std::vector<int>> bins(static_cast<size_t>(cols) * rows);
+  auto col = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x - region.x0) / tile)), 0, cols - 1);
+  };
+  auto row = [&](double y) {
+    return std::clamp(static_cast<int>(std::floor((y - region.y0) / tile)), 0, rows - 1);
+  };
   for (size_t i = 0; i < geo.polygons.size(); ++i) {
     const ScreenPolygon& p = geo.polygons[i];
-    auto col = [&](double x) {
-      return std::clamp(static_cast<int>(std::floor((x - region.x0) / root)), 0, cols - 1);
-    };
-    auto row = [&](double y) {
-      return std::clamp(static_cast<int>(std::floor((y - region.y0) / root)), 0, rows - 1);
-    };
-    if (p.max_x < region.x0 - aa.margin || p.min_x > region.x1 + aa.margin ||
-        p.max_y < region.y0 - aa.margin || p.min_y > region.y1 + aa.margin)
+    if (p.max_x < region.x0 - margin || p.min_x > region.x1 + margin ||
+        p.max_y < region.y0 - margin || p.min_y > region.y1 + margin)
       continue;
-    for (int r = row(p.min_y - aa.margin); r <= row(p.max_y + aa.margin); ++r)
-      for (int c = col(p.min_x - aa.margin); c <= col(p.max_x + aa.margin); ++c)
+    for (int r = row(p.min_y - margin); r <= row(p.max_y + margin); ++r)
+      for (int c = col(p.min_x - margin); c <= col(p.max_x + margin); ++c)
         bins[static_cast<size_t>(r) * cols + c].push_back(static_cast<int>(i));
   }
-  std::vector<std::vector<LeafWindow>> per_root(bins.size());
-  const Subdivider subdivider(geo, aa, options);
-  tbb::parallel_for(size_t{0}, bins.size(), [&](size_t k) {
-    const int r = static_cast<int>(k) / cols, c = static_cast<int>(k) % cols;
-    const PixelRect rect{region.x0 + c * root, region.y0 + r * root,
-                         std::min(region.x1, region.x0 + (c + 1) * root),
-                         std::min(region.y1, region.y0 + (r + 1) * root)};
-    subdivider.Run(rect, bins[k], per_root[k]);
-  });
-  std::vector<LeafWindow> leaves;
-  for (auto& v : per_root)
-    for (auto& leaf : v) leaves.push_back(std::move(leaf));
-  return leaves;
+  return bins;
+}
+
+void SubdivideWindow(const FrameGeometry& geo, const AaFilterShape& aa,
+                     const WarnockOptions& options, const PixelRect& window,
+                     const std::vector<int>& candidates, std::vector<LeafWindow>& leaves) {
+  Subdivider(geo, aa, options).Run(window, candidates, leaves);
 }
 
 }  // namespace aperture

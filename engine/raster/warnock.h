@@ -29,9 +29,17 @@ struct WarnockOptions {
   int root_size = 64;  // the screen is first cut into root windows of this size
 };
 
-// Leaves in a deterministic order (independent of the thread count). Runs in parallel on the
-// calling oneTBB arena.
-std::vector<LeafWindow> SubdivideWarnock(const FrameGeometry& geometry, const AaFilterShape& aa,
-                                         const PixelRect& region, const WarnockOptions& options);
+// Subdivides one window whose candidate polygons are known, appending its leaves.
+void SubdivideWindow(const FrameGeometry& geometry, const AaFilterShape& aa,
+                     const WarnockOptions& options, const PixelRect& window,
+                     const std::vector<int>& candidates, std::vector<LeafWindow>& leaves);
+
+// Polygons whose bounding boxes (widened by the filter margin) reach each `tile` x `tile` window
+// of `region`, row by row; `columns` receives the number of windows per row.
+std::vector<std::vector<int>> BinPolygons(const FrameGeometry& geometry, double margin,
+                                          const PixelRect& region, int tile, int* columns);
+
+// Does convex `polygon` reach into the rectangle [x0, x1] x [y0, y1]?
+bool PolygonOverlapsRect(const ScreenPolygon& polygon, double x0, double y0, double x1, double y1);
 
 }  // namespace aperture

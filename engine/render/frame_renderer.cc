@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -21,6 +22,12 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+double FrameStats::BalanceEfficiency() const {
+  double busy_us = 0;
+  for (const TaskTiming& t : tasks) busy_us += t.measured_us;
+  return raster_ms > 0 ? busy_us / (1000.0 * raster_ms * concurrency) : 0;
+}
+
 absl::Status ValidateRenderSettings(const RenderSettings& s) {
   if (s.width <= 0 || s.height <= 0 || s.width > kMaxImageSide || s.height > kMaxImageSide)
     return absl::InvalidArgumentError(absl::StrCat("image size ", s.width, "x", s.height,
@@ -29,52 +36,102 @@ absl::Status ValidateRenderSettings(const RenderSettings& s) {
       s.shading.texture_aperture > 16)
     return absl::InvalidArgumentError("texture aperture must be in (0, 16] pixels");
   if (s.threads < 0) return absl::InvalidArgumentError("threads must be >= 0");
-  if (s.warnock.leaf_size < 1 || s.warnock.root_size < 1)
-    return absl::InvalidArgumentError("Warnock leaf and root sizes must be >= 1");
+  const PixelRect& r = s.region;
+  if (r.pixels() != 0 && (r.x0 < 0 || r.y0 < 0 || r.x1 > s.width || r.y1 > s.height ||
+                          r.width() <= 0 || r.height() <= 0))
+    return absl::InvalidArgumentError(absl::StrCat("region [", r.x0, ", ", r.x1, ") x [", r.y0,
+                                                   ", ", r.y1, ") is not inside the ", s.width, "x",
+                                                   s.height, " frame"));
+  if (s.warnock.leaf_size < 1) return absl::InvalidArgumentError("Warnock leaf size must be >= 1");
+  if (s.scheduling.uniform_tile < 8 || s.scheduling.tasks_per_thread < 1)
+    return absl::InvalidArgumentError("uniform tiles must be >= 8 pixels, tasks per thread >= 1");
   return absl::OkStatus();
 }
 
+namespace {
+
+absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& camera,
+                                            const RenderSettings& settings,
+                                            const StopRequested& stop) {
+  RenderedFrame frame;
+  frame.region = settings.region.pixels() > 0 ? settings.region
+                                              : PixelRect{0, 0, settings.width, settings.height};
+  frame.image = Image::Uninitialized(frame.region.width(), frame.region.height());
+  const AaFilterShape shape = ShapeOf(settings.aa);
+
+  auto start = std::chrono::steady_clock::now();
+  const FrameGeometry geometry =
+      ProjectScene(scene, camera, settings.width, settings.height, shape.margin + 1.0);
+  const PolygonShader shader(scene, geometry, settings.shading);
+  frame.stats.setup_ms = MillisecondsSince(start);
+  frame.stats.visible_polygons = geometry.polygons.size();
+
+  start = std::chrono::steady_clock::now();
+  const int concurrency = tbb::this_task_arena::max_concurrency();
+  const std::vector<TaskWindow> tasks =
+      PlanTasks(geometry, shape, frame.region, settings.scheduling, concurrency);
+  struct Worker {
+    LeafRenderer renderer;
+    std::vector<LeafWindow> leaves;
+    size_t kinds[3] = {0, 0, 0};
+  };
+  tbb::enumerable_thread_specific<Worker> workers([&] {
+    return Worker{LeafRenderer(geometry, shader, settings.aa, scene.sky, frame.region), {}, {}};
+  });
+  std::vector<double> task_us(tasks.size(), 0);
+  // Tasks are taken strictly in plan order (most expensive first for the cost-driven plan).
+  std::atomic<size_t> next{0};
+  std::atomic<bool> stopped{false};
+  tbb::parallel_for(
+      0, concurrency,
+      [&](int) {
+        Worker& w = workers.local();
+        for (size_t i = next++; i < tasks.size(); i = next++) {
+          if (stopped.load(std::memory_order_relaxed) || (stop && stop())) {
+            stopped = true;
+            return;
+          }
+          const auto task_start = std::chrono::steady_clock::now();
+          w.leaves.clear();
+          SubdivideWindow(geometry, shape, settings.warnock, tasks[i].rect, tasks[i].polygons,
+                          w.leaves);
+          for (const LeafWindow& leaf : w.leaves) {
+            w.renderer.Render(leaf, frame.image);
+            ++w.kinds[static_cast<int>(leaf.kind)];
+          }
+          task_us[i] = 1000.0 * MillisecondsSince(task_start);
+        }
+      },
+      tbb::simple_partitioner());
+  frame.stats.raster_ms = MillisecondsSince(start);
+  if (stopped) {
+    size_t done = 0;
+    for (double us : task_us) done += us > 0;
+    return absl::CancelledError(
+        absl::StrCat("frame stopped after ", done, " of ", tasks.size(), " tasks"));
+  }
+  frame.stats.concurrency = concurrency;
+  for (const Worker& w : workers) {
+    frame.stats.empty_leaves += w.kinds[0];
+    frame.stats.covered_leaves += w.kinds[1];
+    frame.stats.mixed_leaves += w.kinds[2];
+  }
+  frame.stats.tasks.reserve(tasks.size());
+  for (size_t i = 0; i < tasks.size(); ++i)
+    frame.stats.tasks.push_back({tasks[i].rect, tasks[i].predicted_us, task_us[i]});
+  return frame;
+}
+
+}  // namespace
+
 absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& camera,
-                                          const RenderSettings& settings) {
+                                          const RenderSettings& settings,
+                                          const StopRequested& stop) {
   if (auto s = ValidateRenderSettings(settings); !s.ok()) return s;
   if (auto s = ValidateCamera(camera); !s.ok()) return s;
-
-  RenderedFrame frame;
-  frame.image = Image::Uninitialized(settings.width, settings.height);
-  const AaFilterShape shape = ShapeOf(settings.aa);
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    auto start = std::chrono::steady_clock::now();
-    const FrameGeometry geometry =
-        ProjectScene(scene, camera, settings.width, settings.height, shape.margin + 1.0);
-    const PolygonShader shader(scene, geometry, settings.shading);
-    frame.stats.setup_ms = MillisecondsSince(start);
-    frame.stats.visible_polygons = geometry.polygons.size();
-
-    start = std::chrono::steady_clock::now();
-    const PixelRect whole{0, 0, settings.width, settings.height};
-    const std::vector<LeafWindow> leaves =
-        SubdivideWarnock(geometry, shape, whole, settings.warnock);
-    tbb::enumerable_thread_specific<LeafRenderer> renderers(
-        [&] { return LeafRenderer(geometry, shader, settings.aa, scene.sky); });
-    tbb::parallel_for(size_t{0}, leaves.size(),
-                      [&](size_t i) { renderers.local().Render(leaves[i], frame.image); });
-    frame.stats.raster_ms = MillisecondsSince(start);
-    for (const LeafWindow& leaf : leaves) {
-      switch (leaf.kind) {
-        case LeafWindow::Kind::kEmpty:
-          ++frame.stats.empty_leaves;
-          break;
-        case LeafWindow::Kind::kCovered:
-          ++frame.stats.covered_leaves;
-          break;
-        case LeafWindow::Kind::kMixed:
-          ++frame.stats.mixed_leaves;
-          break;
-      }
-    }
-  });
-  return frame;
+  if (settings.threads == 0) return RenderInArena(scene, camera, settings, stop);
+  tbb::task_arena arena(settings.threads);
+  return arena.execute([&] { return RenderInArena(scene, camera, settings, stop); });
 }
 
 }  // namespace aperture

@@ -2,7 +2,10 @@
 // windows on oneTBB workers with exact analytic edge anti-aliasing (seed 002, eq. 2).
 #pragma once
 
+#include <functional>
+
 #include "absl/status/statusor.h"
+#include "cost/task_planner.h"
 #include "raster/aa_filter.h"
 #include "raster/warnock.h"
 #include "render/polygon_shader.h"
@@ -16,10 +19,17 @@ constexpr int kMaxImageSide = 16384;
 
 struct RenderSettings {
   int width = 1920, height = 1080;
+  PixelRect region;  // the part of the frame to render; empty: all of it
   AntiAliasing aa = AntiAliasing::kBox2;
   ShadingOptions shading;
   WarnockOptions warnock;
-  int threads = 0;  // 0: all cores
+  SchedulingOptions scheduling;
+  int threads = 0;  // > 0: a task arena of that many threads; 0: the caller's arena
+};
+
+struct TaskTiming {
+  PixelRect rect;
+  double predicted_us = 0, measured_us = 0;
 };
 
 struct FrameStats {
@@ -27,16 +37,27 @@ struct FrameStats {
   double raster_ms = 0;  // subdivision, coverage and shading
   size_t visible_polygons = 0;
   size_t empty_leaves = 0, covered_leaves = 0, mixed_leaves = 0;
+  int concurrency = 1;
+  std::vector<TaskTiming> tasks;  // in the order they were started
+
+  // Sum of task times over (threads x raster time): 1 when no worker ever waits.
+  double BalanceEfficiency() const;
 };
 
 struct RenderedFrame {
-  Image image;  // linear RGBA, row 0 at the top
+  Image image;       // linear RGBA of the rendered region, row 0 at its top
+  PixelRect region;  // where the image lies in the frame
   FrameStats stats;
 };
+
+// Asked between tasks, from worker threads: true when the frame is no longer wanted (deadline,
+// client cancellation, shutdown). The frame then ends with CANCELLED.
+using StopRequested = std::function<bool()>;
 
 absl::Status ValidateRenderSettings(const RenderSettings& settings);
 
 absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& camera,
-                                          const RenderSettings& settings);
+                                          const RenderSettings& settings,
+                                          const StopRequested& stop = {});
 
 }  // namespace aperture

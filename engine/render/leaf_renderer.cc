@@ -2,25 +2,25 @@
 
 namespace aperture {
 
-void LeafRenderer::Render(const LeafWindow& leaf, Image& frame) {
+void LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
   const PixelRect& r = leaf.rect;
   switch (leaf.kind) {
     case LeafWindow::Kind::kEmpty:
       for (int y = r.y0; y < r.y1; ++y)
-        for (int x = r.x0; x < r.x1; ++x) frame.at(x, y) = sky_;
+        for (int x = r.x0; x < r.x1; ++x) Pixel(image, x, y) = sky_;
       return;
     case LeafWindow::Kind::kCovered:
       for (int y = r.y0; y < r.y1; ++y)
         for (int x = r.x0; x < r.x1; ++x)
-          frame.at(x, y) = shader_.Shade(leaf.cover, x + 0.5, y + 0.5);
+          Pixel(image, x, y) = shader_.Shade(leaf.cover, x + 0.5, y + 0.5);
       return;
     case LeafWindow::Kind::kMixed:
-      RenderMixed(leaf, frame);
+      RenderMixed(leaf, image);
       return;
   }
 }
 
-void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& frame) {
+void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   const PixelRect& r = leaf.rect;
   const int span = shape_.cells_per_axis - 1;  // extra cells beyond the pixels
   const int nx = r.width() + span, ny = r.height() + span;
@@ -61,8 +61,8 @@ void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& frame) {
         total += e.weight;
       }
       const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
-      frame.at(r.x0 + px, r.y0 + py) = {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w,
-                                        b_sum + sky_.b * sky_w, 1.0f};
+      Pixel(image, r.x0 + px, r.y0 + py) = {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w,
+                                            b_sum + sky_.b * sky_w, 1.0f};
     }
   }
 }

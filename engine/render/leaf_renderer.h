@@ -13,21 +13,24 @@ namespace aperture {
 
 class LeafRenderer {
  public:
+  // `image` holds the pixels of `region` of the frame (row 0 = the region's top row).
   LeafRenderer(const FrameGeometry& geometry, const PolygonShader& shader, AntiAliasing aa,
-               Rgba sky)
-      : geo_(geometry), shader_(shader), aa_(aa), shape_(ShapeOf(aa)), sky_(sky) {}
+               Rgba sky, const PixelRect& region)
+      : geo_(geometry), shader_(shader), aa_(aa), shape_(ShapeOf(aa)), sky_(sky), region_(region) {}
 
   // Not thread-safe (scratch buffers): one LeafRenderer per worker.
-  void Render(const LeafWindow& leaf, Image& frame);
+  void Render(const LeafWindow& leaf, Image& image);
 
  private:
-  void RenderMixed(const LeafWindow& leaf, Image& frame);
+  void RenderMixed(const LeafWindow& leaf, Image& image);
+  Rgba& Pixel(Image& image, int x, int y) const { return image.at(x - region_.x0, y - region_.y0); }
 
   const FrameGeometry& geo_;
   const PolygonShader& shader_;
   AntiAliasing aa_;
   AaFilterShape shape_;
   Rgba sky_;
+  PixelRect region_;
   CellCoverage coverage_;
   std::vector<CellPiece> pieces_;
   std::vector<size_t> cell_begin_;

@@ -39,6 +39,10 @@ ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR")
 ABSL_FLAG(int, threads, 0, "worker threads (0: all cores)");
 ABSL_FLAG(int, repeat, 1, "render this many times and report the fastest (for benchmarks)");
 ABSL_FLAG(int, leaf, 8, "largest Warnock leaf window, pixels");
+ABSL_FLAG(std::string, scheduling, "cost",
+          "task planning: cost (seed 002 cost-driven windows, most expensive first) or uniform "
+          "(fixed tiles)");
+ABSL_FLAG(int, tile, 32, "tile side for --scheduling uniform, pixels");
 ABSL_FLAG(bool, stats, false,
           "print seed 002's frame statistics (F, kappa, l_cp), its predicted polygons per "
           "aperture and the measured mean");
@@ -93,6 +97,12 @@ int Run() {
   settings.shading.texture_aperture = absl::GetFlag(FLAGS_aperture);
   settings.threads = absl::GetFlag(FLAGS_threads);
   settings.warnock.leaf_size = absl::GetFlag(FLAGS_leaf);
+  if (const std::string mode = absl::GetFlag(FLAGS_scheduling); mode == "uniform") {
+    settings.scheduling.mode = Scheduling::kUniform;
+  } else if (mode != "cost") {
+    return Fail(absl::InvalidArgumentError("unknown scheduling '" + mode + "' (cost, uniform)"));
+  }
+  settings.scheduling.uniform_tile = absl::GetFlag(FLAGS_tile);
   ExrOptions exr;
   auto compression = ParseExrCompression(absl::GetFlag(FLAGS_compression));
   if (!compression.ok()) return Fail(compression.status());
@@ -140,6 +150,9 @@ int Run() {
   std::printf("%s: %dx%d, %zu polygons visible, leaves %zu empty / %zu covered / %zu mixed\n",
               built->name.c_str(), settings.width, settings.height, stats.visible_polygons,
               stats.empty_leaves, stats.covered_leaves, stats.mixed_leaves);
+  std::printf("%zu %s tasks on %d threads, balance efficiency %.2f\n", stats.tasks.size(),
+              SchedulingName(settings.scheduling.mode), stats.concurrency,
+              stats.BalanceEfficiency());
   std::printf("frame time: setup %.2f ms, raster %.2f ms, encode %.2f ms (%s, %s)%s\n",
               stats.setup_ms, stats.raster_ms, encode_ms, ExrCompressionName(exr.compression),
               exr.pixel_type == ExrPixelType::kHalf ? "half" : "float",

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -35,6 +36,55 @@ TEST(FrameRenderer, BitIdenticalAcrossThreadCountsAndRuns) {
     EXPECT_TRUE(BitIdentical(two->image, again->image)) << AntiAliasingName(aa);
     EXPECT_GT(one->stats.mixed_leaves, 0u);
   }
+}
+
+TEST(FrameRenderer, SchedulingAndRegionsDoNotChangeAPixel) {
+  // Split frames (issue 6) need every task partition and every region to give the very same
+  // pixels as the whole frame.
+  auto scene = BuildScene(MakeDemoScene());
+  ASSERT_TRUE(scene.ok());
+  RenderSettings settings;
+  settings.width = 320;
+  settings.height = 180;
+  settings.shading.override_filter = true;
+  settings.shading.filter = FilterMode::kTrilinear;
+  settings.threads = 2;
+  auto cost = RenderFrame(*scene, DemoCamera(), settings);
+  settings.scheduling.mode = Scheduling::kUniform;
+  settings.scheduling.uniform_tile = 24;
+  auto uniform = RenderFrame(*scene, DemoCamera(), settings);
+  ASSERT_TRUE(cost.ok() && uniform.ok());
+  EXPECT_TRUE(BitIdentical(cost->image, uniform->image));
+
+  settings.region = {37, 81, 250, 179};
+  auto region = RenderFrame(*scene, DemoCamera(), settings);
+  ASSERT_TRUE(region.ok());
+  ASSERT_EQ(region->image.width(), 213);
+  ASSERT_EQ(region->image.height(), 98);
+  bool same = true;
+  for (int y = 0; y < 98; ++y)
+    for (int x = 0; x < 213; ++x)
+      same = same && region->image.at(x, y) == cost->image.at(37 + x, 81 + y);
+  EXPECT_TRUE(same);
+
+  settings.region = {300, 0, 330, 10};
+  auto outside = RenderFrame(*scene, DemoCamera(), settings);
+  ASSERT_FALSE(outside.ok());
+  EXPECT_NE(outside.status().message().find("region"), std::string::npos);
+}
+
+TEST(FrameRenderer, StopRequestEndsTheFrameCancelled) {
+  auto scene = BuildScene(MakeDemoScene());
+  ASSERT_TRUE(scene.ok());
+  RenderSettings settings;
+  settings.width = 640;
+  settings.height = 360;
+  settings.shading.override_filter = true;
+  std::atomic<int> asked{0};
+  auto frame = RenderFrame(*scene, DemoCamera(), settings, [&] { return ++asked > 5; });
+  ASSERT_FALSE(frame.ok());
+  EXPECT_EQ(frame.status().code(), absl::StatusCode::kCancelled);
+  EXPECT_GT(asked.load(), 5);
 }
 
 TEST(FrameRenderer, PrecisionFarFromTheOrigin) {

@@ -1,0 +1,95 @@
+#include "cost/task_planner.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace aperture {
+namespace {
+
+constexpr int kRootTile = 64;
+
+std::vector<int> Reaching(const FrameGeometry& geo, const std::vector<int>& candidates,
+                          const PixelRect& r, double margin) {
+  std::vector<int> out;
+  for (int i : candidates)
+    if (PolygonOverlapsRect(geo.polygons[i], r.x0 - margin, r.y0 - margin, r.x1 + margin,
+                            r.y1 + margin))
+      out.push_back(i);
+  return out;
+}
+
+std::vector<TaskWindow> GridTasks(const FrameGeometry& geo, const AaFilterShape& aa,
+                                  const PixelRect& region, int tile, const CostModel& model,
+                                  bool predict) {
+  int cols = 0;
+  std::vector<std::vector<int>> bins = BinPolygons(geo, aa.margin, region, tile, &cols);
+  std::vector<TaskWindow> tasks(bins.size());
+  tbb::parallel_for(size_t{0}, bins.size(), [&](size_t k) {
+    const int r = static_cast<int>(k) / cols, c = static_cast<int>(k) % cols;
+    TaskWindow& t = tasks[k];
+    t.rect = {region.x0 + c * tile, region.y0 + r * tile,
+              std::min(region.x1, region.x0 + (c + 1) * tile),
+              std::min(region.y1, region.y0 + (r + 1) * tile)};
+    t.polygons = Reaching(geo, bins[k], t.rect, aa.margin);
+    if (predict)
+      t.predicted_us =
+          model.Predict(MeasureWindowFeatures(geo, t.polygons, t.rect, 2 * aa.margin + 1));
+  });
+  return tasks;
+}
+
+void Split(const FrameGeometry& geo, const AaFilterShape& aa, const CostModel& model, double grain,
+           TaskWindow window, std::vector<TaskWindow>& out) {
+  const PixelRect& r = window.rect;
+  const bool can_split = r.width() > 8 || r.height() > 8;
+  if (window.predicted_us <= grain || !can_split || window.polygons.empty()) {
+    out.push_back(std::move(window));
+    return;
+  }
+  const int xm = r.width() > 8 ? r.x0 + r.width() / 2 : r.x1;
+  const int ym = r.height() > 8 ? r.y0 + r.height() / 2 : r.y1;
+  const PixelRect quads[4] = {
+      {r.x0, r.y0, xm, ym}, {xm, r.y0, r.x1, ym}, {r.x0, ym, xm, r.y1}, {xm, ym, r.x1, r.y1}};
+  for (const PixelRect& q : quads) {
+    if (q.width() <= 0 || q.height() <= 0) continue;
+    TaskWindow child;
+    child.rect = q;
+    child.polygons = Reaching(geo, window.polygons, q, aa.margin);
+    child.predicted_us =
+        model.Predict(MeasureWindowFeatures(geo, child.polygons, q, 2 * aa.margin + 1));
+    Split(geo, aa, model, grain, std::move(child), out);
+  }
+}
+
+}  // namespace
+
+const char* SchedulingName(Scheduling s) { return s == Scheduling::kCost ? "cost" : "uniform"; }
+
+std::vector<TaskWindow> PlanTasks(const FrameGeometry& geo, const AaFilterShape& aa,
+                                  const PixelRect& region, const SchedulingOptions& options,
+                                  int concurrency) {
+  if (options.mode == Scheduling::kUniform)
+    return GridTasks(geo, aa, region, std::max(8, options.uniform_tile), options.model,
+                     options.predict_uniform);
+
+  std::vector<TaskWindow> roots = GridTasks(geo, aa, region, kRootTile, options.model, true);
+  double total = 0;
+  for (const TaskWindow& t : roots) total += t.predicted_us;
+  const double grain = total / (std::max(1, concurrency) * std::max(1, options.tasks_per_thread));
+  std::vector<std::vector<TaskWindow>> per_root(roots.size());
+  tbb::parallel_for(size_t{0}, roots.size(), [&](size_t k) {
+    Split(geo, aa, options.model, grain, std::move(roots[k]), per_root[k]);
+  });
+  std::vector<TaskWindow> tasks;
+  for (auto& v : per_root)
+    for (TaskWindow& t : v) tasks.push_back(std::move(t));
+  // Most expensive first (longest-processing-time order); ties keep screen order.
+  std::stable_sort(tasks.begin(), tasks.end(), [](const TaskWindow& a, const TaskWindow& b) {
+    return a.predicted_us > b.predicted_us;
+  });
+  return tasks;
+}
+
+}  // namespace aperture

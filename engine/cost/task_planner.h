@@ -1,0 +1,37 @@
+// Cuts a frame into the tasks the oneTBB workers run (issue 6). Uniform: a fixed grid of tiles.
+// Cost-driven: windows subdivided Warnock-style until their predicted work (seed 002's filtered
+// areas, see window_cost.h) is near a target grain, then ordered most expensive first.
+#pragma once
+
+#include <vector>
+
+#include "cost/window_cost.h"
+#include "raster/aa_filter.h"
+#include "raster/warnock.h"
+
+namespace aperture {
+
+enum class Scheduling { kCost, kUniform };
+
+const char* SchedulingName(Scheduling s);
+
+struct SchedulingOptions {
+  Scheduling mode = Scheduling::kCost;
+  int uniform_tile = 32;         // kUniform: tile side, pixels
+  int tasks_per_thread = 16;     // kCost: the grain is the predicted total over threads x this
+  bool predict_uniform = false;  // kUniform: also predict each tile's cost (for measurements)
+  CostModel model = DefaultCostModel();
+};
+
+struct TaskWindow {
+  PixelRect rect;
+  std::vector<int> polygons;  // candidates reaching into the window's apertures
+  double predicted_us = 0;
+};
+
+// Deterministic for a given frame and options; `concurrency` only sets the grain.
+std::vector<TaskWindow> PlanTasks(const FrameGeometry& geometry, const AaFilterShape& aa,
+                                  const PixelRect& region, const SchedulingOptions& options,
+                                  int concurrency);
+
+}  // namespace aperture

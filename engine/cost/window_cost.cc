@@ -1,0 +1,116 @@
+#include "cost/window_cost.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+#include "absl/strings/str_cat.h"
+#include "raster/polygon_clip.h"
+#include "scene/triangulate.h"
+
+namespace aperture {
+
+WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector<int>& polygons,
+                                     const PixelRect& rect, double a) {
+  WindowFeatures f;
+  f.pixels = static_cast<double>(rect.pixels());
+  const double x0 = rect.x0, y0 = rect.y0, x1 = rect.x1, y1 = rect.y1;
+  std::vector<Vec2> poly, scratch;
+  for (int index : polygons) {
+    const ScreenPolygon& p = geo.polygons[index];
+    if (p.max_x <= x0 || p.min_x >= x1 || p.max_y <= y0 || p.min_y >= y1) continue;
+    poly = p.vertices;
+    ClipToRect(poly, x0, y0, x1, y1, scratch);
+    if (poly.empty()) continue;
+    ++f.polygons;
+    f.area += std::abs(SignedArea(poly));
+    // seed 002, eq. 6: the edges widen the polygon by at most a / sqrt(2) on each side, each
+    // vertex adds at most a^2. Edges on the window's border are the clip's, not the polygon's.
+    double edge_length = 0;
+    for (size_t k = 0; k < poly.size(); ++k) {
+      const Vec2& s = poly[k];
+      const Vec2& e = poly[(k + 1) % poly.size()];
+      const bool on_border =
+          (s.x == e.x && (s.x == x0 || s.x == x1)) || (s.y == e.y && (s.y == y0 || s.y == y1));
+      if (!on_border) edge_length += std::hypot(e.x - s.x, e.y - s.y);
+    }
+    int vertices = 0;
+    for (const Vec2& v : p.vertices) vertices += v.x > x0 && v.x < x1 && v.y > y0 && v.y < y1;
+    f.boundary += a * edge_length / std::sqrt(2.0) + a * a * vertices;
+  }
+  return f;
+}
+
+CostModel FitCostModel(const std::vector<WindowFeatures>& features,
+                       const std::vector<double>& microseconds) {
+  // Normal equations over the active columns; a column whose weight comes out negative is
+  // dropped and the rest refitted (non-negative least squares for three unknowns).
+  bool active[3] = {true, true, true};
+  double k[3] = {0, 0, 0};
+  for (int round = 0; round < 3; ++round) {
+    double m[3][3] = {}, r[3] = {};
+    for (size_t i = 0; i < features.size(); ++i) {
+      const double x[3] = {features[i].pixels, features[i].area, features[i].boundary};
+      for (int p = 0; p < 3; ++p) {
+        r[p] += active[p] ? x[p] * microseconds[i] : 0;
+        for (int q = 0; q < 3; ++q) m[p][q] += active[p] && active[q] ? x[p] * x[q] : 0;
+      }
+    }
+    for (int p = 0; p < 3; ++p)
+      if (!active[p]) m[p][p] = 1;
+    // Gaussian elimination with partial pivoting.
+    for (int c = 0; c < 3; ++c) {
+      int pivot = c;
+      for (int row = c + 1; row < 3; ++row)
+        if (std::abs(m[row][c]) > std::abs(m[pivot][c])) pivot = row;
+      std::swap(m[c], m[pivot]);
+      std::swap(r[c], r[pivot]);
+      if (m[c][c] == 0) continue;
+      for (int row = 0; row < 3; ++row) {
+        if (row == c) continue;
+        const double factor = m[row][c] / m[c][c];
+        for (int q = 0; q < 3; ++q) m[row][q] -= factor * m[c][q];
+        r[row] -= factor * r[c];
+      }
+    }
+    bool negative = false;
+    for (int p = 0; p < 3; ++p) {
+      k[p] = active[p] && m[p][p] != 0 ? r[p] / m[p][p] : 0;
+      if (k[p] < 0) active[p] = false, negative = true;
+    }
+    if (!negative) break;
+  }
+  return {std::max(0.0, k[0]), std::max(0.0, k[1]), std::max(0.0, k[2])};
+}
+
+absl::StatusOr<CostModel> LoadCostModel(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return absl::NotFoundError(absl::StrCat("no cost model at '", path, "'"));
+  CostModel m;
+  if (!(in >> m.per_pixel >> m.per_area >> m.per_boundary) || !std::isfinite(m.per_pixel) ||
+      !std::isfinite(m.per_area) || !std::isfinite(m.per_boundary) || m.per_pixel < 0 ||
+      m.per_area < 0 || m.per_boundary < 0)
+    return absl::InvalidArgumentError(
+        absl::StrCat("cost model '", path, "' must hold three non-negative numbers"));
+  return m;
+}
+
+absl::Status SaveCostModel(const CostModel& m, const std::string& path) {
+  std::ofstream out(path);
+  out << m.per_pixel << " " << m.per_area << " " << m.per_boundary << "\n";
+  if (!out) return absl::InternalError(absl::StrCat("cannot write cost model '", path, "'"));
+  return absl::OkStatus();
+}
+
+std::string StoredCostModelPath() {
+  if (const char* env = std::getenv("APERTURE_COST_MODEL"); env != nullptr && *env != '\0')
+    return env;
+  return APERTURE_COST_MODEL_PATH;
+}
+
+CostModel DefaultCostModel() {
+  auto stored = LoadCostModel(StoredCostModelPath());
+  return stored.ok() ? *stored : CostModel{};
+}
+
+}  // namespace aperture
