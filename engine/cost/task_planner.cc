@@ -33,11 +33,30 @@ std::vector<TaskWindow> GridTasks(const FrameGeometry& geo, const AaFilterShape&
               std::min(region.x1, region.x0 + (c + 1) * tile),
               std::min(region.y1, region.y0 + (r + 1) * tile)};
     t.polygons = Reaching(geo, bins[k], t.rect, aa.margin);
-    if (predict)
-      t.predicted_us =
-          model.Predict(MeasureWindowFeatures(geo, t.polygons, t.rect, 2 * aa.margin + 1));
+    if (predict) {
+      t.features = MeasureWindowFeatures(geo, t.polygons, t.rect, 2 * aa.margin + 1);
+      t.predicted_us = model.Predict(t.features);
+    }
   });
   return tasks;
+}
+
+// Runs of empty root windows along a row become one task: sky is cheap, and many tiny equal
+// tasks cost more to schedule than to render.
+std::vector<TaskWindow> MergeEmptyRuns(std::vector<TaskWindow> roots, const CostModel& model) {
+  std::vector<TaskWindow> merged;
+  for (TaskWindow& t : roots) {
+    if (!merged.empty() && t.polygons.empty() && merged.back().polygons.empty() &&
+        merged.back().rect.y0 == t.rect.y0 && merged.back().rect.x1 == t.rect.x0) {
+      TaskWindow& run = merged.back();
+      run.rect.x1 = t.rect.x1;
+      run.features.pixels += t.features.pixels;
+      run.predicted_us = model.Predict(run.features);
+      continue;
+    }
+    merged.push_back(std::move(t));
+  }
+  return merged;
 }
 
 void Split(const FrameGeometry& geo, const AaFilterShape& aa, const CostModel& model, double grain,
@@ -57,8 +76,8 @@ void Split(const FrameGeometry& geo, const AaFilterShape& aa, const CostModel& m
     TaskWindow child;
     child.rect = q;
     child.polygons = Reaching(geo, window.polygons, q, aa.margin);
-    child.predicted_us =
-        model.Predict(MeasureWindowFeatures(geo, child.polygons, q, 2 * aa.margin + 1));
+    child.features = MeasureWindowFeatures(geo, child.polygons, q, 2 * aa.margin + 1);
+    child.predicted_us = model.Predict(child.features);
     Split(geo, aa, model, grain, std::move(child), out);
   }
 }
@@ -74,7 +93,8 @@ std::vector<TaskWindow> PlanTasks(const FrameGeometry& geo, const AaFilterShape&
     return GridTasks(geo, aa, region, std::max(8, options.uniform_tile), options.model,
                      options.predict_uniform);
 
-  std::vector<TaskWindow> roots = GridTasks(geo, aa, region, kRootTile, options.model, true);
+  std::vector<TaskWindow> roots =
+      MergeEmptyRuns(GridTasks(geo, aa, region, kRootTile, options.model, true), options.model);
   double total = 0;
   for (const TaskWindow& t : roots) total += t.predicted_us;
   const double grain = total / (std::max(1, concurrency) * std::max(1, options.tasks_per_thread));

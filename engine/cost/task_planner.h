@@ -26,6 +26,7 @@ struct SchedulingOptions {
 struct TaskWindow {
   PixelRect rect;
   std::vector<int> polygons;  // candidates reaching into the window's apertures
+  WindowFeatures features;    // set when the cost is predicted
   double predicted_us = 0;
 };
 

@@ -1,5 +1,6 @@
 #include "cost/window_cost.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -50,9 +51,13 @@ CostModel FitCostModel(const std::vector<WindowFeatures>& features,
   for (int round = 0; round < 3; ++round) {
     double m[3][3] = {}, r[3] = {};
     for (size_t i = 0; i < features.size(); ++i) {
-      const double x[3] = {features[i].pixels, features[i].area, features[i].boundary};
+      // Relative errors: every tile counts, cheap sky tiles as much as busy ones (what ranking
+      // and balancing need), so each row is divided by its time.
+      const double w = 1.0 / std::max(microseconds[i], 1.0);
+      const double x[3] = {features[i].pixels * w, features[i].area * w, features[i].boundary * w};
+      const double y = microseconds[i] * w;
       for (int p = 0; p < 3; ++p) {
-        r[p] += active[p] ? x[p] * microseconds[i] : 0;
+        r[p] += active[p] ? x[p] * y : 0;
         for (int q = 0; q < 3; ++q) m[p][q] += active[p] && active[q] ? x[p] * x[q] : 0;
       }
     }

@@ -118,7 +118,8 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
   }
   frame.stats.tasks.reserve(tasks.size());
   for (size_t i = 0; i < tasks.size(); ++i)
-    frame.stats.tasks.push_back({tasks[i].rect, tasks[i].predicted_us, task_us[i]});
+    frame.stats.tasks.push_back(
+        {tasks[i].rect, tasks[i].features, tasks[i].predicted_us, task_us[i]});
   return frame;
 }
 

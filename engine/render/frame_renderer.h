@@ -29,6 +29,7 @@ struct RenderSettings {
 
 struct TaskTiming {
   PixelRect rect;
+  WindowFeatures features;
   double predicted_us = 0, measured_us = 0;
 };
 

@@ -1,5 +1,6 @@
 #include "scene/benchmark_scenes.h"
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -51,6 +52,55 @@ v1::Scene MakeTriangleFieldScene(int count, double screen_size, uint32_t seed) {
       v->set_y(cy + dy);
       v->set_z(-depth + tilt_x * dx +
                tilt_y * dy);  // tilted: triangles interpenetrate now and then
+    }
+  }
+  return scene;
+}
+
+v1::Scene MakeSkewedCityScene(uint32_t seed) {
+  v1::Scene scene;
+  scene.set_name("skewed-city");
+  scene.mutable_sky()->set_r(0.5f);
+  scene.mutable_sky()->set_g(0.65f);
+  scene.mutable_sky()->set_b(0.9f);
+  scene.mutable_ambient()->set_r(0.35f);
+  scene.mutable_ambient()->set_g(0.35f);
+  scene.mutable_ambient()->set_b(0.4f);
+  scene.mutable_sun()->mutable_direction()->set_x(0.4);
+  scene.mutable_sun()->mutable_direction()->set_y(0.9);
+  scene.mutable_sun()->mutable_direction()->set_z(0.3);
+  scene.mutable_sun()->mutable_color()->set_r(0.8f);
+  scene.mutable_sun()->mutable_color()->set_g(0.8f);
+  scene.mutable_sun()->mutable_color()->set_b(0.75f);
+  v1::Material* m = scene.add_materials();
+  m->set_id("building");
+  m->mutable_base_color()->set_r(0.7f);
+  m->mutable_base_color()->set_g(0.65f);
+  m->mutable_base_color()->set_b(0.6f);
+  v1::Mesh* mesh = scene.add_meshes();
+  mesh->set_id("city");
+  mesh->set_material_id("building");
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> height(1, 9);
+  auto quad = [&](std::initializer_list<std::array<double, 3>> pts) {
+    v1::Polygon* p = mesh->add_polygons();
+    for (const auto& q : pts) {
+      v1::Vec3* v = p->add_vertices();
+      v->set_x(q[0]);
+      v->set_y(q[1]);
+      v->set_z(q[2]);
+    }
+  };
+  const double ground = -24;
+  for (int i = 0; i < 30; ++i) {
+    for (int j = 0; j < 30; ++j) {
+      const double x0 = -60 + i * 1.6, z0 = -80 + j * 1.6, x1 = x0 + 1.1, z1 = z0 + 1.1;
+      const double y0 = ground, y1 = ground + height(rng);
+      quad({{x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}});
+      quad({{x1, y0, z0}, {x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}});
+      quad({{x1, y0, z1}, {x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}});
+      quad({{x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0}});
+      quad({{x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0}, {x0, y1, z0}});
     }
   }
   return scene;

@@ -12,4 +12,8 @@ namespace aperture {
 // across on a 1920 x 1080 image with a 60 degree vertical field of view; lit, untextured.
 v1::Scene MakeTriangleFieldScene(int count, double screen_size = 40, uint32_t seed = 1);
 
+// Issue 6's skewed scene: a dense city block (a 30 x 30 grid of buildings, 4,500 polygons) in
+// the lower-left corner of the view of a camera at the origin looking along -z; sky elsewhere.
+v1::Scene MakeSkewedCityScene(uint32_t seed = 2);
+
 }  // namespace aperture

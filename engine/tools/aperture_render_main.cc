@@ -9,6 +9,7 @@
 #include "absl/flags/usage.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "cost/calibration.h"
 #include "cost/frame_statistics.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
@@ -19,8 +20,8 @@
 #include "tools/cli_options.h"
 
 ABSL_FLAG(std::string, scene, "demo",
-          "'demo' (built-in airfield), 'triangles' (10,000 random triangles, a benchmark) or a "
-          "scene JSON file");
+          "'demo' (built-in airfield), 'triangles' (10,000 random triangles), 'skewed' (a city "
+          "block in one corner of the view) or a scene JSON file");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
           "or 0,1.7,0,0,0,0 for a scene file");
@@ -43,6 +44,9 @@ ABSL_FLAG(std::string, scheduling, "cost",
           "task planning: cost (seed 002 cost-driven windows, most expensive first) or uniform "
           "(fixed tiles)");
 ABSL_FLAG(int, tile, 32, "tile side for --scheduling uniform, pixels");
+ABSL_FLAG(bool, calibrate, false,
+          "fit the tile cost model on this machine (demo, skewed and triangle scenes, one thread) "
+          "and store it with the build; renders nothing else");
 ABSL_FLAG(bool, stats, false,
           "print seed 002's frame statistics (F, kappa, l_cp), its predicted polygons per "
           "aperture and the measured mean");
@@ -65,11 +69,35 @@ void PrintStatistics(const Scene& scene, const Camera& camera, const RenderSetti
               s.predicted_square, s.predicted_circle, MeasurePolygonsPerAperture(geo, a));
 }
 
+int RunCalibration() {
+  auto demo = BuildScene(MakeDemoScene());
+  auto skewed = BuildScene(MakeSkewedCityScene());
+  auto triangles = BuildScene(MakeTriangleFieldScene(3000));
+  if (!demo.ok() || !skewed.ok() || !triangles.ok()) return Fail(demo.status());
+  const Camera origin{.position = {0, 0, 0}};
+  std::printf("calibrating the tile cost model (3 scenes at 960x540, 32-pixel tiles, 1 thread)\n");
+  auto result = Calibrate({{"demo", &*demo, DemoCamera()},
+                           {"skewed", &*skewed, origin},
+                           {"triangles", &*triangles, origin}},
+                          960, 540, 3);
+  if (!result.ok()) return Fail(result.status());
+  const std::string path = StoredCostModelPath();
+  if (auto s = SaveCostModel(result->model, path); !s.ok()) return Fail(s);
+  std::printf(
+      "%d tiles: per_pixel %.4g us, per_area %.4g us, per_boundary %.4g us; Spearman "
+      "predicted vs measured %.3f\nstored in %s\n",
+      result->tiles, result->model.per_pixel, result->model.per_area, result->model.per_boundary,
+      result->spearman, path.c_str());
+  return 0;
+}
+
 int Run() {
+  if (absl::GetFlag(FLAGS_calibrate)) return RunCalibration();
   // Options first, so that a mistake is reported before any work is done.
   const std::string scene_arg = absl::GetFlag(FLAGS_scene);
-  const bool demo = scene_arg == "demo", triangles = scene_arg == "triangles";
-  Camera camera = demo ? DemoCamera() : Camera{.position = {0, triangles ? 0.0 : 1.7, 0}};
+  const bool demo = scene_arg == "demo", triangles = scene_arg == "triangles",
+             skewed = scene_arg == "skewed";
+  Camera camera = demo ? DemoCamera() : Camera{.position = {0, triangles || skewed ? 0.0 : 1.7, 0}};
   if (const std::string spec = absl::GetFlag(FLAGS_camera); !spec.empty()) {
     auto parsed = ParseCameraSpec(spec);
     if (!parsed.ok()) return Fail(parsed.status());
@@ -113,6 +141,7 @@ int Run() {
 
   auto built = demo        ? BuildScene(MakeDemoScene())
                : triangles ? BuildScene(MakeTriangleFieldScene(10000))
+               : skewed    ? BuildScene(MakeSkewedCityScene())
                            : LoadSceneFile(scene_arg);
   if (!built.ok()) return Fail(built.status());
   if (built->name.empty()) built->name = scene_arg;
