@@ -1,0 +1,228 @@
+#include "texture/packed/area_integral.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aperture::packed {
+namespace {
+
+std::array<uint64_t, 4> Scaled(uint32_t colour, uint64_t count) {
+  return {Channel(colour, 0) * count, Channel(colour, 1) * count, Channel(colour, 2) * count,
+          Channel(colour, 3) * count};
+}
+void Add(std::array<uint64_t, 4>& a, const std::array<uint64_t, 4>& b) {
+  for (int c = 0; c < 4; ++c) a[c] += b[c];
+}
+
+// One axis of a rectangle, reduced to the texture period [0, n): pieces [lo, hi) with 0 <= lo <
+// hi <= n, each taken `times` times.
+struct Piece {
+  double lo, hi, times;
+};
+int SplitPeriodic(double a, double b, double n, Piece out[3]) {
+  int count = 0;
+  if (!(b > a)) return 0;
+  const double shift = std::floor(a / n) * n;
+  a -= shift;
+  b -= shift;
+  if (a >= n) {  // rounding of a / n
+    a -= n;
+    b -= n;
+  }
+  if (a < 0) a = 0;
+  if (b <= n) {
+    out[count++] = {a, b, 1};
+    return count;
+  }
+  if (a < n) out[count++] = {a, n, 1};
+  const double rest = b - n;
+  const double periods = std::floor(rest / n);
+  if (periods > 0) out[count++] = {0, n, periods};
+  const double tail = rest - periods * n;
+  if (tail > 0) out[count++] = {0, std::min(tail, n), 1};
+  return count;
+}
+
+}  // namespace
+
+AreaIntegrator::AreaIntegrator(const PackedTextureView& texture) : texture_(texture) {
+  const auto steps = texture.steps();
+  const auto indices = texture.indices();
+  const auto palette = texture.palette();
+  prefix_.resize(steps.size() + 1);
+  int64_t previous = -1;
+  for (size_t i = 0; i < steps.size(); ++i) {
+    prefix_[i + 1] = prefix_[i];
+    Add(prefix_[i + 1], Scaled(palette[indices[i]], static_cast<uint64_t>(steps[i] - previous)));
+    previous = steps[i];
+  }
+  total_ = SumTexels(0, 0, texture.width(), texture.height());
+}
+
+std::array<uint64_t, 4> AreaIntegrator::SumSteps(uint32_t first, uint32_t last) const {
+  return SumStepsInRuns(first, last, texture_.RunOfStep(first), texture_.RunOfStep(last));
+}
+
+std::array<uint64_t, 4> AreaIntegrator::SumStepsInRuns(uint32_t first, uint32_t last, size_t a,
+                                                       size_t b) const {
+  const auto steps = texture_.steps();
+  const auto palette = texture_.palette();
+  const auto indices = texture_.indices();
+  if (a == b) return Scaled(palette[indices[a]], uint64_t{last} - first + 1);
+  std::array<uint64_t, 4> sum = Scaled(palette[indices[a]], uint64_t{steps[a]} - first + 1);
+  for (int c = 0; c < 4; ++c) sum[c] += prefix_[b][c] - prefix_[a + 1][c];
+  Add(sum, Scaled(palette[indices[b]], uint64_t{last} - steps[b - 1]));
+  return sum;
+}
+
+size_t AreaIntegrator::RunIn(size_t lo, size_t hi, uint64_t step) const {
+  // First run in [lo, hi] ending at or after `step` (the answer is known to lie there).
+  const auto steps = texture_.steps();
+  if (step > steps.back()) return hi;
+  return static_cast<size_t>(
+      std::lower_bound(steps.begin() + lo, steps.begin() + hi + 1, static_cast<uint32_t>(step)) -
+      steps.begin());
+}
+
+AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32_t x1,
+                                                uint32_t y1) const {
+  int level = 0;
+  while (level < texture_.order() &&
+         ((x0 >> level) != (x1 >> level) || (y0 >> level) != (y1 >> level)))
+    ++level;
+  // Walk down the curve to that block: orientation and first step, no run searches.
+  Block b{texture_.order(), 0, 0, 0, 0, 0, 0};
+  while (b.level > level) {
+    const int half = b.level - 1;
+    const uint32_t xb = (x0 >> half) & 1u, yb = (y0 >> half) & 1u;
+    uint32_t digit = xb | (yb << 1);
+    if (texture_.curve() == Curve::kHilbert) {
+      for (digit = 0; digit < 4; ++digit) {
+        const HilbertChild c = HilbertChildOf(b.state, digit);
+        if (c.xb == xb && c.yb == yb) {
+          b.state = c.state;
+          break;
+        }
+      }
+    }
+    b.step0 += uint64_t{digit} << (2 * half);
+    b.x += xb << half;
+    b.y += yb << half;
+    b.level = half;
+  }
+  const uint64_t last =
+      std::min<uint64_t>(b.step0 + (uint64_t{1} << (2 * b.level)) - 1, texture_.steps().back());
+  b.run_lo = texture_.RunOfStep(static_cast<uint32_t>(b.step0));
+  b.run_hi = texture_.RunOfStep(static_cast<uint32_t>(last));
+  return b;
+}
+
+void AreaIntegrator::Children(const Block& b, Block out[4]) const {
+  const int half = b.level - 1;
+  const uint64_t quarter = uint64_t{1} << (2 * half);
+  for (uint32_t digit = 0; digit < 4; ++digit) {
+    uint32_t xb, yb, child = b.state;
+    if (texture_.curve() == Curve::kMorton) {
+      xb = digit & 1u;
+      yb = digit >> 1;
+    } else {
+      const HilbertChild c = HilbertChildOf(b.state, digit);
+      xb = c.xb;
+      yb = c.yb;
+      child = c.state;
+    }
+    Block& o = out[digit];
+    o.level = half;
+    o.x = b.x + (xb << half);
+    o.y = b.y + (yb << half);
+    o.state = child;
+    o.step0 = b.step0 + digit * quarter;
+    o.run_lo = o.x < texture_.width() && o.y < texture_.height()
+                   ? RunIn(b.run_lo, b.run_hi, o.step0)
+                   : b.run_hi;
+    o.run_hi = RunIn(o.run_lo, b.run_hi, o.step0 + quarter - 1);
+  }
+}
+
+std::array<uint64_t, 4> AreaIntegrator::SumBlock(const Block& b, uint32_t x0, uint32_t y0,
+                                                 uint32_t x1, uint32_t y1) const {
+  const uint64_t size = uint64_t{1} << b.level;
+  const uint64_t ix0 = std::max<uint64_t>(b.x, x0), ix1 = std::min<uint64_t>(b.x + size, x1);
+  const uint64_t iy0 = std::max<uint64_t>(b.y, y0), iy1 = std::min<uint64_t>(b.y + size, y1);
+  if (ix0 >= ix1 || iy0 >= iy1) return {};
+  // A block inside one run has a single colour.
+  if (b.run_lo == b.run_hi)
+    return Scaled(texture_.palette()[texture_.indices()[b.run_lo]], (ix1 - ix0) * (iy1 - iy0));
+  if (ix1 - ix0 == size && iy1 - iy0 == size)  // whole block: one contiguous step range
+    return SumStepsInRuns(static_cast<uint32_t>(b.step0),
+                          static_cast<uint32_t>(b.step0 + size * size - 1), b.run_lo, b.run_hi);
+  Block children[4];
+  Children(b, children);
+  std::array<uint64_t, 4> sum{};
+  for (const Block& c : children) Add(sum, SumBlock(c, x0, y0, x1, y1));
+  return sum;
+}
+
+std::array<uint64_t, 4> AreaIntegrator::SumTexels(uint32_t x0, uint32_t y0, uint32_t x1,
+                                                  uint32_t y1) const {
+  x1 = std::min(x1, texture_.width());
+  y1 = std::min(y1, texture_.height());
+  if (x0 >= x1 || y0 >= y1) return {};
+  return SumBlock(Enclosing(x0, y0, x1 - 1, y1 - 1), x0, y0, x1, y1);
+}
+
+void AreaIntegrator::IntegrateBlock(const Block& b, double x0, double y0, double x1, double y1,
+                                    std::array<double, 4>& sum) const {
+  const double size = static_cast<double>(uint64_t{1} << b.level);
+  const double ix0 = std::max<double>(b.x, x0), ix1 = std::min<double>(b.x + size, x1);
+  const double iy0 = std::max<double>(b.y, y0), iy1 = std::min<double>(b.y + size, y1);
+  if (ix0 >= ix1 || iy0 >= iy1) return;
+  if (b.run_lo == b.run_hi) {  // one colour: colour x overlap area, fractional edges included
+    const uint32_t colour = texture_.palette()[texture_.indices()[b.run_lo]];
+    const double area = (ix1 - ix0) * (iy1 - iy0);
+    for (int c = 0; c < 4; ++c) sum[c] += area * Channel(colour, c);
+    return;
+  }
+  if (ix1 - ix0 == size && iy1 - iy0 == size) {  // whole block, every texel fully covered
+    const uint64_t n = uint64_t{1} << (2 * b.level);
+    const auto s = SumStepsInRuns(static_cast<uint32_t>(b.step0),
+                                  static_cast<uint32_t>(b.step0 + n - 1), b.run_lo, b.run_hi);
+    for (int c = 0; c < 4; ++c) sum[c] += static_cast<double>(s[c]);
+    return;
+  }
+  Block children[4];
+  Children(b, children);
+  for (const Block& c : children) IntegrateBlock(c, x0, y0, x1, y1, sum);
+}
+
+AreaSum AreaIntegrator::Integrate(double x0, double y0, double x1, double y1) const {
+  AreaSum result;
+  Piece px[3], py[3];
+  const int nx = SplitPeriodic(x0, x1, texture_.width(), px);
+  const int ny = SplitPeriodic(y0, y1, texture_.height(), py);
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < ny; ++j) {
+      const double times = px[i].times * py[j].times;
+      const bool whole = px[i].lo == 0 && px[i].hi == texture_.width() && py[j].lo == 0 &&
+                         py[j].hi == texture_.height();
+      std::array<double, 4> s;
+      if (whole) {
+        for (int c = 0; c < 4; ++c) s[c] = static_cast<double>(total_[c]);
+      } else {
+        s = {};
+        const auto last_texel = [](double hi, uint32_t n) {
+          return static_cast<uint32_t>(std::min<double>(std::ceil(hi) - 1, n - 1));
+        };
+        const Block start = Enclosing(
+            static_cast<uint32_t>(px[i].lo), static_cast<uint32_t>(py[j].lo),
+            last_texel(px[i].hi, texture_.width()), last_texel(py[j].hi, texture_.height()));
+        IntegrateBlock(start, px[i].lo, py[j].lo, px[i].hi, py[j].hi, s);
+      }
+      for (int c = 0; c < 4; ++c) result.channels[c] += times * s[c];
+      result.area += times * (px[i].hi - px[i].lo) * (py[j].hi - py[j].lo);
+    }
+  }
+  return result;
+}
+
+}  // namespace aperture::packed

@@ -1,0 +1,50 @@
+#include "texture/packed/packed_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aperture::packed {
+namespace {
+
+// Texel coordinate of a periodic texture coordinate: floor(frac(t) * n), clamped.
+uint32_t Wrap(double t, uint32_t n) {
+  double f = t - std::floor(t);
+  const double texel = std::floor(f * n);
+  if (!(texel >= 0)) return 0;  // NaN
+  return static_cast<uint32_t>(std::min<double>(texel, n - 1));
+}
+
+Rgba ToRgba(uint32_t colour) {
+  return {Channel(colour, 0) / 255.0f, Channel(colour, 1) / 255.0f, Channel(colour, 2) / 255.0f,
+          Channel(colour, 3) / 255.0f};
+}
+
+}  // namespace
+
+PackedTextureSampler::PackedTextureSampler(const PackedTextureView& texture, PackedSampling mode)
+    : texture_(texture), mode_(mode), index_(texture), area_(texture) {}
+
+Rgba PackedTextureSampler::Nearest(double u, double v) const {
+  return ToRgba(index_.ColorAt(Wrap(u, texture_.width()), Wrap(v, texture_.height())));
+}
+
+Rgba PackedTextureSampler::AreaMean(double u0, double v0, double u1, double v1) const {
+  const double w = texture_.width(), h = texture_.height();
+  if (!(u1 > u0) || !(v1 > v0)) return Nearest(u0, v0);
+  // Whole periods far from the origin: shift so the integral sees small coordinates.
+  const double su = std::floor(u0), sv = std::floor(v0);
+  const AreaSum s = area_.Integrate((u0 - su) * w, (v0 - sv) * h, (u1 - su) * w, (v1 - sv) * h);
+  if (!(s.area > 0)) return Nearest(u0, v0);
+  const double k = 1.0 / (255.0 * s.area);
+  return {static_cast<float>(s.channels[0] * k), static_cast<float>(s.channels[1] * k),
+          static_cast<float>(s.channels[2] * k), static_cast<float>(s.channels[3] * k)};
+}
+
+Rgba PackedTextureSampler::Sample(const TextureFootprint& f) const {
+  if (mode_ == PackedSampling::kNearest) return Nearest(f.u, f.v);
+  const double half_u = 0.5 * (std::fabs(f.dudx) + std::fabs(f.dudy));
+  const double half_v = 0.5 * (std::fabs(f.dvdx) + std::fabs(f.dvdy));
+  return AreaMean(f.u - half_u, f.v - half_v, f.u + half_u, f.v + half_v);
+}
+
+}  // namespace aperture::packed

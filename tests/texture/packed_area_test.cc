@@ -1,0 +1,134 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "texture/packed/area_integral.h"
+#include "texture/packed/packed_sampler.h"
+#include "texture/packed_test_images.h"
+
+namespace aperture::packed {
+namespace {
+
+using testing::RandomIndexedImage;
+
+// Weight of texel [i, i + 1) under the periodic interval [a, b): the overlap of [a, b) with all
+// copies [i + k n, i + 1 + k n).
+double Coverage(double a, double b, uint32_t i, uint32_t n) {
+  double w = 0;
+  const double k0 = std::floor((a - i - 1) / n), k1 = std::ceil((b - i) / n);
+  for (double k = k0; k <= k1; ++k) {
+    const double lo = std::max(a, i + k * n), hi = std::min(b, i + 1 + k * n);
+    if (hi > lo) w += hi - lo;
+  }
+  return w;
+}
+
+AreaSum BruteForce(const IndexedImage& image, double x0, double y0, double x1, double y1) {
+  AreaSum s;
+  s.area = (x1 - x0) * (y1 - y0);
+  for (uint32_t y = 0; y < image.height; ++y) {
+    const double wy = Coverage(y0, y1, y, image.height);
+    if (wy == 0) continue;
+    for (uint32_t x = 0; x < image.width; ++x) {
+      const double w = wy * Coverage(x0, x1, x, image.width);
+      const uint32_t colour = image.palette[image.at(x, y)];
+      for (int c = 0; c < 4; ++c) s.channels[c] += w * Channel(colour, c);
+    }
+  }
+  return s;
+}
+
+void ExpectNear(const AreaSum& got, const AreaSum& want, const char* what) {
+  for (int c = 0; c < 4; ++c)
+    ASSERT_NEAR(got.channels[c], want.channels[c],
+                1e-9 * std::max(1.0, std::fabs(want.channels[c])))
+        << what << " channel " << c;
+  ASSERT_NEAR(got.area, want.area, 1e-9 * std::max(1.0, want.area)) << what;
+}
+
+TEST(PackedArea, IntegralsEqualBruteForceSums) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (Curve curve : {Curve::kHilbert, Curve::kMorton}) {
+    for (auto [w, h] : {std::pair{1u, 1u}, {1u, 50u}, {37u, 23u}, {64u, 64u}, {100u, 33u}}) {
+      for (bool blocky : {false, true}) {
+        const IndexedImage image =
+            RandomIndexedImage(w, h, blocky ? 6 : 200, w * h + blocky, blocky);
+        auto packed = PackTexture(image, curve);
+        ASSERT_TRUE(packed.ok());
+        const AreaIntegrator area(packed->view());
+        // Whole texture, one texel, random rectangles inside, wrapping, and over many periods.
+        ExpectNear(area.Integrate(0, 0, w, h), BruteForce(image, 0, 0, w, h), "whole");
+        for (int i = 0; i < 40; ++i) {
+          const uint32_t x = rng() % w, y = rng() % h;
+          ExpectNear(area.Integrate(x, y, x + 1, y + 1), BruteForce(image, x, y, x + 1, y + 1),
+                     "one texel");
+          double x0 = unit(rng) * w, y0 = unit(rng) * h;
+          double x1 = x0 + unit(rng) * (w - x0), y1 = y0 + unit(rng) * (h - y0);
+          ExpectNear(area.Integrate(x0, y0, x1, y1), BruteForce(image, x0, y0, x1, y1), "inside");
+          x0 = (unit(rng) - 0.5) * 4 * w;
+          y0 = (unit(rng) - 0.5) * 4 * h;
+          x1 = x0 + unit(rng) * 2.5 * w;
+          y1 = y0 + unit(rng) * 2.5 * h;
+          ExpectNear(area.Integrate(x0, y0, x1, y1), BruteForce(image, x0, y0, x1, y1), "wrapping");
+          x0 = unit(rng) * 0.9;  // inside one texel
+          y0 = unit(rng) * 0.9;
+          ExpectNear(area.Integrate(x0, y0, x0 + 0.1, y0 + 0.05),
+                     BruteForce(image, x0, y0, x0 + 0.1, y0 + 0.05), "sub-texel");
+        }
+      }
+    }
+  }
+}
+
+TEST(PackedArea, IntegerSumsAreExactOnAMap) {
+  const IndexedImage image = RandomIndexedImage(512, 300, 9, 77, true);
+  auto packed = PackTexture(image, Curve::kHilbert);
+  ASSERT_TRUE(packed.ok());
+  const AreaIntegrator area(packed->view());
+  std::mt19937 rng(5);
+  for (int i = 0; i < 50; ++i) {
+    const uint32_t x0 = rng() % 512, y0 = rng() % 300;
+    const uint32_t x1 = x0 + rng() % (513 - x0), y1 = y0 + rng() % (301 - y0);
+    std::array<uint64_t, 4> want{};
+    for (uint32_t y = y0; y < y1; ++y)
+      for (uint32_t x = x0; x < x1; ++x)
+        for (int c = 0; c < 4; ++c) want[c] += Channel(image.palette[image.at(x, y)], c);
+    ASSERT_EQ(area.SumTexels(x0, y0, x1, y1), want);
+  }
+}
+
+TEST(PackedSampler, NearestAndAreaModes) {
+  const IndexedImage image = RandomIndexedImage(20, 10, 4, 3, true);
+  auto packed = PackTexture(image, Curve::kHilbert);
+  ASSERT_TRUE(packed.ok());
+  const PackedTextureSampler nearest(packed->view(), PackedSampling::kNearest);
+  const PackedTextureSampler area(packed->view(), PackedSampling::kArea);
+  // Texel (i, j) covers [i, i+1) x [j, j+1) in texel units; repeats every unit in (u, v).
+  for (uint32_t y = 0; y < 10; ++y) {
+    for (uint32_t x = 0; x < 20; ++x) {
+      const uint32_t c = image.palette[image.at(x, y)];
+      const Rgba want{Channel(c, 0) / 255.0f, Channel(c, 1) / 255.0f, Channel(c, 2) / 255.0f,
+                      Channel(c, 3) / 255.0f};
+      EXPECT_EQ(nearest.Nearest((x + 0.5) / 20.0 - 3, (y + 0.5) / 10.0 + 1000), want);
+      TextureFootprint f;
+      f.u = (x + 0.5) / 20.0 + 7;
+      f.v = (y + 0.5) / 10.0 - 2;
+      EXPECT_EQ(nearest.Sample(f), want);
+      f.dudx = 0.5f / 20;  // half a texel wide footprint, inside the texel
+      f.dvdy = 0.5f / 10;
+      const Rgba a = area.Sample(f);
+      EXPECT_NEAR(a.r, want.r, 1e-6);
+      EXPECT_NEAR(a.a, want.a, 1e-6);
+    }
+  }
+  // The mean over whole periods is the texture's mean.
+  const AreaIntegrator integrator(packed->view());
+  const AreaSum whole = integrator.Integrate(0, 0, 20, 10);
+  const Rgba mean = area.AreaMean(-2, 5, 1, 8);
+  EXPECT_NEAR(mean.g, whole.channels[1] / (255.0 * 200), 1e-6);
+}
+
+}  // namespace
+}  // namespace aperture::packed
