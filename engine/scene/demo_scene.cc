@@ -62,6 +62,8 @@ v1::Material* AddMaterial(v1::Scene& scene, const char* id, float r, float g, fl
   if (texture != nullptr) {
     m->set_texture_id(texture);
     m->mutable_texture_transform()->set_repeat_u(repeat);
+    // Trilinear until seed 000's table builds in about a second (`--filter aniso` selects it).
+    m->set_filter(v1::TEXTURE_FILTER_TRILINEAR);
   }
   return m;
 }
@@ -73,9 +75,7 @@ void AddEncodedTexture(v1::Scene& scene, const char* id, const Image& image) {
   if (png.ok()) t->set_encoded(std::string(png->begin(), png->end()));
 }
 
-}  // namespace
-
-v1::Scene MakeDemoScene() {
+v1::Scene BuildDemoScene() {
   v1::Scene scene;
   scene.set_name("demo-airfield");
   SetColor(scene.mutable_sky(), 0.50f, 0.66f, 0.90f);
@@ -156,6 +156,14 @@ v1::Scene MakeDemoScene() {
     }
   }
   return scene;
+}
+
+}  // namespace
+
+// Generating and encoding the textures takes a while: once per process.
+v1::Scene MakeDemoScene() {
+  static const v1::Scene* const demo = new v1::Scene(BuildDemoScene());
+  return *demo;
 }
 
 Camera DemoCamera() {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/vec.h"
+#include "texture/footprint_samplers.h"
 #include "texture/image.h"
 #include "texture/mip_pyramid.h"
 #include "texture/texture_sampler.h"
@@ -17,6 +18,7 @@ struct SceneTexture {
   std::string id;
   std::shared_ptr<const MipPyramid> pyramid;
   std::unique_ptr<TextureSampler> nearest, bilinear, trilinear;
+  std::unique_ptr<FootprintSamplers> footprint;  // aniso (seed 000 table), oiio, reference
 
   const TextureSampler& Sampler(FilterMode mode) const;
 };

@@ -179,6 +179,9 @@ class Builder {
       switch (m.filter()) {
         case v1::TEXTURE_FILTER_NEAREST: mat.filter = FilterMode::kNearest; break;
         case v1::TEXTURE_FILTER_BILINEAR: mat.filter = FilterMode::kBilinear; break;
+        case v1::TEXTURE_FILTER_ANISO: mat.filter = FilterMode::kAniso; break;
+        case v1::TEXTURE_FILTER_OIIO: mat.filter = FilterMode::kOiio; break;
+        case v1::TEXTURE_FILTER_REFERENCE: mat.filter = FilterMode::kReference; break;
         default: mat.filter = FilterMode::kTrilinear; break;
       }
       const v1::TextureTransform& tt = m.texture_transform();
@@ -390,6 +393,10 @@ const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
       return *bilinear;
     case FilterMode::kTrilinear:
       break;
+    case FilterMode::kAniso:
+    case FilterMode::kOiio:
+    case FilterMode::kReference:
+      return footprint->Get(mode, *trilinear);
   }
   return *trilinear;
 }
@@ -401,6 +408,7 @@ std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image
   texture->nearest = std::make_unique<NearestSampler>(*pyramid);
   texture->bilinear = std::make_unique<BilinearSampler>(*pyramid);
   texture->trilinear = std::make_unique<TrilinearSampler>(*pyramid);
+  texture->footprint = std::make_unique<FootprintSamplers>(pyramid->level(0));
   texture->pyramid = std::move(pyramid);
   return texture;
 }

@@ -5,7 +5,9 @@
 
 namespace aperture {
 
-enum class FilterMode { kNearest, kBilinear, kTrilinear };
+// kAniso: seed 000's prefiltered table; kOiio: OpenImageIO's TextureSystem (for comparison);
+// kReference: the footprint integrated by dense supersampling (slow, for measurement).
+enum class FilterMode { kNearest, kBilinear, kTrilinear, kAniso, kOiio, kReference };
 
 const char* FilterModeName(FilterMode mode);
 

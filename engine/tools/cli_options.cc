@@ -28,10 +28,12 @@ absl::StatusOr<AntiAliasing> ParseAntiAliasing(const std::string& name) {
 }
 
 absl::StatusOr<FilterMode> ParseFilterMode(const std::string& name) {
-  for (FilterMode m : {FilterMode::kNearest, FilterMode::kBilinear, FilterMode::kTrilinear})
+  for (FilterMode m : {FilterMode::kNearest, FilterMode::kBilinear, FilterMode::kTrilinear,
+                       FilterMode::kAniso, FilterMode::kOiio, FilterMode::kReference})
     if (name == FilterModeName(m)) return m;
   return absl::InvalidArgumentError(
-      absl::StrCat("unknown texture filter '", name, "' (nearest, bilinear, trilinear)"));
+      absl::StrCat("unknown texture filter '", name,
+                   "' (nearest, bilinear, trilinear, aniso, oiio, reference)"));
 }
 
 }  // namespace aperture

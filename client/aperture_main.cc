@@ -1,0 +1,46 @@
+// aperture: the command-line client of the render service (speaks only the proto).
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "absl/flags/parse.h"
+#include "absl/flags/usage.h"
+#include "commands.h"
+#include "flag_names.h"
+
+int main(int argc, char** argv) {
+  absl::SetProgramUsageMessage(
+      "client of aperture-server.\n"
+      "  aperture render --server ADDR --scene demo|FILE.json --camera X,Y,Z,YAW,PITCH,ROLL "
+      "--size WxH -o frame.exr\n"
+      "  aperture load --server ADDR --concurrency N (--requests M | --duration S) --size WxH "
+      "[--json]\n"
+      "  aperture sim --server ADDR --rate HZ --frames N [--path FILE.csv]\n"
+      "  aperture batch JOB.json --servers IP:PORT,IP:PORT,... -o DIR [--concurrency N]\n"
+      "  aperture health --server ADDR\n"
+      "  aperture info --server ADDR");
+  aperture::DashedFlagNames dashed(argc, argv);
+  std::vector<char*> args = absl::ParseCommandLine(dashed.argc(), dashed.argv());
+  const std::string command = args.size() > 1 ? args[1] : "";
+  if (command == "batch") {
+    if (args.size() != 3) {
+      std::fprintf(stderr, "aperture batch: give one JOB.json\n");
+      return 2;
+    }
+    return aperture::RunBatch(args[2]);
+  }
+  if (args.size() > 2) {
+    std::fprintf(stderr, "aperture: unexpected argument '%s'\n", args[2]);
+    return 2;
+  }
+  if (command == "render") return aperture::RunRender();
+  if (command == "health") return aperture::RunHealth();
+  if (command == "info") return aperture::RunInfo();
+  if (command == "load") return aperture::RunLoad();
+  if (command == "sim") return aperture::RunSim();
+  std::fprintf(stderr,
+               "aperture: unknown command '%s' (render, batch, load, sim, health, info); "
+               "see --help\n",
+               command.c_str());
+  return 2;
+}

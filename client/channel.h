@@ -1,0 +1,17 @@
+// A channel to one server with the message limits raised for big frames (a 3840x2160 float
+// frame is larger than gRPC's default 4 MiB receive limit).
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <memory>
+#include <string>
+
+namespace aperture {
+
+std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address);
+
+// The deadline of a call `seconds` from now.
+std::chrono::system_clock::time_point DeadlineIn(double seconds);
+
+}  // namespace aperture

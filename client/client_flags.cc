@@ -1,0 +1,33 @@
+#include "client_flags.h"
+
+#include "absl/flags/flag.h"
+
+ABSL_FLAG(std::string, server, "127.0.0.1:50051", "server address HOST:PORT");
+ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
+          "batch: servers IPV4:PORT,IPV4:PORT,... (gRPC round_robin over them)");
+ABSL_FLAG(std::string, scene, "demo", "'demo' (built-in airfield) or a scene JSON file");
+ABSL_FLAG(std::string, camera, "",
+          "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
+          "or 0,1.7,0,0,0,0 for a scene file");
+ABSL_FLAG(double, fov, 60, "vertical field of view, degrees");
+ABSL_FLAG(double, near, 0, "near plane distance (0: the demo's 0.5, else 0.1)");
+ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT");
+ABSL_FLAG(std::string, region, "", "only this part of the frame: X,Y,WIDTHxHEIGHT");
+ABSL_FLAG(std::string, aa, "box2", "edge anti-aliasing: box2, box1, tent2");
+ABSL_FLAG(std::string, filter, "",
+          "texture filter for every material: nearest, bilinear, "
+          "trilinear, aniso, oiio, reference (default: each material's own)");
+ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1 or 2)");
+ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
+ABSL_FLAG(bool, float_pixels, false, "32-bit float channels instead of half");
+ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (batch: output directory)");
+ABSL_FLAG(double, deadline_s, 60, "deadline of each frame request, seconds");
+ABSL_FLAG(int, concurrency, 1, "load, batch: requests in flight at once");
+ABSL_FLAG(int, requests, 0, "load: total requests (0: run for --duration)");
+ABSL_FLAG(double, duration, 10, "load: seconds to run when --requests is 0");
+ABSL_FLAG(bool, json, false, "load, sim: print the summary as JSON");
+ABSL_FLAG(double, rate, 30, "sim: frames per second");
+ABSL_FLAG(int, frames, 100, "sim: frames to request");
+ABSL_FLAG(std::string, path, "",
+          "sim: camera path CSV, one X,Y,Z,YAW,PITCH,ROLL per line "
+          "(default: flying along the demo approach)");

@@ -1,0 +1,30 @@
+// The command-line flags of `aperture`, shared by its commands (absl flags are global).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "absl/flags/declare.h"
+
+ABSL_DECLARE_FLAG(std::string, server);
+ABSL_DECLARE_FLAG(std::string, servers);
+ABSL_DECLARE_FLAG(std::string, scene);
+ABSL_DECLARE_FLAG(std::string, camera);
+ABSL_DECLARE_FLAG(double, fov);
+ABSL_DECLARE_FLAG(double, near);
+ABSL_DECLARE_FLAG(std::string, size);
+ABSL_DECLARE_FLAG(std::string, region);
+ABSL_DECLARE_FLAG(std::string, aa);
+ABSL_DECLARE_FLAG(std::string, filter);
+ABSL_DECLARE_FLAG(double, aperture);
+ABSL_DECLARE_FLAG(std::string, compression);
+ABSL_DECLARE_FLAG(bool, float_pixels);
+ABSL_DECLARE_FLAG(std::string, o);
+ABSL_DECLARE_FLAG(double, deadline_s);
+ABSL_DECLARE_FLAG(int, concurrency);
+ABSL_DECLARE_FLAG(int, requests);
+ABSL_DECLARE_FLAG(double, duration);
+ABSL_DECLARE_FLAG(bool, json);
+ABSL_DECLARE_FLAG(double, rate);
+ABSL_DECLARE_FLAG(int, frames);
+ABSL_DECLARE_FLAG(std::string, path);

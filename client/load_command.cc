@@ -1,0 +1,91 @@
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "absl/flags/flag.h"
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "channel.h"
+#include "client_flags.h"
+#include "commands.h"
+#include "latency_stats.h"
+#include "request_flags.h"
+#include "scene_upload.h"
+
+namespace aperture {
+
+int RunLoad() {
+  using Clock = std::chrono::steady_clock;
+  auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
+  auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
+  auto request = scene.ok() ? FrameRequestFromFlags(scene->scene_id)
+                            : absl::StatusOr<v1::RenderFrameRequest>(scene.status());
+  if (!request.ok()) {
+    std::fprintf(stderr, "aperture load: error: %s\n",
+                 std::string(request.status().message()).c_str());
+    return absl::IsInvalidArgument(request.status()) ? 2 : 1;
+  }
+  const int concurrency = std::max(1, absl::GetFlag(FLAGS_concurrency));
+  const int total = absl::GetFlag(FLAGS_requests);
+  const auto start = Clock::now();
+  const auto end =
+      start + std::chrono::milliseconds(static_cast<int64_t>(absl::GetFlag(FLAGS_duration) * 1000));
+  std::atomic<int> issued{0};
+  std::mutex mutex;
+  std::vector<double> ok_latencies;
+  std::map<std::string, int> errors;
+
+  std::vector<std::thread> workers;
+  for (int w = 0; w < concurrency; ++w) {
+    workers.emplace_back([&] {
+      std::vector<double> latencies;
+      std::map<std::string, int> codes;
+      while (total > 0 ? issued++ < total : Clock::now() < end) {
+        grpc::ClientContext context;
+        context.set_deadline(DeadlineIn(absl::GetFlag(FLAGS_deadline_s)));
+        v1::RenderFrameResponse response;
+        const auto sent = Clock::now();
+        const grpc::Status status = stub->RenderFrame(&context, *request, &response);
+        if (status.ok())
+          latencies.push_back(
+              std::chrono::duration<double, std::milli>(Clock::now() - sent).count());
+        else
+          ++codes[absl::StatusCodeToString(static_cast<absl::StatusCode>(status.error_code()))];
+      }
+      std::lock_guard lock(mutex);
+      ok_latencies.insert(ok_latencies.end(), latencies.begin(), latencies.end());
+      for (const auto& [code, n] : codes) errors[code] += n;
+    });
+  }
+  for (std::thread& t : workers) t.join();
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const LatencySummary s = Summarize(ok_latencies);
+  int failed = 0;
+  for (const auto& [code, n] : errors) failed += n;
+  const double throughput = static_cast<double>(s.count) / seconds;
+  if (absl::GetFlag(FLAGS_json)) {
+    std::string by_code = absl::StrJoin(errors, ", ", [](std::string* out, const auto& e) {
+      absl::StrAppend(out, "\"", e.first, "\": ", e.second);
+    });
+    std::printf(
+        "{\"concurrency\": %d, \"seconds\": %.3f, \"ok\": %zu, \"failed\": %d, "
+        "\"frames_per_s\": %.3f, \"latency_ms\": {\"p50\": %.3f, \"p90\": %.3f, "
+        "\"p99\": %.3f, \"max\": %.3f, \"mean\": %.3f}, \"errors\": {%s}}\n",
+        concurrency, seconds, s.count, failed, throughput, s.p50, s.p90, s.p99, s.max, s.mean,
+        by_code.c_str());
+  } else {
+    std::printf("%zu frames ok, %d failed in %.2f s at concurrency %d: %.2f frames/s\n", s.count,
+                failed, seconds, concurrency, throughput);
+    std::printf("latency ms: p50 %.2f  p90 %.2f  p99 %.2f  max %.2f  mean %.2f\n", s.p50, s.p90,
+                s.p99, s.max, s.mean);
+    for (const auto& [code, n] : errors) std::printf("errors %s: %d\n", code.c_str(), n);
+  }
+  return 0;
+}
+
+}  // namespace aperture

@@ -1,0 +1,127 @@
+#include "request_flags.h"
+
+#include <cstdio>
+#include <vector>
+
+#include "absl/flags/flag.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "client_flags.h"
+#include "scene/demo_scene.h"
+#include "scene/scene_builder.h"
+
+namespace aperture {
+namespace {
+
+absl::Status ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
+  std::vector<std::string> parts = absl::StrSplit(text, 'x');
+  if (parts.size() != 2 || !absl::SimpleAtoi(parts[0], width) ||
+      !absl::SimpleAtoi(parts[1], height))
+    return absl::InvalidArgumentError(
+        absl::StrCat("--size '", text, "' must be WIDTHxHEIGHT, e.g. 1920x1080"));
+  return absl::OkStatus();
+}
+
+absl::Status ParseRegion(const std::string& text, v1::PixelRegion* region) {
+  std::vector<std::string> parts = absl::StrSplit(text, ',');
+  uint32_t x = 0, y = 0, w = 0, h = 0;
+  if (parts.size() != 3 || !absl::SimpleAtoi(parts[0], &x) || !absl::SimpleAtoi(parts[1], &y) ||
+      !ParseSize(parts[2], &w, &h).ok())
+    return absl::InvalidArgumentError(
+        absl::StrCat("--region '", text, "' must be X,Y,WIDTHxHEIGHT, e.g. 0,0,64x64"));
+  region->set_x(x);
+  region->set_y(y);
+  region->set_width(w);
+  region->set_height(h);
+  return absl::OkStatus();
+}
+
+template <typename Enum>
+absl::StatusOr<Enum> Lookup(const char* flag, const std::string& name,
+                            std::initializer_list<std::pair<const char*, Enum>> table) {
+  std::string names;
+  for (const auto& [key, value] : table) {
+    if (name == key) return value;
+    absl::StrAppend(&names, names.empty() ? "" : ", ", key);
+  }
+  return absl::InvalidArgumentError(
+      absl::StrCat("--", flag, " '", name, "' is not one of ", names));
+}
+
+}  // namespace
+
+absl::Status ParseCameraInto(const std::string& spec, v1::Camera* camera) {
+  std::vector<std::string> parts = absl::StrSplit(spec, ',');
+  double v[6];
+  bool ok = parts.size() == 6;
+  for (size_t i = 0; ok && i < 6; ++i) ok = absl::SimpleAtod(parts[i], &v[i]);
+  if (!ok)
+    return absl::InvalidArgumentError(
+        absl::StrCat("camera '", spec, "' must be X,Y,Z,YAW,PITCH,ROLL (six numbers)"));
+  camera->mutable_position()->set_x(v[0]);
+  camera->mutable_position()->set_y(v[1]);
+  camera->mutable_position()->set_z(v[2]);
+  camera->set_yaw_deg(v[3]);
+  camera->set_pitch_deg(v[4]);
+  camera->set_roll_deg(v[5]);
+  return absl::OkStatus();
+}
+
+absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const std::string& scene_id) {
+  v1::RenderFrameRequest request;
+  request.set_scene_id(scene_id);
+
+  v1::Camera& camera = *request.mutable_camera();
+  if (absl::GetFlag(FLAGS_scene) == "demo") {
+    camera = CameraToProto(DemoCamera());
+  } else {
+    camera.mutable_position()->set_y(1.7);
+    camera.set_near(0.1);
+  }
+  if (const std::string spec = absl::GetFlag(FLAGS_camera); !spec.empty())
+    if (auto s = ParseCameraInto(spec, &camera); !s.ok()) return s;
+  camera.set_vertical_fov_deg(absl::GetFlag(FLAGS_fov));
+  if (absl::GetFlag(FLAGS_near) != 0) camera.set_near(absl::GetFlag(FLAGS_near));
+
+  v1::RenderOptions& options = *request.mutable_options();
+  uint32_t width = 0, height = 0;
+  if (auto s = ParseSize(absl::GetFlag(FLAGS_size), &width, &height); !s.ok()) return s;
+  options.set_width(width);
+  options.set_height(height);
+  if (const std::string region = absl::GetFlag(FLAGS_region); !region.empty())
+    if (auto s = ParseRegion(region, request.mutable_region()); !s.ok()) return s;
+
+  auto aa = Lookup<v1::AntiAliasing>("aa", absl::GetFlag(FLAGS_aa),
+                                     {{"box2", v1::ANTI_ALIASING_BOX2},
+                                      {"box1", v1::ANTI_ALIASING_BOX1},
+                                      {"tent2", v1::ANTI_ALIASING_TENT2}});
+  if (!aa.ok()) return aa.status();
+  options.set_anti_aliasing(*aa);
+  if (const std::string f = absl::GetFlag(FLAGS_filter); !f.empty()) {
+    auto filter = Lookup<v1::TextureFilter>("filter", f,
+                                            {{"nearest", v1::TEXTURE_FILTER_NEAREST},
+                                             {"bilinear", v1::TEXTURE_FILTER_BILINEAR},
+                                             {"trilinear", v1::TEXTURE_FILTER_TRILINEAR},
+                                             {"aniso", v1::TEXTURE_FILTER_ANISO},
+                                             {"oiio", v1::TEXTURE_FILTER_OIIO},
+                                             {"reference", v1::TEXTURE_FILTER_REFERENCE}});
+    if (!filter.ok()) return filter.status();
+    options.set_filter(*filter);
+  }
+  options.set_texture_aperture(absl::GetFlag(FLAGS_aperture));
+  auto compression = Lookup<v1::ExrCompression>("compression", absl::GetFlag(FLAGS_compression),
+                                                {{"none", v1::EXR_COMPRESSION_NONE},
+                                                 {"rle", v1::EXR_COMPRESSION_RLE},
+                                                 {"zips", v1::EXR_COMPRESSION_ZIPS},
+                                                 {"zip", v1::EXR_COMPRESSION_ZIP},
+                                                 {"piz", v1::EXR_COMPRESSION_PIZ},
+                                                 {"dwaa", v1::EXR_COMPRESSION_DWAA}});
+  if (!compression.ok()) return compression.status();
+  options.set_compression(*compression);
+  options.set_pixel_type(absl::GetFlag(FLAGS_float_pixels) ? v1::PIXEL_TYPE_FLOAT
+                                                           : v1::PIXEL_TYPE_HALF);
+  return request;
+}
+
+}  // namespace aperture

@@ -1,0 +1,17 @@
+// The frame request described by the command-line flags (--camera, --fov, --size, --aa, ...),
+// with the same defaults as aperture-render so both render the same frame.
+#pragma once
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "aperture/v1/render_service.pb.h"
+
+namespace aperture {
+
+// "X,Y,Z,YAW,PITCH,ROLL" into `camera` (other fields kept).
+absl::Status ParseCameraInto(const std::string& spec, v1::Camera* camera);
+
+absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const std::string& scene_id);
+
+}  // namespace aperture

@@ -1,0 +1,80 @@
+#include "scene_upload.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "channel.h"
+#include "grpc_status.h"
+#include "scene/demo_scene.h"
+#include "texture_upload.h"
+
+namespace aperture {
+namespace {
+
+absl::StatusOr<std::string> ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::NotFoundError(absl::StrCat("cannot read ", path));
+  std::ostringstream content;
+  content << in.rdbuf();
+  return std::move(content).str();
+}
+
+absl::StatusOr<v1::Scene> ReadScene(const std::string& argument) {
+  if (argument == "demo") return MakeDemoScene();
+  auto json = ReadFile(argument);
+  if (!json.ok()) return json.status();
+  v1::Scene scene;
+  google::protobuf::util::JsonParseOptions options;
+  options.ignore_unknown_fields = false;
+  if (auto s = google::protobuf::util::JsonStringToMessage(*json, &scene, options); !s.ok())
+    return absl::InvalidArgumentError(absl::StrCat(argument, ": ", std::string(s.message())));
+  return scene;
+}
+
+}  // namespace
+
+absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
+                                                const std::string& scene_argument) {
+  auto scene = ReadScene(scene_argument);
+  if (!scene.ok()) return scene.status();
+  const std::filesystem::path base =
+      scene_argument == "demo" ? "" : std::filesystem::path(scene_argument).parent_path();
+
+  SceneOnServer result;
+  v1::LoadSceneRequest request;
+  for (v1::Texture& texture : *scene->mutable_textures()) {
+    std::string bytes;
+    if (texture.source_case() == v1::Texture::kFile) {
+      const std::filesystem::path file = texture.file();
+      auto read = ReadFile((file.is_absolute() ? file : base / file).string());
+      if (!read.ok()) return read.status();
+      bytes = *std::move(read);
+    } else if (texture.source_case() == v1::Texture::kEncoded) {
+      bytes = texture.encoded();
+    } else {
+      continue;  // procedural: travels inside the scene
+    }
+    auto uploaded = EnsureTextureUploaded(stub, bytes);
+    if (!uploaded.ok()) return uploaded.status();
+    ++(uploaded->sent ? result.textures_sent : result.textures_skipped);
+    texture.clear_source();
+    (*request.mutable_texture_sha256())[texture.id()] = uploaded->sha256;
+  }
+  if (scene->name().empty()) scene->set_name(scene_argument);
+  *request.mutable_scene() = *std::move(scene);
+
+  grpc::ClientContext context;
+  context.set_deadline(DeadlineIn(120));
+  v1::LoadSceneResponse response;
+  if (auto s = FromGrpcStatus(stub.LoadScene(&context, request, &response), "LoadScene"); !s.ok())
+    return s;
+  result.scene_id = response.scene_id();
+  result.polygons = response.polygons();
+  return result;
+}
+
+}  // namespace aperture

@@ -1,0 +1,203 @@
+#include "texture/aniso_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#if defined(__SSE4_1__)
+#include <smmintrin.h>
+#endif
+
+namespace aperture {
+namespace {
+
+// Four channels in texel units (0..255) while interpolating; scaled by 1/255 once at the end.
+#if defined(__SSE4_1__)
+using V4 = __m128;
+inline V4 Zero() { return _mm_setzero_ps(); }
+inline V4 LoadTexel(const uint8_t* t) {
+  int32_t bits;
+  std::memcpy(&bits, t, sizeof(bits));
+  return _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(bits)));
+}
+inline V4 Mix(V4 a, V4 b, float w) {
+  return _mm_add_ps(a, _mm_mul_ps(_mm_sub_ps(b, a), _mm_set1_ps(w)));
+}
+inline V4 AddScaled(V4 acc, V4 a, float w) {
+  return _mm_add_ps(acc, _mm_mul_ps(a, _mm_set1_ps(w)));
+}
+inline Rgba ToRgba(V4 v) {
+  float out[4];
+  _mm_storeu_ps(out, v);
+  return {out[0], out[1], out[2], out[3]};
+}
+#else
+struct V4 {
+  float c[4];
+};
+inline V4 Zero() { return {{0, 0, 0, 0}}; }
+inline V4 LoadTexel(const uint8_t* t) {
+  return {{float(t[0]), float(t[1]), float(t[2]), float(t[3])}};
+}
+inline V4 Mix(V4 a, V4 b, float w) {
+  for (int i = 0; i < 4; ++i) a.c[i] += (b.c[i] - a.c[i]) * w;
+  return a;
+}
+inline V4 AddScaled(V4 acc, V4 a, float w) {
+  for (int i = 0; i < 4; ++i) acc.c[i] += a.c[i] * w;
+  return acc;
+}
+inline Rgba ToRgba(V4 v) { return {v.c[0], v.c[1], v.c[2], v.c[3]}; }
+#endif
+
+inline V4 Fetch(const uint8_t* texels, const CopyEntry& e, int x, int y) {
+  return LoadTexel(texels +
+                   4 * (static_cast<size_t>(y & (e.height - 1)) * e.width + (x & (e.width - 1))));
+}
+
+// seed 000, eq. 6-9 inside one copy, in texel units (0..255); plain bilinear when untilted.
+V4 CopySample(const uint8_t* texels, const CopyEntry& e, float u, float v, float tg) {
+  // Texel centres at +0.5 (DESIGN.md).
+  const float X = u * static_cast<float>(e.width) - 0.5f;
+  const float Y = v * static_cast<float>(e.height) - 0.5f;
+  const bool tilt_v = e.axis == TiltAxis::kV;
+  // Major coordinate M (along the tilt axis) and minor coordinate m, in copy texels; the shift
+  // is lambda tg minor texels per major texel along the long side (0 when untilted).
+  const float M = tilt_v ? Y : X, m = tilt_v ? X : Y;
+  const float shift = e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda) * tg;
+  const float M0 = std::floor(M), fM = M - M0;
+  // seed 000, eq. 6 (tilt to U) / eq. 7 (tilt to V): the minor coordinate on both neighbouring
+  // major lines, moved along the long side.
+  const float m1 = m - fM * shift, m2 = m + (1.0f - fM) * shift;
+  const float m1f = std::floor(m1), m2f = std::floor(m2);
+  const int a = static_cast<int>(M0), b1 = static_cast<int>(m1f), b2 = static_cast<int>(m2f);
+  auto at = [&](int major, int minor) {
+    return tilt_v ? Fetch(texels, e, minor, major) : Fetch(texels, e, major, minor);
+  };
+  // seed 000, eq. 8 / 9.
+  return Mix(Mix(at(a, b1), at(a, b1 + 1), m1 - m1f),
+             Mix(at(a + 1, b2), at(a + 1, b2 + 1), m2 - m2f), fM);
+}
+
+}  // namespace
+
+ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size) {
+  // seed 000, eq. 2: one pixel step of the paper's 2 x 2 aperture is half the a-scaled
+  // derivative (a = 2); in texel units.
+  const double s = 0.5 * texture_size;
+  const double dUx = f.dudx * s, dVx = f.dvdx * s, dUy = f.dudy * s, dVy = f.dvdy * s;
+  ApertureShape out;
+  if (!std::isfinite(dUx) || !std::isfinite(dVx) || !std::isfinite(dUy) || !std::isfinite(dVy))
+    return out;
+  // seed 000, eq. 3: side lengths of the pixel parallelogram (about 6% error).
+  const double aUx = std::abs(dUx), aVx = std::abs(dVx), aUy = std::abs(dUy), aVy = std::abs(dVy);
+  const double Dx = std::max(aUx, aVx) + 0.5 * std::min(aUx, aVx);
+  const double Dy = std::max(aUy, aVy) + 0.5 * std::min(aUy, aVy);
+  if (Dx == 0 && Dy == 0) return out;
+  // seed 000, eq. 4: the longer side (the y step if Dy >= Dx, else the x step) gives the tilt
+  // axis and tangent; the other side gives L.
+  const bool long_is_y = Dy >= Dx;
+  const double lU = long_is_y ? dUy : dUx, lV = long_is_y ? dVy : dVx;  // long side
+  const double oU = long_is_y ? dUx : dUy, oV = long_is_y ? dVx : dVy;  // other side
+  if (std::abs(lU) >= std::abs(lV)) {
+    out.axis = TiltAxis::kU;
+    out.H = aUx + aUy;
+    out.tg = lV / lU;
+    out.L = std::abs(oV - oU * out.tg);
+  } else {
+    out.axis = TiltAxis::kV;
+    out.H = aVx + aVy;
+    out.tg = lU / lV;
+    out.L = std::abs(oU - oV * out.tg);
+  }
+  return out;
+}
+
+CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape) {
+  CopyBlend blend;
+  if (shape.axis == TiltAxis::kNone || !(shape.H > 0.0)) {
+    blend.magnify = true;  // degenerate derivatives: the base, bilinear
+    return blend;
+  }
+  if (shape.H < 1.0) {
+    // Magnification, between the base (bilinear texels, H = 0) and the first copy (the box of
+    // 2 x 2 texels, H = L = 1). The paper falls back to the base for all H < 1; blending with
+    // weight H^2 gives the blend the variance of a box of 2H texels, so the blur grows
+    // continuously up to the table (docs/benchmarks/seed000.md measures both).
+    const float m = static_cast<float>(shape.H * shape.H);
+    blend.count = 2;
+    blend.copy[0] = 0;
+    blend.weight[0] = 1.0f - m;
+    blend.copy[1] = table.cell(0, 0).first;
+    blend.weight[1] = m;
+    return blend;
+  }
+  const int n = table.log2_size();
+  // L between 1 (the thinnest copy) and H; raised to H / 2^(n-1) where lambda is frozen.
+  const double H = std::min(shape.H, std::ldexp(1.0, 3 * n));
+  const double L = std::clamp(shape.L, std::max(1.0, std::ldexp(H, 1 - n)), H);
+  // seed 000, eq. 5: H = 2^eH (1 + M_H), L = 2^eL (1 + M_L).
+  int eH = 0, eL = 0;
+  const double mH = 2.0 * std::frexp(H, &eH) - 1.0, mL0 = 2.0 * std::frexp(L, &eL) - 1.0;
+  --eH, --eL;
+  auto copy_of = [&](int j, int i) {
+    const PrefilteredTable::Cell& c = table.cell(j, i);
+    if (c.lambda == 1) return c.first;
+    const uint32_t half = c.lambda / 2;
+    // Nearest tilt: tg_k = (2k + 1) / half - 1 has the bin [2k / half - 1, 2(k+1) / half - 1).
+    const int k = std::clamp(static_cast<int>(std::floor((shape.tg + 1.0) * 0.5 * half)), 0,
+                             static_cast<int>(half) - 1);
+    return c.first + (shape.axis == TiltAxis::kV ? half : 0) + static_cast<uint32_t>(k);
+  };
+  if (eL >= n) {  // L >= 2^n: the aperture covers whole periods both ways
+    blend.count = 1;
+    blend.copy[0] = copy_of(n, std::min(eH - n, n - 1));
+    blend.weight[0] = 1;
+    return blend;
+  }
+  int i = eH - eL;
+  double mL = mL0, mh = mH;
+  if (i >= n - 1) {  // lambda frozen: no cell (eL, eH + 1); L was raised so that M_H = M_L
+    i = n - 1;
+    mh = std::min(mh, mL);
+  }
+  blend.count = 3;
+  blend.copy[0] = copy_of(eL, i);
+  blend.copy[2] = copy_of(eL + 1, i);
+  if (mh >= mL) {
+    blend.copy[1] = copy_of(eL, i + 1);  // R3 = (eH + 1, eL)
+    blend.weight[0] = static_cast<float>(1.0 - mh);
+    blend.weight[1] = static_cast<float>(mh - mL);
+    blend.weight[2] = static_cast<float>(mL);
+  } else {
+    blend.copy[1] = copy_of(eL + 1, i - 1);  // R4 = (eH, eL + 1)
+    blend.weight[0] = static_cast<float>(1.0 - mL);
+    blend.weight[1] = static_cast<float>(mL - mh);
+    blend.weight[2] = static_cast<float>(mh);
+  }
+  return blend;
+}
+
+Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg) const {
+  const V4 r = CopySample(table_.texels(e), e, static_cast<float>(u), static_cast<float>(v),
+                          static_cast<float>(tg));
+  return ToRgba(AddScaled(Zero(), r, 1.0f / 255.0f));
+}
+
+Rgba AnisoSampler::Sample(const TextureFootprint& f) const {
+  const ApertureShape shape = ApertureFromFootprint(f, table_.size());
+  const CopyBlend blend = SelectCopies(table_, shape);
+  const float u = static_cast<float>(f.u), v = static_cast<float>(f.v);
+  if (blend.magnify) return SampleCopy(table_.base(), u, v, 0.0);
+  V4 sum = Zero();
+  const float tg = static_cast<float>(shape.tg);
+  for (int c = 0; c < blend.count; ++c) {
+    if (blend.weight[c] == 0.0f) continue;
+    // The sample's own tangent: the skew interpolates between tilts (seed 000, eq. 6-9).
+    const CopyEntry& e = table_.copy(blend.copy[c]);
+    sum = AddScaled(sum, CopySample(table_.texels(e), e, u, v, tg), blend.weight[c] / 255.0f);
+  }
+  return ToRgba(sum);
+}
+
+}  // namespace aperture

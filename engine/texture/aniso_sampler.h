@@ -1,0 +1,48 @@
+// seed 000's lookup in a prefiltered table: the aperture parallelogram from the derivatives
+// (eq. 2-4), three neighbouring copies blended by the three-point interpolation (eq. 5), and a
+// skewed bilinear interpolation inside each copy (eq. 6-9). Periodic wrap.
+#pragma once
+
+#include <cstdint>
+
+#include "texture/prefiltered_table.h"
+#include "texture/texture_sampler.h"
+
+namespace aperture {
+
+// The aperture parallelogram in texel units: half-extent H along the major axis (the tilt axis),
+// half-thickness L along the minor one, tg the slope of the long side to the major axis.
+struct ApertureShape {
+  TiltAxis axis = TiltAxis::kNone;  // kNone: degenerate (all derivatives zero or not finite)
+  double H = 0, L = 0, tg = 0;
+};
+
+// seed 000, eq. 3-4, from a footprint whose derivatives are in repeats per pixel times the
+// aperture a (the paper's 2 x 2 aperture is a = 2, derivatives of one pixel step).
+ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size);
+
+// The copies one sample reads and their weights (seed 000, eq. 5).
+struct CopyBlend {
+  bool magnify = false;  // degenerate derivatives: bilinear on the unfiltered base copy
+  // 0 < H < 1: the base (copy 0) and the first copy, weights 1 - H^2 and H^2.
+  int count = 0;
+  uint32_t copy[3] = {};  // directory indices: R1, then R3 or R4, then R2
+  float weight[3] = {};
+};
+CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
+
+class AnisoSampler final : public TextureSampler {
+ public:
+  // The table must outlive the sampler.
+  explicit AnisoSampler(PrefilteredTable table) : table_(std::move(table)) {}
+  Rgba Sample(const TextureFootprint& f) const override;
+
+  // seed 000, eq. 6-9: skewed bilinear inside one copy along slope `tg` (plain bilinear for
+  // untilted copies); u, v in repeats.
+  Rgba SampleCopy(const CopyEntry& e, double u, double v, double tg) const;
+
+ private:
+  PrefilteredTable table_;
+};
+
+}  // namespace aperture

@@ -1,0 +1,30 @@
+// OpenImageIO's TextureSystem as a filter mode, for comparison: a maketx-style tiled, mip-mapped
+// copy of the texture, looked up with OpenImageIO's default options (anisotropic 32, smart
+// bicubic) and periodic wrap; the footprint's a-scaled derivatives are passed as they are.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "texture/image.h"
+#include "texture/texture_sampler.h"
+
+namespace aperture {
+
+class OiioSampler final : public TextureSampler {
+ public:
+  // Writes the mip-mapped copy to `tx_path` (a temporary file when empty; removed again when the
+  // sampler is destroyed) and opens it in a private TextureSystem.
+  static absl::StatusOr<std::unique_ptr<OiioSampler>> Create(const Image& image,
+                                                             std::string tx_path = "");
+  ~OiioSampler() override;
+  Rgba Sample(const TextureFootprint& f) const override;
+
+ private:
+  struct State;
+  explicit OiioSampler(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace aperture

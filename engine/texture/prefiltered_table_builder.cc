@@ -1,0 +1,313 @@
+#include "texture/prefiltered_table_builder.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <spdlog/spdlog.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "absl/strings/str_cat.h"
+
+#if defined(__SSE4_1__)
+#include <smmintrin.h>
+#endif
+
+namespace aperture {
+namespace {
+
+// Double-precision RGBA accumulator.
+struct Sum4 {
+  double r = 0, g = 0, b = 0, a = 0;
+  void Add(const Rgba& c, double w) { r += c.r * w, g += c.g * w, b += c.b * w, a += c.a * w; }
+  void Sub(const Rgba& c) { r -= c.r, g -= c.g, b -= c.b, a -= c.a; }
+  Rgba Scaled(double s) const {
+    return {static_cast<float>(r * s), static_cast<float>(g * s), static_cast<float>(b * s),
+            static_cast<float>(a * s)};
+  }
+};
+
+uint8_t Quantize(float v) {
+  return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+void StoreTexel(uint8_t* dst, const Rgba& c) {
+  dst[0] = Quantize(c.r), dst[1] = Quantize(c.g), dst[2] = Quantize(c.b), dst[3] = Quantize(c.a);
+}
+
+// The table needs a square power of two of at least 2 x 2.
+Image SquarePowerOfTwo(const Image& image) {
+  int size = 2;
+  while (size < std::max(image.width(), image.height())) size *= 2;
+  if (image.width() == size && image.height() == size) return image;
+  spdlog::info("prefiltered table: resampling {}x{} to {}x{} (OpenImageIO default filter)",
+               image.width(), image.height(), size, size);
+  OIIO::ImageSpec src_spec(image.width(), image.height(), 4, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageBuf src(src_spec, const_cast<Rgba*>(image.texels().data()));
+  OIIO::ROI roi(0, size, 0, size, 0, 1, 0, 4);
+  OIIO::ImageBuf dst = OIIO::ImageBufAlgo::resize(src, "", 0.0f, roi);
+  Image out(size, size);
+  dst.get_pixels(roi, OIIO::TypeDesc::FLOAT, out.texels().data());
+  return out;
+}
+
+// Texel (major, minor) of the source for one orientation: tilt U reads (x = major, y = minor),
+// tilt V the transpose.
+const Rgba& SourceTexel(const Image& src, bool transposed, int major, int minor) {
+  return transposed ? src.at(minor, major) : src.at(major, minor);
+}
+
+// First pass, the minor axis: g[k * N + c] = average of line c (constant major index) over the
+// minor interval [k - L, k + L), by a running window down blocks of lines; stored as 16-bit
+// fixed point (1 = 65535) row-major in k, so that the second pass streams through half the bytes
+// of floats. Piecewise linear in k between integers.
+using Packed = std::array<uint16_t, 4>;
+
+void MinorBoxAverage(const Image& src, bool transposed, int L, std::vector<Packed>& g) {
+  const int N = src.width();
+  constexpr int kBlock = 16;
+  g.resize(static_cast<size_t>(N) * N);
+  const double scale = 65535.0 / (2.0 * L);
+  auto pack = [](double v) {
+    return static_cast<uint16_t>(std::lround(std::clamp(v, 0.0, 65535.0)));
+  };
+  tbb::parallel_for(0, (N + kBlock - 1) / kBlock, [&](int block) {
+    const int c0 = block * kBlock, c1 = std::min(N, c0 + kBlock);
+    Sum4 window[kBlock];
+    for (int c = c0; c < c1; ++c)
+      for (int m = -L; m < L; ++m)
+        window[c - c0].Add(SourceTexel(src, transposed, c, m & (N - 1)), 1.0);
+    for (int k = 0; k < N; ++k) {
+      Packed* out = &g[static_cast<size_t>(k) * N];
+      for (int c = c0; c < c1; ++c) {
+        Sum4& w = window[c - c0];
+        out[c] = {pack(w.r * scale), pack(w.g * scale), pack(w.b * scale), pack(w.a * scale)};
+        w.Add(SourceTexel(src, transposed, c, (k + L) & (N - 1)), 1.0);
+        w.Sub(SourceTexel(src, transposed, c, (k - L) & (N - 1)));
+      }
+    }
+  });
+}
+
+// Running sums in units of 1 / 65535: acc += (1 - w) a + w b for two packed texels.
+#if defined(__SSE4_1__)
+struct Accumulator {
+  __m128 sum = _mm_setzero_ps();
+  void AddLerp(const Packed& a, const Packed& b, float w) {
+    const __m128 fa = _mm_cvtepi32_ps(
+        _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(a.data()))));
+    const __m128 fb = _mm_cvtepi32_ps(
+        _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(b.data()))));
+    sum = _mm_add_ps(sum, _mm_add_ps(fa, _mm_mul_ps(_mm_sub_ps(fb, fa), _mm_set1_ps(w))));
+  }
+  Rgba Get() const {
+    Rgba out;
+    _mm_storeu_ps(&out.r, sum);
+    return out;
+  }
+};
+#else
+struct Accumulator {
+  float v[4] = {0, 0, 0, 0};
+  void AddLerp(const Packed& a, const Packed& b, float w) {
+    for (int i = 0; i < 4; ++i) v[i] += a[i] + (float(b[i]) - float(a[i])) * w;
+  }
+  Rgba Get() const { return {v[0], v[1], v[2], v[3]}; }
+};
+#endif
+
+struct CopyJob {
+  int N = 0;
+  int L = 1;      // half-thickness (texels)
+  double H = 1;   // half-extent along the major axis (texels)
+  double tg = 0;  // slope of the long side: d(minor) / d(major)
+  int major = 1;  // resolution along the major axis
+  bool transposed = false;
+  uint8_t* out = nullptr;  // RGBA8, row-major in (u, v)
+};
+
+// Second pass, along the sheared lines (seed 000: the box parallelogram). Output texel (p, q)
+// has its centre at ((p + 0.5) N / major, (q + 0.5) L); all centres lie on the N / L lines
+// minor = (r + 0.5) L + tg (major + 0.5) (tg (p + 0.5) N / major is a multiple of L for every
+// tilt of the table), so per line one running sum over the N columns serves every output on it.
+// The windows [centre - H, centre + H] start and end on multiples of `step` columns, so only
+// those running sums are kept. A line leaving the period at major = N re-enters at major = 0
+// as line r + tg N / L.
+void BuildShearedCopy(const CopyJob& job, const std::vector<Packed>& g, std::vector<Rgba>& prefix) {
+  const int N = job.N, L = job.L, rows = N / L;
+  const int sx = N / job.major;
+  const int step = job.H < 2 ? 1 : std::max(1, std::min(static_cast<int>(job.H) / 2, N / 4));
+  const int stride = N / step + 1;
+  const long wrap = std::lround(job.tg * N / L);
+  prefix.resize(static_cast<size_t>(rows) * stride);
+  // Line r passes column c at minor = (r + 0.5) L + tg (c + 0.5): lines differ by whole multiples
+  // of L, so the interpolation weights along c are the same for every line.
+  std::vector<int> k_base(N);
+  std::vector<float> weight(N);
+  for (int c = 0; c < N; ++c) {
+    const double y = 0.5 * L + job.tg * (c + 0.5), fy = std::floor(y);
+    k_base[c] = static_cast<int>(fy);
+    weight[c] = static_cast<float>(y - fy);
+  }
+  // Tiles of kRows lines x kCols columns keep the sheared strip of g they read in cache.
+  constexpr int kRows = 32, kCols = 64;
+  tbb::parallel_for(0, (rows + kRows - 1) / kRows, [&](int tile) {
+    const int r0 = tile * kRows, r1 = std::min(rows, r0 + kRows);
+    Accumulator acc[kRows];
+    for (int r = r0; r < r1; ++r) prefix[static_cast<size_t>(r) * stride] = {};
+    for (int c0 = 0; c0 < N; c0 += kCols) {
+      const int c1 = std::min(N, c0 + kCols);
+      for (int r = r0; r < r1; ++r) {
+        Accumulator& a = acc[r - r0];
+        Rgba* P = &prefix[static_cast<size_t>(r) * stride];
+        const int offset = r * L;
+        for (int c = c0; c < c1; ++c) {
+          const int k0 = (k_base[c] + offset) & (N - 1), k1 = (k0 + 1) & (N - 1);
+          a.AddLerp(g[static_cast<size_t>(k0) * N + c], g[static_cast<size_t>(k1) * N + c],
+                    weight[c]);
+          if (((c + 1) & (step - 1)) == 0) P[(c + 1) / step] = a.Get();
+        }
+      }
+    }
+  });
+  auto row_of = [&](long r) { return static_cast<int>(((r % rows) + rows) % rows); };
+  // Running sum along the extended line r from column 0 to column c (a multiple of `step`).
+  auto ext = [&](int r, long c, Sum4& acc, double sign) {
+    const long k = c >= 0 ? c / N : -((-c + N - 1) / N);
+    const long cc = c - k * N;
+    const size_t last = static_cast<size_t>(N / step);
+    for (long kk = 0; kk < k; ++kk)
+      acc.Add(prefix[row_of(r + kk * wrap) * size_t(stride) + last], sign);
+    for (long kk = k; kk < 0; ++kk)
+      acc.Add(prefix[row_of(r + kk * wrap) * size_t(stride) + last], -sign);
+    acc.Add(prefix[row_of(r + k * wrap) * size_t(stride) + cc / step], sign);
+  };
+  const double inv = 1.0 / (2.0 * job.H * 65535.0);  // sums are in units of 1 / 65535
+  tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), [&](const tbb::blocked_range<int>& rr) {
+    for (int r = rr.begin(); r != rr.end(); ++r) {
+      for (int p = 0; p < job.major; ++p) {
+        const double cx = (p + 0.5) * sx;
+        const int q = row_of(r + std::lround(job.tg * cx / L));
+        const double lo = cx - job.H, hi = cx + job.H;
+        const long c_lo = static_cast<long>(std::ceil(lo)),
+                   c_hi = static_cast<long>(std::floor(hi));
+        Sum4 acc;
+        ext(r, c_hi, acc, 1.0);
+        ext(r, c_lo, acc, -1.0);
+        if (c_lo > lo) {  // partial end columns (H = 1, step 1 only)
+          ext(r, c_lo, acc, c_lo - lo);
+          ext(r, c_lo - 1, acc, -(c_lo - lo));
+        }
+        if (hi > c_hi) {
+          ext(r, c_hi + 1, acc, hi - c_hi);
+          ext(r, c_hi, acc, -(hi - c_hi));
+        }
+        const size_t index = job.transposed ? static_cast<size_t>(p) * rows + q
+                                            : static_cast<size_t>(q) * job.major + p;
+        StoreTexel(job.out + 4 * index, acc.Scaled(inv));
+      }
+    }
+  });
+}
+
+}  // namespace
+
+absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
+                                                 const TableBuildOptions& options) {
+  if (image.empty()) return absl::InvalidArgumentError("prefiltered table: empty image");
+  const auto start = std::chrono::steady_clock::now();
+  const Image src = SquarePowerOfTwo(image);
+  const int N = src.width();
+  int n = 0;
+  while ((1 << n) < N) ++n;
+  if (n > kTableMaxLog2Size)
+    return absl::InvalidArgumentError(absl::StrCat(
+        "prefiltered table: ", N, "x", N, " is above the limit of ", 1 << kTableMaxLog2Size));
+
+  // Directory: the base, then cells (j, i), each U tilts then V tilts.
+  std::vector<CopyEntry> dir;
+  dir.push_back(
+      {kBaseCell, kBaseCell, TiltAxis::kNone, 0, 0, 0.0f, 1, uint32_t(N), uint32_t(N), 0});
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const CellShape s = TableCellShape(n, j, i);
+      for (uint32_t c = 0; c < s.lambda; ++c) {
+        CopyEntry e{};
+        e.log2_l = static_cast<uint8_t>(j);
+        e.log2_ratio = static_cast<uint8_t>(i);
+        e.lambda = s.lambda;
+        const bool tilt_u = s.lambda == 1 || c < s.lambda / 2;
+        e.axis = s.lambda == 1 ? TiltAxis::kNone : (tilt_u ? TiltAxis::kU : TiltAxis::kV);
+        e.tilt_index = s.lambda == 1 ? 0 : c % (s.lambda / 2);
+        e.tg = TiltTangent(s.lambda, e.tilt_index);
+        e.width = tilt_u ? s.major : s.minor;
+        e.height = tilt_u ? s.minor : s.major;
+        dir.push_back(e);
+      }
+    }
+  }
+  TableHeader h{};
+  std::memcpy(h.magic, kTableMagic, sizeof(h.magic));
+  h.version = kTableVersion;
+  h.header_bytes = sizeof(TableHeader);
+  h.log2_size = static_cast<uint32_t>(n);
+  h.texel_format = kTexelRgba8;
+  h.copy_count = static_cast<uint32_t>(dir.size());
+  h.directory_offset = sizeof(TableHeader);
+  h.data_offset = (h.directory_offset + dir.size() * sizeof(CopyEntry) + 63) / 64 * 64;
+  uint64_t offset = h.data_offset;
+  for (CopyEntry& e : dir) {
+    e.offset = offset;
+    offset += uint64_t{e.width} * e.height * 4;
+  }
+  h.total_bytes = offset;
+  h.source_width = static_cast<uint32_t>(image.width());
+  h.source_height = static_cast<uint32_t>(image.height());
+
+  TableBlock block;
+  block.bytes.resize(h.total_bytes);
+  std::byte* base = block.bytes.data();
+  uint8_t* texels = reinterpret_cast<uint8_t*>(base);
+  for (int y = 0; y < N; ++y)
+    for (int x = 0; x < N; ++x)
+      StoreTexel(texels + dir[0].offset + 4 * (static_cast<size_t>(y) * N + x), src.at(x, y));
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    std::vector<Packed> g_u, g_v;
+    std::vector<Rgba> prefix;
+    int filtered_j = -1;
+    for (size_t d = 1; d < dir.size(); ++d) {  // the directory is ordered by j, then i
+      const CopyEntry& e = dir[d];
+      const int j = e.log2_l, i = e.log2_ratio;
+      if (j != filtered_j) {
+        MinorBoxAverage(src, false, 1 << j, g_u);
+        MinorBoxAverage(src, true, 1 << j, g_v);
+        filtered_j = j;
+      }
+      CopyJob job;
+      job.N = N;
+      job.L = 1 << j;
+      job.H = std::ldexp(1.0, i + j);
+      job.tg = e.tg;
+      job.transposed = e.axis == TiltAxis::kV;
+      job.major = static_cast<int>(job.transposed ? e.height : e.width);
+      job.out = texels + e.offset;
+      BuildShearedCopy(job, job.transposed ? g_v : g_u, prefix);
+    }
+  });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  h.build_milliseconds = static_cast<uint32_t>(std::lround(seconds * 1000.0));
+  std::memcpy(base, &h, sizeof(h));
+  std::memcpy(base + h.directory_offset, dir.data(), dir.size() * sizeof(CopyEntry));
+  return block;
+}
+
+}  // namespace aperture

@@ -1,0 +1,23 @@
+// Builds seed 000's prefiltered table (layout in prefiltered_table.h) from an image with oneTBB.
+// Each copy is the periodic texture (piecewise-constant texels) averaged over its box
+// parallelogram: first a running-sum box of 2L along the minor axis, then running sums along
+// the sheared lines of slope tg over 2H along the major axis: O(N^2 / L) per copy, independent
+// of H, never a loop over the aperture.
+#pragma once
+
+#include "absl/status/statusor.h"
+#include "texture/image.h"
+#include "texture/prefiltered_table.h"
+
+namespace aperture {
+
+struct TableBuildOptions {
+  int threads = 0;  // 0: all cores (the caller's task arena otherwise)
+};
+
+// Images that are not square powers of two are resampled to the next power of two of their
+// longer side (OpenImageIO's default resize filter) with a log line saying so.
+absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
+                                                 const TableBuildOptions& options = {});
+
+}  // namespace aperture

@@ -1,0 +1,24 @@
+// Validation of a RenderFrameRequest against the engine's rules and the server's limits: camera,
+// options, region and pixel count become the engine's types, or an error naming the field.
+#pragma once
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "aperture/v1/render_service.pb.h"
+#include "io/exr_writer.h"
+#include "render/frame_renderer.h"
+#include "scene/camera.h"
+
+namespace aperture {
+
+struct FrameJob {
+  Camera camera;
+  RenderSettings settings;  // threads = 0: the frame runs on the caller's (the server's) arena
+  ExrOptions exr;
+};
+
+absl::StatusOr<FrameJob> ParseFrameRequest(const v1::RenderFrameRequest& request,
+                                           uint64_t max_pixels);
+
+}  // namespace aperture

@@ -1,0 +1,237 @@
+#include "render_service.h"
+
+#include <spdlog/spdlog.h>
+
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "content_hash.h"
+#include "frame_request.h"
+#include "render/frame_renderer.h"
+#include "scene_request.h"
+#include "status_mapping.h"
+#include "stop_check.h"
+
+namespace aperture {
+namespace {
+
+constexpr size_t kMaxChunkBytes = 1 << 20;
+
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::string Short(const std::string& id) { return id.substr(0, 12); }
+
+}  // namespace
+
+RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures,
+                             SceneStore& scenes, AdmissionControl& admission,
+                             tbb::task_arena& arena)
+    : limits_(limits), textures_(textures), scenes_(scenes), admission_(admission), arena_(arena) {}
+
+grpc::Status RenderService::HasTexture(grpc::ServerContext*, const v1::HasTextureRequest* request,
+                                       v1::HasTextureResponse* response) {
+  if (!IsSha256Hex(request->sha256()))
+    return ToGrpcStatus(absl::InvalidArgumentError("sha256 must be 64 lowercase hex digits"));
+  response->set_stored(textures_.Has(request->sha256()));
+  return grpc::Status::OK;
+}
+
+grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
+                                          grpc::ServerReader<v1::UploadTextureRequest>* reader,
+                                          v1::UploadTextureResponse* response) {
+  const uint64_t id = next_request_id_++;
+  const auto start = Clock::now();
+  auto finish = [&](const absl::Status& status, const std::string& sha256, bool skipped) {
+    spdlog::info(
+        "req={} rpc=UploadTexture peer={} sha256={} bytes={} skipped={} ms={:.2f} "
+        "status={}",
+        id, context->peer(), Short(sha256), response->size(), skipped, MillisecondsSince(start),
+        absl::StatusCodeToString(status.code()));
+    return ToGrpcStatus(status);
+  };
+  v1::UploadTextureRequest message;
+  if (!reader->Read(&message))
+    return finish(absl::InvalidArgumentError("upload stream has no message"), "", false);
+  const std::string sha256 = message.sha256();
+  if (!IsSha256Hex(sha256))
+    return finish(absl::InvalidArgumentError("sha256 (first message) must be 64 lowercase hex "
+                                             "digits"),
+                  sha256, false);
+  if (message.total_size() > limits_.max_texture_bytes)
+    return finish(absl::InvalidArgumentError(absl::StrCat(
+                      "total_size ", message.total_size(), " exceeds the server's limit of ",
+                      limits_.max_texture_bytes, " bytes (--max-texture-mb)")),
+                  sha256, false);
+  response->set_sha256(sha256);
+  if (textures_.Has(sha256)) {
+    response->set_already_stored(true);
+    response->set_size(message.total_size());
+    return finish(absl::OkStatus(), sha256, true);
+  }
+  const uint64_t total = message.total_size();
+  std::string content;
+  content.reserve(total);
+  do {
+    if (message.chunk().size() > kMaxChunkBytes)
+      return finish(absl::InvalidArgumentError(
+                        absl::StrCat("chunk of ", message.chunk().size(), " bytes exceeds 1 MiB")),
+                    sha256, false);
+    if (content.size() + message.chunk().size() > total)
+      return finish(
+          absl::InvalidArgumentError(absl::StrCat("chunk: more bytes than total_size ", total)),
+          sha256, false);
+    content += message.chunk();
+  } while (reader->Read(&message));
+  if (content.size() != total || content.empty())
+    return finish(absl::InvalidArgumentError(absl::StrCat("total_size: announced ", total,
+                                                          " bytes, received ", content.size())),
+                  sha256, false);
+  response->set_size(content.size());
+  return finish(textures_.Put(sha256, std::move(content)), sha256, false);
+}
+
+grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
+                                      const v1::LoadSceneRequest* request,
+                                      v1::LoadSceneResponse* response) {
+  const uint64_t id = next_request_id_++;
+  const auto start = Clock::now();
+  auto loaded = BuildSceneFromRequest(*request, textures_);
+  if (loaded.ok()) {
+    scenes_.Put(loaded->id, loaded->scene);
+    response->set_scene_id(loaded->id);
+    response->set_polygons(static_cast<uint32_t>(loaded->scene->polygons.size()));
+    response->set_textures(static_cast<uint32_t>(loaded->scene->textures.size()));
+    response->set_build_ms(MillisecondsSince(start));
+  }
+  spdlog::info("req={} rpc=LoadScene peer={} scene={} name='{}' ms={:.2f} status={}{}", id,
+               context->peer(), loaded.ok() ? Short(loaded->id) : "-", request->scene().name(),
+               MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),
+               loaded.ok() ? "" : absl::StrCat(" error='", loaded.status().message(), "'"));
+  return ToGrpcStatus(loaded.status());
+}
+
+absl::Status RenderService::RenderOne(grpc::ServerContext* context,
+                                      const v1::RenderFrameRequest& request,
+                                      v1::RenderFrameResponse* response) {
+  const auto start = Clock::now();
+  response->set_frame_index(request.frame_index());
+  auto job = ParseFrameRequest(request, limits_.max_pixels);
+  if (!job.ok()) return job.status();
+  std::shared_ptr<const Scene> scene = scenes_.Find(request.scene_id());
+  if (!scene)
+    return absl::NotFoundError(
+        absl::StrCat("scene_id '", request.scene_id(), "' is not loaded (LoadScene first)"));
+
+  StopCheck stop(context);
+  auto ticket = admission_.Enter([&] { return stop(); });
+  if (!ticket.ok()) return ticket.status();
+  v1::FrameTimings& timings = *response->mutable_timings();
+  timings.set_queue_ms(MillisecondsSince(start));
+
+  absl::StatusOr<RenderedFrame> frame;
+  arena_.execute([&] {
+    // Isolated: while this thread waits for its frame's tasks it takes none of another frame's,
+    // so a small frame is not held up behind a big one's work.
+    tbb::this_task_arena::isolate([&] {
+      frame = aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
+    });
+  });
+  if (!frame.ok()) return frame.status();
+  timings.set_setup_ms(frame->stats.setup_ms);
+  timings.set_raster_ms(frame->stats.raster_ms);
+
+  const auto encode_start = Clock::now();
+  job->exr.metadata.scene_name = scene->name;
+  job->exr.metadata.render_ms = frame->stats.setup_ms + frame->stats.raster_ms;
+  auto exr = EncodeExr(frame->image, job->exr);
+  if (!exr.ok()) return exr.status();
+  timings.set_encode_ms(MillisecondsSince(encode_start));
+  response->set_exr(exr->data(), exr->size());
+  response->set_width(static_cast<uint32_t>(frame->image.width()));
+  response->set_height(static_cast<uint32_t>(frame->image.height()));
+  timings.set_total_ms(MillisecondsSince(start));
+  return absl::OkStatus();
+}
+
+grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
+                                        const v1::RenderFrameRequest* request,
+                                        v1::RenderFrameResponse* response) {
+  const uint64_t id = next_request_id_++;
+  const auto start = Clock::now();
+  absl::Status status = RenderOne(context, *request, response);
+  (status.ok() ? frames_rendered_ : frames_failed_)++;
+  const v1::FrameTimings& t = response->timings();
+  spdlog::info(
+      "req={} rpc=RenderFrame peer={} scene={} size={}x{} queue_ms={:.2f} "
+      "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
+      "status={}{}",
+      id, context->peer(), Short(request->scene_id()), request->options().width(),
+      request->options().height(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
+      MillisecondsSince(start), response->exr().size(), absl::StatusCodeToString(status.code()),
+      status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
+  if (!status.ok()) response->Clear();
+  return ToGrpcStatus(status);
+}
+
+grpc::Status RenderService::RenderStream(
+    grpc::ServerContext* context,
+    grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream) {
+  const uint64_t id = next_request_id_++;
+  const auto stream_start = Clock::now();
+  uint64_t frames = 0, failed = 0;
+  v1::RenderFrameRequest request;
+  while (stream->Read(&request)) {
+    const auto start = Clock::now();
+    v1::RenderFrameResponse response;
+    absl::Status status = RenderOne(context, request, &response);
+    (status.ok() ? frames_rendered_ : frames_failed_)++;
+    ++frames;
+    const v1::FrameTimings& t = response.timings();
+    spdlog::info(
+        "req={}.{} rpc=RenderStream scene={} size={}x{} queue_ms={:.2f} "
+        "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
+        "status={}{}",
+        id, request.frame_index(), Short(request.scene_id()), request.options().width(),
+        request.options().height(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
+        MillisecondsSince(start), response.exr().size(), absl::StatusCodeToString(status.code()),
+        status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
+    if (!status.ok()) {
+      ++failed;
+      response.Clear();
+      response.set_frame_index(request.frame_index());
+      response.set_status_code(static_cast<int>(status.code()));
+      response.set_status_message(std::string(status.message()));
+    }
+    if (context->IsCancelled() || !stream->Write(response)) break;
+  }
+  const bool cancelled = context->IsCancelled();
+  spdlog::info("req={} rpc=RenderStream peer={} frames={} failed={} ms={:.2f} status={}", id,
+               context->peer(), frames, failed, MillisecondsSince(stream_start),
+               cancelled ? "CANCELLED" : "OK");
+  return cancelled ? grpc::Status::CANCELLED : grpc::Status::OK;
+}
+
+grpc::Status RenderService::GetServerInfo(grpc::ServerContext*, const v1::GetServerInfoRequest*,
+                                          v1::GetServerInfoResponse* response) {
+  response->set_version("0.1.0");
+  response->set_threads(static_cast<uint32_t>(limits_.threads));
+  response->set_max_queue(static_cast<uint32_t>(limits_.max_queue));
+  response->set_concurrent_frames(static_cast<uint32_t>(limits_.concurrent_frames));
+  response->set_max_pixels(limits_.max_pixels);
+  response->set_max_message_bytes(limits_.max_message_bytes);
+  response->set_scenes(static_cast<uint32_t>(scenes_.size()));
+  response->set_textures(static_cast<uint32_t>(textures_.size()));
+  response->set_frames_rendered(frames_rendered_.load());
+  response->set_frames_failed(frames_failed_.load());
+  response->set_frames_rejected(admission_.rejected());
+  response->set_frames_in_flight(static_cast<uint32_t>(admission_.running()));
+  response->set_frames_queued(static_cast<uint32_t>(admission_.queued()));
+  response->set_uptime_s(std::chrono::duration<double>(Clock::now() - started_).count());
+  return grpc::Status::OK;
+}
+
+}  // namespace aperture

@@ -1,0 +1,62 @@
+// The aperture.v1.Render service: validates each request, hands it to the engine, maps the
+// engine's absl::Status to a gRPC status, and logs one line per request.
+#pragma once
+
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+
+#include "admission.h"
+#include "aperture/v1/render_service.grpc.pb.h"
+#include "scene_store.h"
+#include "texture_store.h"
+
+namespace aperture {
+
+struct ServiceLimits {
+  uint64_t max_pixels = 4096ull * 4096;
+  uint64_t max_texture_bytes = 256ull << 20;
+  uint64_t max_message_bytes = 64ull << 20;
+  int threads = 1;
+  int concurrent_frames = 2;
+  int max_queue = 16;
+};
+
+class RenderService final : public v1::Render::Service {
+ public:
+  RenderService(const ServiceLimits& limits, TextureStore& textures, SceneStore& scenes,
+                AdmissionControl& admission, tbb::task_arena& arena);
+
+  grpc::Status HasTexture(grpc::ServerContext* context, const v1::HasTextureRequest* request,
+                          v1::HasTextureResponse* response) override;
+  grpc::Status UploadTexture(grpc::ServerContext* context,
+                             grpc::ServerReader<v1::UploadTextureRequest>* reader,
+                             v1::UploadTextureResponse* response) override;
+  grpc::Status LoadScene(grpc::ServerContext* context, const v1::LoadSceneRequest* request,
+                         v1::LoadSceneResponse* response) override;
+  grpc::Status RenderFrame(grpc::ServerContext* context, const v1::RenderFrameRequest* request,
+                           v1::RenderFrameResponse* response) override;
+  grpc::Status RenderStream(
+      grpc::ServerContext* context,
+      grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream) override;
+  grpc::Status GetServerInfo(grpc::ServerContext* context, const v1::GetServerInfoRequest* request,
+                             v1::GetServerInfoResponse* response) override;
+
+ private:
+  // Validation, admission, rendering on the shared arena, encoding; fills `response`.
+  absl::Status RenderOne(grpc::ServerContext* context, const v1::RenderFrameRequest& request,
+                         v1::RenderFrameResponse* response);
+
+  const ServiceLimits limits_;
+  TextureStore& textures_;
+  SceneStore& scenes_;
+  AdmissionControl& admission_;
+  tbb::task_arena& arena_;
+  const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+  std::atomic<uint64_t> next_request_id_{1};
+  std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0};
+};
+
+}  // namespace aperture

@@ -1,0 +1,64 @@
+#include "scene_request.h"
+
+#include <set>
+
+#include "absl/strings/str_cat.h"
+#include "content_hash.h"
+#include "google/protobuf/io/coded_stream.h"
+#include "google/protobuf/io/zero_copy_stream_impl_lite.h"
+#include "scene/scene_builder.h"
+
+namespace aperture {
+namespace {
+
+std::string DeterministicBytes(const v1::LoadSceneRequest& request) {
+  std::string bytes;
+  google::protobuf::io::StringOutputStream stream(&bytes);
+  google::protobuf::io::CodedOutputStream coded(&stream);
+  coded.SetSerializationDeterministic(true);
+  request.SerializeToCodedStream(&coded);
+  coded.Trim();
+  return bytes;
+}
+
+}  // namespace
+
+absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
+                                                  const TextureStore& textures) {
+  v1::Scene scene = request.scene();
+  std::set<std::string> referenced;
+  for (int i = 0; i < scene.textures_size(); ++i) {
+    v1::Texture& texture = *scene.mutable_textures(i);
+    const std::string field = absl::StrCat("scene.textures[", i, "] ('", texture.id(), "')");
+    if (texture.source_case() == v1::Texture::kFile)
+      return absl::InvalidArgumentError(absl::StrCat(
+          field,
+          ".file: the server reads no client paths; upload the image and name its hash "
+          "in texture_sha256"));
+    auto ref = request.texture_sha256().find(texture.id());
+    if (ref == request.texture_sha256().end()) continue;
+    referenced.insert(texture.id());
+    if (texture.source_case() != v1::Texture::SOURCE_NOT_SET)
+      return absl::InvalidArgumentError(
+          absl::StrCat(field, " has an inline source and a texture_sha256 entry; give one"));
+    if (!IsSha256Hex(ref->second))
+      return absl::InvalidArgumentError(
+          absl::StrCat("texture_sha256['", texture.id(), "'] must be 64 lowercase hex digits"));
+    auto bytes = textures.Get(ref->second);
+    if (!bytes.ok())
+      return absl::NotFoundError(
+          absl::StrCat("texture_sha256['", texture.id(), "']: ", bytes.status().message()));
+    texture.set_encoded(**bytes);
+  }
+  for (const auto& [id, sha256] : request.texture_sha256())
+    if (!referenced.count(id))
+      return absl::InvalidArgumentError(
+          absl::StrCat("texture_sha256['", id, "'] names no texture of the scene"));
+
+  auto built = BuildScene(scene);
+  if (!built.ok()) return built.status();
+  return LoadedScene{Sha256Hex(DeterministicBytes(request)),
+                     std::make_shared<const Scene>(*std::move(built))};
+}
+
+}  // namespace aperture

@@ -1,0 +1,128 @@
+// aperture-server: the render service over gRPC. One oneTBB arena shared by all requests, a
+// bounded admission queue, health service and reflection, graceful shutdown on SIGTERM/SIGINT.
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <signal.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "absl/flags/flag.h"
+#include "absl/flags/parse.h"
+#include "absl/flags/usage.h"
+#include "admission.h"
+#include "flag_names.h"
+#include "render_service.h"
+#include "scene_store.h"
+#include "texture_store.h"
+
+ABSL_FLAG(std::string, listen, "127.0.0.1:50051",
+          "address to listen on, HOST:PORT (port 0: any free port, printed at start)");
+ABSL_FLAG(int, threads, 0, "render worker threads in the shared oneTBB arena (0: all cores)");
+ABSL_FLAG(int, concurrent_frames, 2, "frames rendered at once (they share the arena's threads)");
+ABSL_FLAG(int, max_queue, 16, "frames waiting for a turn; past it RESOURCE_EXHAUSTED at once");
+ABSL_FLAG(uint64_t, max_pixels, 4096ull * 4096, "largest frame, width x height");
+ABSL_FLAG(int, max_message_mb, 64, "largest request message (scenes, chunks), MiB");
+ABSL_FLAG(int, max_texture_mb, 256, "largest uploaded texture, MiB");
+ABSL_FLAG(int, max_scenes, 64, "scenes kept loaded; past it the least recently used is dropped");
+ABSL_FLAG(std::string, store, "",
+          "directory keeping uploaded textures across restarts "
+          "(empty: memory only)");
+ABSL_FLAG(double, grace_s, 10,
+          "on SIGTERM: seconds in-flight frames get to finish before they "
+          "are cancelled");
+
+namespace aperture {
+namespace {
+
+int Run() {
+  // Signals are taken by one thread with sigwait; block them before gRPC and oneTBB start theirs.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  ServiceLimits limits;
+  limits.threads = absl::GetFlag(FLAGS_threads) > 0 ? absl::GetFlag(FLAGS_threads)
+                                                    : tbb::info::default_concurrency();
+  limits.concurrent_frames = std::max(1, absl::GetFlag(FLAGS_concurrent_frames));
+  limits.max_queue = std::max(0, absl::GetFlag(FLAGS_max_queue));
+  limits.max_pixels = absl::GetFlag(FLAGS_max_pixels);
+  limits.max_message_bytes = uint64_t(std::max(1, absl::GetFlag(FLAGS_max_message_mb))) << 20;
+  limits.max_texture_bytes = uint64_t(std::max(1, absl::GetFlag(FLAGS_max_texture_mb))) << 20;
+
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<size_t>(limits.threads));
+  // One arena for all requests: a slot reserved for each frame's request thread (so a frame
+  // never waits for another's slot), workers capped at threads - 1 by the global control.
+  tbb::task_arena arena(limits.threads + limits.concurrent_frames - 1,
+                        static_cast<unsigned>(limits.concurrent_frames));
+  TextureStore textures(absl::GetFlag(FLAGS_store));
+  SceneStore scenes(static_cast<size_t>(std::max(1, absl::GetFlag(FLAGS_max_scenes))));
+  AdmissionControl admission(limits.concurrent_frames, limits.max_queue);
+  RenderService service(limits, textures, scenes, admission, arena);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(absl::GetFlag(FLAGS_listen), grpc::InsecureServerCredentials(), &port);
+  builder.SetMaxReceiveMessageSize(static_cast<int>(limits.max_message_bytes));
+  builder.SetMaxSendMessageSize(-1);  // frames: 3840x2160 float RGBA is ~130 MB uncompressed
+  builder.RegisterService(&service);
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (!server || port == 0) {
+    spdlog::error("cannot listen on {}", absl::GetFlag(FLAGS_listen));
+    return 2;
+  }
+  const std::string host =
+      absl::GetFlag(FLAGS_listen).substr(0, absl::GetFlag(FLAGS_listen).rfind(':'));
+  // The first line on stdout is for scripts and tests that asked for port 0.
+  std::printf("listening on %s:%d\n", host.c_str(), port);
+  std::fflush(stdout);
+  spdlog::info(
+      "aperture-server listening on {}:{} threads={} concurrent_frames={} max_queue={} "
+      "max_pixels={} store='{}'",
+      host, port, limits.threads, limits.concurrent_frames, limits.max_queue, limits.max_pixels,
+      absl::GetFlag(FLAGS_store));
+  server->GetHealthCheckService()->SetServingStatus(true);
+
+  std::thread signal_waiter([&] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    const double grace = absl::GetFlag(FLAGS_grace_s);
+    spdlog::info("signal {}: shutting down; {} frames rendering, {} queued, grace {} s", signal,
+                 admission.running(), admission.queued(), grace);
+    server->GetHealthCheckService()->SetServingStatus(false);
+    // New calls are refused; calls still running at the deadline are cancelled, which stops
+    // their frames between tasks.
+    server->Shutdown(std::chrono::system_clock::now() +
+                     std::chrono::milliseconds(static_cast<int64_t>(grace * 1000)));
+  });
+  server->Wait();
+  signal_waiter.join();
+  spdlog::info("aperture-server stopped");
+  return 0;
+}
+
+}  // namespace
+}  // namespace aperture
+
+int main(int argc, char** argv) {
+  absl::SetProgramUsageMessage(
+      "serves aperture.v1.Render over gRPC.\n  aperture-server --listen 127.0.0.1:50051 "
+      "--threads 0 --max-queue 16 --max-pixels 16777216 --store DIR");
+  aperture::DashedFlagNames args(argc, argv);
+  absl::ParseCommandLine(args.argc(), args.argv());
+  // Logs go to stderr; stdout carries only the "listening on" line.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("aperture-server"));
+  return aperture::Run();
+}

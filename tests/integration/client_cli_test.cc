@@ -1,0 +1,218 @@
+// The `aperture` client against real servers: the frame it receives has the same pixels as the
+// one aperture-render writes locally; textures already on the server are not sent again; health,
+// load and sim run end to end; a batch survives a killed server and resumes without rework.
+#include <OpenImageIO/imagebuf.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <thread>
+#include <vector>
+
+#include "integration/server_process.h"
+
+namespace aperture::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+class ClientTest : public ::testing::Test {
+ protected:
+  // One server for the suite; a test that stops it starts its own.
+  static void TearDownTestSuite() { shared_server_.reset(); }
+  void SetUp() override {
+    std::string error;
+    if (!shared_server_) shared_server_ = ServerProcess::Start({}, &error);
+    ASSERT_NE(shared_server_, nullptr) << error;
+    server_ = shared_server_.get();
+    dir_ = std::filesystem::temp_directory_path() /
+           ("aperture_client_test_" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  CommandResult Client(std::vector<std::string> args) {
+    args.insert(args.begin(), APERTURE_CLIENT_BIN);
+    args.push_back("--server=" + server_->address());
+    return RunCommand(args, 60);
+  }
+
+  static std::unique_ptr<ServerProcess> shared_server_;
+  ServerProcess* server_ = nullptr;
+  std::filesystem::path dir_;
+};
+
+std::unique_ptr<ServerProcess> ClientTest::shared_server_;
+
+// A ground plane textured with a small PNG file: the client uploads the file's bytes.
+std::string WriteGroundScene(const std::filesystem::path& dir) {
+  OIIO::ImageSpec spec(16, 16, 3, OIIO::TypeDesc::UINT8);
+  OIIO::ImageBuf grid(spec);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const float v = ((x / 4 + y / 4) % 2) ? 1.0f : 0.2f;
+      const float pixel[3] = {v, v * 0.9f, v * 0.5f};
+      grid.setpixel(x, y, pixel);
+    }
+  grid.write((dir / "grid.png").string());
+  const std::string path = (dir / "ground.json").string();
+  std::ofstream(path) << R"({"name": "ground",
+    "textures": [{"id": "grid", "file": "grid.png"}],
+    "materials": [{"id": "g", "textureId": "grid", "textureTransform": {"repeatU": 4}}],
+    "meshes": [{"id": "ground", "materialId": "g", "polygons": [{"vertices": [
+      {"x": -500, "y": 0, "z": -500}, {"x": -500, "y": 0, "z": 500},
+      {"x": 500, "y": 0, "z": 500}, {"x": 500, "y": 0, "z": -500}]}]}],
+    "objects": [{"meshId": "ground"}]})";
+  return path;
+}
+
+std::vector<float> Pixels(const std::string& path, int* width, int* height) {
+  OIIO::ImageBuf image(path);
+  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {};
+  const OIIO::ImageSpec& spec = image.spec();
+  *width = spec.width;
+  *height = spec.height;
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pixels.data());
+  return pixels;
+}
+
+TEST_F(ClientTest, FrameEqualsWhatApertureRenderWrites) {
+  const std::vector<std::string> frame_flags = {"--size=160x96", "--camera=0,20,300,5,-6,1",
+                                                "--aa=tent2", "--filter=trilinear",
+                                                "--compression=piz"};
+  std::vector<std::string> local = {
+      APERTURE_RENDER_BIN, "--scene=demo", "--nopreview",
+      "--threads=2",       "-o",           (dir_ / "local.exr").string()};
+  local.insert(local.end(), frame_flags.begin(), frame_flags.end());
+  const CommandResult rendered = RunCommand(local, 60);
+  ASSERT_EQ(rendered.exit_code, 0) << rendered.err;
+
+  std::vector<std::string> remote = {"render", "--scene=demo",
+                                     "-o=" + (dir_ / "remote.exr").string()};
+  remote.insert(remote.end(), frame_flags.begin(), frame_flags.end());
+  const CommandResult first = Client(remote);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_THAT(first.out, HasSubstr("textures uploaded 2, already on the server 0"));
+
+  int lw = 0, lh = 0, rw = 0, rh = 0;
+  const std::vector<float> a = Pixels((dir_ / "local.exr").string(), &lw, &lh);
+  const std::vector<float> b = Pixels((dir_ / "remote.exr").string(), &rw, &rh);
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(lw, 160);
+  EXPECT_EQ(lh, 96);
+  EXPECT_EQ(rw, lw);
+  EXPECT_EQ(rh, lh);
+  EXPECT_TRUE(a == b) << "the service's pixels differ from aperture-render's";
+
+  // The second render finds both textures on the server and sends none.
+  const CommandResult second = Client(remote);
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_THAT(second.out, HasSubstr("textures uploaded 0, already on the server 2"));
+}
+
+TEST_F(ClientTest, RenderReportsBadInputWithExitStatus2) {
+  const CommandResult result =
+      Client({"render", "--scene=demo", "--size=64x48", "--camera=nan,1,2,0,0,0",
+              "-o=" + (dir_ / "x.exr").string()});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_THAT(result.err, HasSubstr("camera position is not finite"));
+}
+
+TEST_F(ClientTest, HealthExitsZeroWhenServingAndOneWhenNothingListens) {
+  std::string error;
+  auto own = ServerProcess::Start({}, &error);
+  ASSERT_NE(own, nullptr) << error;
+  const std::string address = own->address();
+  const CommandResult serving =
+      RunCommand({APERTURE_CLIENT_BIN, "health", "--server=" + address}, 20);
+  EXPECT_EQ(serving.exit_code, 0) << serving.err;
+  EXPECT_THAT(serving.out, HasSubstr("SERVING"));
+
+  own.reset();  // killed: nothing listens on that port any more
+  const CommandResult down =
+      RunCommand({APERTURE_CLIENT_BIN, "health", "--server=" + address, "--deadline_s=2"}, 20);
+  EXPECT_EQ(down.exit_code, 1);
+}
+
+TEST_F(ClientTest, LoadReportsThroughputAndLatency) {
+  const CommandResult result =
+      Client({"load", "--scene=" + WriteGroundScene(dir_), "--camera=0,1.7,0,0,-10,0",
+              "--concurrency=2", "--requests=6", "--size=64x48", "--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("\"ok\": 6"));
+  EXPECT_THAT(result.out, HasSubstr("\"failed\": 0"));
+  EXPECT_THAT(result.out, HasSubstr("\"p99\""));
+}
+
+TEST_F(ClientTest, SimStreamsFramesAtARate) {
+  const CommandResult result =
+      Client({"sim", "--scene=" + WriteGroundScene(dir_), "--camera=0,1.7,0,0,-10,0", "--rate=20",
+              "--frames=8", "--size=64x48", "--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+  EXPECT_THAT(result.out, HasSubstr("\"frames\": 8"));
+  EXPECT_THAT(result.out, HasSubstr("\"ok\": 8"));
+  EXPECT_THAT(result.out, HasSubstr("\"dropped\": 0"));
+}
+
+size_t CountFrames(const std::filesystem::path& dir) {
+  size_t n = 0;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error))
+    n += entry.path().extension() == ".exr";
+  return n;
+}
+
+TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
+  constexpr int kFrames = 30;
+  std::string error;
+  auto a = ServerProcess::Start({"--threads=1"}, &error);
+  ASSERT_NE(a, nullptr) << error;
+  auto b = ServerProcess::Start({"--threads=1"}, &error);
+  ASSERT_NE(b, nullptr) << error;
+  const std::string job = (dir_ / "job.json").string();
+  std::ofstream(job) << R"({"scene": "demo", "size": "96x64", "filter": "trilinear",
+      "path": {"from": "0,14,-100,0,-5,0", "to": "0,14,-400,0,-5,0", "frames": )"
+                     << kFrames << "}}";
+  const std::filesystem::path out = dir_ / "frames";
+  const std::vector<std::string> batch = {
+      APERTURE_CLIENT_BIN,  "batch",          job, "--servers=" + a->address() + "," + b->address(),
+      "-o=" + out.string(), "--concurrency=2"};
+  auto run = std::async(std::launch::async, [&] { return RunCommand(batch, 120); });
+
+  // Kill one server once a fifth of the frames are written.
+  const auto start = std::chrono::steady_clock::now();
+  while (CountFrames(out) < kFrames / 5 &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  const size_t written_at_kill = CountFrames(out);
+  b.reset();  // SIGKILL
+  EXPECT_LT(written_at_kill, static_cast<size_t>(kFrames)) << "the batch ended before the kill";
+
+  const CommandResult first = run.get();
+  EXPECT_EQ(first.exit_code, 0) << first.out << first.err;
+  EXPECT_THAT(first.out, HasSubstr("0 failed"));
+  EXPECT_EQ(CountFrames(out), static_cast<size_t>(kFrames));
+  for (int i = 0; i < kFrames; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.exr", i);
+    int w = 0, h = 0;
+    EXPECT_FALSE(Pixels((out / name).string(), &w, &h).empty()) << name;
+    EXPECT_EQ(w, 96) << name;
+    EXPECT_EQ(h, 64) << name;
+  }
+
+  // A rerun finds every frame written and valid, and renders nothing.
+  const CommandResult second = RunCommand(
+      {APERTURE_CLIENT_BIN, "batch", job, "--servers=" + a->address(), "-o=" + out.string()}, 60);
+  EXPECT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_THAT(second.out, HasSubstr("0 rendered, 30 skipped"));
+}
+
+}  // namespace
+}  // namespace aperture::testing

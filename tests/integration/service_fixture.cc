@@ -1,0 +1,124 @@
+#include "integration/service_fixture.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <cmath>
+#include <utility>
+
+#include "scene/demo_scene.h"
+#include "scene/scene_builder.h"
+
+namespace aperture::testing {
+
+std::unique_ptr<ServerProcess> ServiceTest::shared_server_;
+
+void ServiceTest::StartServer(const std::vector<std::string>& args) {
+  std::string error;
+  std::unique_ptr<ServerProcess>& owner = args.empty() ? shared_server_ : own_server_;
+  // The shared server's limits are low enough for the tests of oversized frames and messages.
+  if (!owner)
+    owner = ServerProcess::Start(
+        args.empty() ? std::vector<std::string>{"--max-pixels=1000000", "--max-message-mb=2"}
+                     : args,
+        &error);
+  ASSERT_NE(owner, nullptr) << error;
+  server_ = owner.get();
+  grpc::ChannelArguments channel_args;
+  channel_args.SetMaxReceiveMessageSize(-1);
+  stub_ = v1::Render::NewStub(grpc::CreateCustomChannel(
+      server_->address(), grpc::InsecureChannelCredentials(), channel_args));
+}
+
+namespace {
+
+// 12000 short thin triangles spread evenly over the view at many angles: every window is mixed,
+// the cost is even over the frame, so a frame takes seconds but each of its tasks much less.
+v1::Scene SliverScene() {
+  v1::Scene scene;
+  scene.set_name("slivers");
+  for (int m = 0; m < 2; ++m) {
+    v1::Material& material = *scene.add_materials();
+    material.set_id(m == 0 ? "orange" : "blue");
+    material.mutable_base_color()->set_r(m == 0 ? 1.0f : 0.1f);
+    material.mutable_base_color()->set_g(0.5f);
+    material.mutable_base_color()->set_b(m == 0 ? 0.2f : 0.9f);
+    material.set_unlit(true);
+  }
+  v1::Mesh& mesh = *scene.add_meshes();
+  mesh.set_id("slivers");
+  constexpr int kTriangles = 12000;
+  for (int i = 0; i < kTriangles; ++i) {
+    const double angle = M_PI * i / kTriangles * 7.3;
+    // Centres spread over the view by a low-discrepancy (golden ratio) sequence.
+    const double cx = 12 * std::fmod(i * 0.6180339887, 1.0) - 6;
+    const double cy = 12 * std::fmod(i * 0.7548776662, 1.0) - 6;
+    const double dx = std::cos(angle), dy = std::sin(angle);
+    const double nx = -0.02 * std::sin(angle), ny = 0.02 * std::cos(angle);
+    v1::Polygon& polygon = *mesh.add_polygons();
+    polygon.set_material_id(i % 2 ? "blue" : "orange");
+    for (const auto& [x, y] :
+         {std::pair{cx - dx, cy - dy}, {cx + dx, cy + dy}, {cx + dx + nx, cy + dy + ny}}) {
+      v1::Vec3& vertex = *polygon.add_vertices();
+      vertex.set_x(x);
+      vertex.set_y(y);
+      vertex.set_z(-10 - 0.001 * (i % 13));
+    }
+  }
+  scene.add_objects()->set_mesh_id("slivers");
+  return scene;
+}
+
+}  // namespace
+
+std::string ServiceTest::LoadDemoScene() { return LoadScene(MakeDemoScene()); }
+
+v1::RenderFrameRequest ServiceTest::SlowFrame() {
+  v1::RenderFrameRequest request;
+  request.set_scene_id(LoadScene(SliverScene()));
+  request.mutable_camera()->mutable_position();
+  request.mutable_options()->set_width(2048);
+  request.mutable_options()->set_height(2048);
+  request.mutable_options()->set_anti_aliasing(v1::ANTI_ALIASING_TENT2);
+  return request;
+}
+
+std::string ServiceTest::LoadScene(const v1::Scene& scene) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+  v1::LoadSceneRequest request;
+  *request.mutable_scene() = scene;
+  v1::LoadSceneResponse response;
+  const grpc::Status status = stub_->LoadScene(&context, request, &response);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return response.scene_id();
+}
+
+v1::RenderFrameRequest ServiceTest::FrameRequest(const std::string& scene_id, int width,
+                                                 int height) const {
+  v1::RenderFrameRequest request;
+  request.set_scene_id(scene_id);
+  *request.mutable_camera() = CameraToProto(DemoCamera());
+  request.mutable_options()->set_width(width);
+  request.mutable_options()->set_height(height);
+  request.mutable_options()->set_filter(v1::TEXTURE_FILTER_TRILINEAR);
+  return request;
+}
+
+grpc::Status ServiceTest::Render(const v1::RenderFrameRequest& request, double seconds,
+                                 v1::RenderFrameResponse* response) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() +
+                       std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
+  v1::RenderFrameResponse ignored;
+  return stub_->RenderFrame(&context, request, response ? response : &ignored);
+}
+
+v1::GetServerInfoResponse ServiceTest::Info() {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  v1::GetServerInfoResponse response;
+  EXPECT_TRUE(stub_->GetServerInfo(&context, {}, &response).ok());
+  return response;
+}
+
+}  // namespace aperture::testing

@@ -1,0 +1,296 @@
+// Every RPC of aperture.v1.Render against a real server process, and its error answers.
+#include <gmock/gmock.h>
+#include <grpcpp/generic/generic_stub.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "content_hash.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "integration/service_fixture.h"
+
+namespace aperture::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+grpc::Status Upload(v1::Render::Stub& stub, const std::string& sha256, const std::string& bytes,
+                    size_t chunk_size, v1::UploadTextureResponse* response) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
+  auto writer = stub.UploadTexture(&context, response);
+  for (size_t offset = 0; offset < bytes.size(); offset += chunk_size) {
+    v1::UploadTextureRequest message;
+    if (offset == 0) {
+      message.set_sha256(sha256);
+      message.set_total_size(bytes.size());
+    }
+    message.set_chunk(bytes.substr(offset, chunk_size));
+    if (!writer->Write(message)) break;
+  }
+  writer->WritesDone();
+  return writer->Finish();
+}
+
+bool HasTexture(v1::Render::Stub& stub, const std::string& sha256) {
+  grpc::ClientContext context;
+  v1::HasTextureRequest request;
+  request.set_sha256(sha256);
+  v1::HasTextureResponse response;
+  EXPECT_TRUE(stub.HasTexture(&context, request, &response).ok());
+  return response.stored();
+}
+
+TEST_F(ServiceTest, HealthServiceReportsServing) {
+  StartServer();
+  auto health = grpc::health::v1::Health::NewStub(
+      grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  grpc::health::v1::HealthCheckResponse response;
+  ASSERT_TRUE(health->Check(&context, {}, &response).ok());
+  EXPECT_EQ(response.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+}
+
+// Asks the reflection service for its list of services, with a generic call (Debian ships no
+// reflection stubs): the request is ServerReflectionRequest{list_services: ""}.
+TEST_F(ServiceTest, ReflectionListsTheRenderService) {
+  StartServer();
+  grpc::GenericStub stub(
+      grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials()));
+  grpc::CompletionQueue queue;
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  auto call = stub.PrepareCall(
+      &context, "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo", &queue);
+  auto step = [&queue] {
+    void* tag = nullptr;
+    bool ok = false;
+    return queue.Next(&tag, &ok) && ok;
+  };
+  call->StartCall(nullptr);
+  ASSERT_TRUE(step());
+  const char list_services[] = {0x3a, 0x00};  // field 7 (list_services), empty string
+  grpc::Slice slice(list_services, sizeof list_services);
+  grpc::ByteBuffer request(&slice, 1);
+  call->Write(request, nullptr);
+  ASSERT_TRUE(step());
+  grpc::ByteBuffer response;
+  call->Read(&response, nullptr);
+  ASSERT_TRUE(step());
+  std::vector<grpc::Slice> slices;
+  ASSERT_TRUE(response.Dump(&slices).ok());
+  std::string bytes;
+  for (const grpc::Slice& s : slices)
+    bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  EXPECT_NE(bytes.find("aperture.v1.Render"), std::string::npos);
+  EXPECT_NE(bytes.find("grpc.health.v1.Health"), std::string::npos);
+  context.TryCancel();
+  grpc::Status status;
+  call->Finish(&status, nullptr);
+  step();
+  queue.Shutdown();
+  void* tag = nullptr;
+  bool ok = false;
+  while (queue.Next(&tag, &ok)) {
+  }
+}
+
+TEST_F(ServiceTest, UploadInChunksThenTheSecondUploadIsSkipped) {
+  StartServer();
+  const uint32_t textures_before = Info().textures();
+  std::string bytes(3 * 1024 * 1024 + 17, '\0');  // several 1 MiB chunks
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 7919 % 251);
+  const std::string sha256 = Sha256Hex(bytes);
+  EXPECT_FALSE(HasTexture(*stub_, sha256));
+
+  v1::UploadTextureResponse first;
+  ASSERT_TRUE(Upload(*stub_, sha256, bytes, 1 << 20, &first).ok());
+  EXPECT_FALSE(first.already_stored());
+  EXPECT_EQ(first.size(), bytes.size());
+  EXPECT_TRUE(HasTexture(*stub_, sha256));
+
+  v1::UploadTextureResponse second;
+  ASSERT_TRUE(Upload(*stub_, sha256, bytes, 1 << 20, &second).ok());
+  EXPECT_TRUE(second.already_stored());
+  EXPECT_EQ(Info().textures(), textures_before + 1);
+}
+
+TEST_F(ServiceTest, StoreDirectoryKeepsTexturesAcrossRestarts) {
+  const std::string store = ::testing::TempDir() + "aperture_store_" + std::to_string(getpid());
+  std::filesystem::create_directories(store);
+  const std::string bytes = "texture bytes kept across a restart";
+  StartServer({"--store=" + store});
+  v1::UploadTextureResponse response;
+  ASSERT_TRUE(Upload(*stub_, Sha256Hex(bytes), bytes, 1 << 20, &response).ok());
+  own_server_.reset();  // SIGKILL
+
+  StartServer({"--store=" + store});
+  EXPECT_TRUE(HasTexture(*stub_, Sha256Hex(bytes)));
+  ASSERT_TRUE(Upload(*stub_, Sha256Hex(bytes), bytes, 1 << 20, &response).ok());
+  EXPECT_TRUE(response.already_stored());
+  std::filesystem::remove_all(store);
+}
+
+TEST_F(ServiceTest, UploadErrorsNameTheField) {
+  StartServer();
+  v1::UploadTextureResponse response;
+  grpc::Status status = Upload(*stub_, "not-a-hash", "abc", 1 << 20, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("sha256"));
+
+  status = Upload(*stub_, Sha256Hex("other content"), "abc", 1 << 20, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("hashes to"));
+
+  const std::string big(1536 << 10, 'x');  // 1.5 MiB in one chunk: under the message limit
+  status = Upload(*stub_, Sha256Hex(big), big, big.size(), &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("chunk"));
+}
+
+TEST_F(ServiceTest, LoadSceneResolvesUploadedTexturesAndRefusesUnknownOnes) {
+  StartServer();
+  const std::string scene_id = LoadDemoScene();
+  EXPECT_EQ(scene_id.size(), 64u);
+  EXPECT_EQ(LoadDemoScene(), scene_id) << "the same scene loads to the same id";
+
+  v1::LoadSceneRequest request;
+  request.mutable_scene()->add_textures()->set_id("grass");
+  (*request.mutable_texture_sha256())["grass"] = Sha256Hex("never uploaded");
+  grpc::ClientContext context;
+  v1::LoadSceneResponse response;
+  grpc::Status status = stub_->LoadScene(&context, request, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_THAT(status.error_message(), HasSubstr("texture_sha256['grass']"));
+
+  v1::LoadSceneRequest with_file;
+  with_file.mutable_scene()->add_textures()->set_file("/etc/passwd");
+  grpc::ClientContext context2;
+  status = stub_->LoadScene(&context2, with_file, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("scene.textures[0]"));
+}
+
+TEST_F(ServiceTest, RenderFrameReturnsExrAndTimings) {
+  StartServer();
+  const std::string scene_id = LoadDemoScene();
+  const uint64_t rendered_before = Info().frames_rendered();
+  v1::RenderFrameResponse response;
+  const grpc::Status status = Render(FrameRequest(scene_id, 96, 64), 30, &response);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(response.width(), 96u);
+  EXPECT_EQ(response.height(), 64u);
+  ASSERT_GT(response.exr().size(), 4u);
+  EXPECT_EQ(response.exr().substr(0, 4), std::string("\x76\x2f\x31\x01", 4));  // EXR magic
+  EXPECT_GT(response.timings().raster_ms(), 0);
+  EXPECT_GE(response.timings().total_ms(), response.timings().raster_ms());
+  EXPECT_EQ(Info().frames_rendered(), rendered_before + 1);
+}
+
+TEST_F(ServiceTest, RenderFrameRegionReturnsOnlyTheRegion) {
+  StartServer();
+  v1::RenderFrameRequest request = FrameRequest(LoadDemoScene(), 96, 64);
+  request.mutable_region()->set_x(16);
+  request.mutable_region()->set_y(8);
+  request.mutable_region()->set_width(40);
+  request.mutable_region()->set_height(24);
+  v1::RenderFrameResponse response;
+  ASSERT_TRUE(Render(request, 30, &response).ok());
+  EXPECT_EQ(response.width(), 40u);
+  EXPECT_EQ(response.height(), 24u);
+
+  request.mutable_region()->set_x(80);  // 80 + 40 > 96
+  const grpc::Status status = Render(request, 30);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("region"));
+}
+
+TEST_F(ServiceTest, RenderFrameErrors) {
+  StartServer();  // --max-pixels=1000000
+  const std::string scene_id = LoadDemoScene();
+  const uint64_t failed_before = Info().frames_failed();
+
+  grpc::Status status = Render(FrameRequest("no-such-scene", 32, 32), 10);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_THAT(status.error_message(), HasSubstr("scene_id"));
+
+  v1::RenderFrameRequest nan_camera = FrameRequest(scene_id, 32, 32);
+  nan_camera.mutable_camera()->mutable_position()->set_y(std::nan(""));
+  status = Render(nan_camera, 10);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("camera position"));
+
+  status = Render(FrameRequest(scene_id, 1000, 1001), 10);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("--max-pixels"));
+
+  status = Render(FrameRequest(scene_id, 0, 32), 10);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("options.width"));
+
+  v1::RenderFrameRequest bad_enum = FrameRequest(scene_id, 32, 32);
+  bad_enum.mutable_options()->set_anti_aliasing(static_cast<v1::AntiAliasing>(42));
+  status = Render(bad_enum, 10);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("options.anti_aliasing"));
+  EXPECT_EQ(Info().frames_failed(), failed_before + 5);
+}
+
+TEST_F(ServiceTest, OversizedMessageIsRefused) {
+  StartServer();  // --max-message-mb=2
+  v1::LoadSceneRequest request;
+  request.mutable_scene()->set_name(std::string(3 << 20, 'n'));
+  grpc::ClientContext context;
+  v1::LoadSceneResponse response;
+  const grpc::Status status = stub_->LoadScene(&context, request, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+}
+
+TEST_F(ServiceTest, RenderStreamAnswersEveryCameraInOrder) {
+  StartServer();
+  const std::string scene_id = LoadDemoScene();
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  auto stream = stub_->RenderStream(&context);
+  constexpr int kFrames = 4;
+  for (int i = 0; i < kFrames; ++i) {
+    v1::RenderFrameRequest request = FrameRequest(scene_id, 48, 32);
+    request.set_frame_index(100 + i);
+    request.mutable_camera()->mutable_position()->set_z(request.camera().position().z() - i);
+    if (i == 2) request.mutable_camera()->set_yaw_deg(std::nan(""));  // fails alone
+    ASSERT_TRUE(stream->Write(request));
+  }
+  stream->WritesDone();
+  std::vector<v1::RenderFrameResponse> frames;
+  v1::RenderFrameResponse response;
+  while (stream->Read(&response)) frames.push_back(response);
+  ASSERT_TRUE(stream->Finish().ok());
+  ASSERT_EQ(frames.size(), static_cast<size_t>(kFrames));
+  for (int i = 0; i < kFrames; ++i) {
+    EXPECT_EQ(frames[i].frame_index(), 100u + i);
+    if (i == 2) {
+      EXPECT_EQ(frames[i].status_code(), static_cast<int>(grpc::StatusCode::INVALID_ARGUMENT));
+      EXPECT_THAT(frames[i].status_message(), HasSubstr("camera"));
+    } else {
+      EXPECT_EQ(frames[i].status_code(), 0) << frames[i].status_message();
+      EXPECT_EQ(frames[i].width(), 48u);
+      EXPECT_FALSE(frames[i].exr().empty());
+    }
+  }
+}
+
+TEST_F(ServiceTest, ServerInfoReportsLimits) {
+  StartServer({"--threads=2", "--max-queue=5", "--concurrent-frames=1"});
+  const v1::GetServerInfoResponse info = Info();
+  EXPECT_EQ(info.threads(), 2u);
+  EXPECT_EQ(info.max_queue(), 5u);
+  EXPECT_EQ(info.concurrent_frames(), 1u);
+  EXPECT_GE(info.uptime_s(), 0);
+}
+
+}  // namespace
+}  // namespace aperture::testing

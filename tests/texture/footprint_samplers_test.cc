@@ -1,0 +1,31 @@
+// The scene texture's aniso / oiio / reference samplers, built on first use.
+#include "texture/footprint_samplers.h"
+
+#include <gtest/gtest.h>
+
+#include "texture/mip_pyramid.h"
+
+namespace aperture {
+namespace {
+
+TEST(FootprintSamplers, BuildsEachModeOnceAndFallsBackForTheOthers) {
+  const Rgba c{0.2f, 0.4f, 0.6f, 1.0f};
+  const MipPyramid pyramid(Image(64, 64, c));
+  const TrilinearSampler trilinear(pyramid);
+  const FootprintSamplers samplers(pyramid.level(0));
+  const TextureFootprint f{0.3, 0.7, 0.25f, 0.01f, -0.02f, 0.03f};
+  for (FilterMode mode : {FilterMode::kAniso, FilterMode::kOiio, FilterMode::kReference}) {
+    SCOPED_TRACE(FilterModeName(mode));
+    const TextureSampler& s = samplers.Get(mode, trilinear);
+    EXPECT_NE(&s, &trilinear);
+    EXPECT_EQ(&s, &samplers.Get(mode, trilinear));  // built once
+    const Rgba got = s.Sample(f);
+    EXPECT_NEAR(got.r, c.r, 2e-3);  // OpenImageIO's copy is 8-bit: 51/255 = 0.2 exactly
+    EXPECT_NEAR(got.b, c.b, 2e-3);
+  }
+  for (FilterMode mode : {FilterMode::kNearest, FilterMode::kBilinear, FilterMode::kTrilinear})
+    EXPECT_EQ(&samplers.Get(mode, trilinear), &trilinear);
+}
+
+}  // namespace
+}  // namespace aperture

@@ -1,0 +1,85 @@
+// The grazing-plane benchmark's geometry: analytic footprints against finite differences of the
+// projection, the measured rows, and the reference on a constant texture.
+#include "texture/grazing_plane.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "texture/reference_sampler.h"
+
+namespace aperture {
+namespace {
+
+TEST(GrazingPlane, FootprintIsTheApertureScaledDerivativeOfTheProjection) {
+  for (double pitch : {5.0, 20.0, 60.0}) {
+    GrazingPlaneView view;
+    view.pitch_deg = pitch;
+    view.aperture = 2;
+    for (int j = FirstMeasuredRow(view); j < view.height; j += 97) {
+      for (int i = 0; i < view.width; i += 131) {
+        TextureFootprint f;
+        ASSERT_TRUE(GroundFootprint(view, i, j, &f));
+        const double px = i + 0.5, py = j + 0.5, h = 1e-3;
+        double u0, v0, u1, v1, u2, v2, u3, v3;
+        ASSERT_TRUE(GroundPoint(view, px - h, py, &u0, &v0));
+        ASSERT_TRUE(GroundPoint(view, px + h, py, &u1, &v1));
+        ASSERT_TRUE(GroundPoint(view, px, py - h, &u2, &v2));
+        ASSERT_TRUE(GroundPoint(view, px, py + h, &u3, &v3));
+        const double s = view.aperture / (2 * h);
+        EXPECT_NEAR(f.dudx, (u1 - u0) * s, 1e-4 * std::abs(f.dudx) + 1e-9);
+        EXPECT_NEAR(f.dvdx, (v1 - v0) * s, 1e-9);
+        EXPECT_NEAR(f.dudy, (u3 - u2) * s, 1e-4 * std::abs(f.dudy) + 1e-9);
+        EXPECT_NEAR(f.dvdy, (v3 - v2) * s, 1e-4 * std::abs(f.dvdy) + 1e-9);
+        double u, v;
+        ASSERT_TRUE(GroundPoint(view, px, py, &u, &v));
+        EXPECT_NEAR(f.u, u - std::floor(u), 1e-9);
+        EXPECT_NEAR(f.v, v - std::floor(v), 1e-9);
+      }
+    }
+  }
+}
+
+TEST(GrazingPlane, MeasuredRowsStartWhereTheWholeApertureIsBelowTheHorizon) {
+  GrazingPlaneView view;
+  view.pitch_deg = 60;
+  EXPECT_EQ(FirstMeasuredRow(view), 0);  // the horizon is above the image
+  view.pitch_deg = 5;
+  const int first = FirstMeasuredRow(view);
+  // Horizon: 384 - (384 / tan 30) tan 5 = 325.8; the 2 x 2 aperture of row j spans
+  // [j - 0.5, j + 1.5].
+  EXPECT_EQ(first, 327);
+  double u, v;
+  EXPECT_TRUE(GroundPoint(view, 10.5, first - 0.5 + 1e-9, &u, &v));
+  EXPECT_FALSE(GroundPoint(view, 10.5, first - 1.5, &u, &v));
+}
+
+TEST(GrazingPlane, ReferenceOfAConstantTextureIsTheConstant) {
+  const Rgba c{0.25f, 0.5f, 0.75f, 1};
+  const Image texture(16, 16, c);
+  GrazingPlaneView view;
+  view.width = 64;
+  view.height = 48;
+  view.pitch_deg = 5;
+  const Image ref = RenderGroundReference(view, texture, 1.0, 16);
+  for (int j = FirstMeasuredRow(view); j < view.height; ++j)
+    for (int i = 0; i < view.width; ++i) {
+      ASSERT_NEAR(ref.at(i, j).r, c.r, 1e-6);
+      ASSERT_NEAR(ref.at(i, j).b, c.b, 1e-6);
+    }
+  EXPECT_TRUE(std::isinf(Psnr(ref, ref, 0)));
+}
+
+TEST(ReferenceSampler, AveragesALinearTextureToItsCentreValue) {
+  // r = (x + 0.5) / 64 on a 64-texel period, sampled well inside one period: the average over a
+  // symmetric parallelogram of a linear function is its value at the centre.
+  Image ramp(64, 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) ramp.at(x, y) = {(x + 0.5f) / 64.0f, 0, 0, 1};
+  ReferenceSampler sampler(ramp, 4.0);
+  const TextureFootprint f{0.5, 0.3, 8.0f / 64, 2.0f / 64, -1.0f / 64, 3.0f / 64};
+  EXPECT_NEAR(sampler.Sample(f).r, 0.5, 2e-3);
+}
+
+}  // namespace
+}  // namespace aperture
