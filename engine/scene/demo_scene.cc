@@ -87,8 +87,10 @@ v1::Scene BuildDemoScene() {
   SetColor(scene.mutable_fog()->mutable_color(), 0.62f, 0.70f, 0.82f);
   scene.mutable_fog()->set_density(1.0 / 9000.0);
 
-  AddEncodedTexture(scene, "grass", MakeNoiseTexture(512, 11, {0.10f, 0.20f, 0.05f, 1}, {0.35f, 0.50f, 0.18f, 1}));
-  AddEncodedTexture(scene, "asphalt", MakeNoiseTexture(512, 23, {0.12f, 0.12f, 0.13f, 1}, {0.32f, 0.32f, 0.33f, 1}));
+  AddEncodedTexture(scene, "grass",
+                    MakeNoiseTexture(512, 11, {0.10f, 0.20f, 0.05f, 1}, {0.35f, 0.50f, 0.18f, 1}));
+  AddEncodedTexture(scene, "asphalt",
+                    MakeNoiseTexture(512, 23, {0.12f, 0.12f, 0.13f, 1}, {0.32f, 0.32f, 0.33f, 1}));
   v1::Texture* checker = scene.add_textures();
   checker->set_id("checker");
   checker->mutable_checkerboard()->set_size(1024);
@@ -112,7 +114,8 @@ v1::Scene BuildDemoScene() {
   runway->set_material_id("asphalt");
   AddFlatRect(runway, -22.5, -2800, 22.5, 200, 0.05);
   AddFlatRect(runway, -172.5, -2700, -149.5, 100, 0.05);
-  for (double z : {100.0, -1300.0, -2600.0}) AddFlatRect(runway, -149.5, z - 11.5, -22.5, z + 11.5, 0.05);
+  for (double z : {100.0, -1300.0, -2600.0})
+    AddFlatRect(runway, -149.5, z - 11.5, -22.5, z + 11.5, 0.05);
 
   v1::Mesh* marks = scene.add_meshes();
   marks->set_id("markings");

@@ -34,21 +34,27 @@ absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Textu
       std::filesystem::path path(t.file());
       if (path.is_relative() && !opt.base_dir.empty()) path = opt.base_dir / path;
       auto image = LoadImageFile(path.string());
-      if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(where, ": ", image.status().message()));
+      if (!image.ok())
+        return absl::Status(image.status().code(),
+                            absl::StrCat(where, ": ", image.status().message()));
       return MakeSceneTexture(t.id(), std::move(*image));
     }
     case v1::Texture::kEncoded: {
-      auto bytes = std::span(reinterpret_cast<const uint8_t*>(t.encoded().data()), t.encoded().size());
+      auto bytes =
+          std::span(reinterpret_cast<const uint8_t*>(t.encoded().data()), t.encoded().size());
       auto image = DecodeImage(bytes);
       if (!image.ok()) return Invalid(where, std::string(image.status().message()));
       return MakeSceneTexture(t.id(), std::move(*image));
     }
     case v1::Texture::kCheckerboard: {
       const v1::Checkerboard& c = t.checkerboard();
-      const int size = c.size() == 0 ? 1024 : static_cast<int>(std::min<uint32_t>(c.size(), 1u << 30));
-      const int cells = c.cells() == 0 ? 8 : static_cast<int>(std::min<uint32_t>(c.cells(), 1u << 30));
+      const int size =
+          c.size() == 0 ? 1024 : static_cast<int>(std::min<uint32_t>(c.size(), 1u << 30));
+      const int cells =
+          c.cells() == 0 ? 8 : static_cast<int>(std::min<uint32_t>(c.cells(), 1u << 30));
       if (size > kMaxCheckerboardSize)
-        return Invalid(where, absl::StrCat("checkerboard size ", size, " is above ", kMaxCheckerboardSize));
+        return Invalid(
+            where, absl::StrCat("checkerboard size ", size, " is above ", kMaxCheckerboardSize));
       if (cells > size) return Invalid(where, "checkerboard has more cells than texels");
       Rgba a{1, 1, 1, 1}, b{0, 0, 0, 1};
       if (c.has_color_a()) {
@@ -172,20 +178,33 @@ class Builder {
       if (!m.texture_id().empty()) {
         auto it = texture_index_.find(m.texture_id());
         if (it == texture_index_.end())
-          return absl::NotFoundError(
-              absl::StrCat(where, ": texture_id '", m.texture_id(), "' is not a texture of the scene"));
+          return absl::NotFoundError(absl::StrCat(where, ": texture_id '", m.texture_id(),
+                                                  "' is not a texture of the scene"));
         mat.texture = it->second;
       }
       switch (m.filter()) {
-        case v1::TEXTURE_FILTER_NEAREST: mat.filter = FilterMode::kNearest; break;
-        case v1::TEXTURE_FILTER_BILINEAR: mat.filter = FilterMode::kBilinear; break;
-        case v1::TEXTURE_FILTER_ANISO: mat.filter = FilterMode::kAniso; break;
-        case v1::TEXTURE_FILTER_OIIO: mat.filter = FilterMode::kOiio; break;
-        case v1::TEXTURE_FILTER_REFERENCE: mat.filter = FilterMode::kReference; break;
-        default: mat.filter = FilterMode::kTrilinear; break;
+        case v1::TEXTURE_FILTER_NEAREST:
+          mat.filter = FilterMode::kNearest;
+          break;
+        case v1::TEXTURE_FILTER_BILINEAR:
+          mat.filter = FilterMode::kBilinear;
+          break;
+        case v1::TEXTURE_FILTER_ANISO:
+          mat.filter = FilterMode::kAniso;
+          break;
+        case v1::TEXTURE_FILTER_OIIO:
+          mat.filter = FilterMode::kOiio;
+          break;
+        case v1::TEXTURE_FILTER_REFERENCE:
+          mat.filter = FilterMode::kReference;
+          break;
+        default:
+          mat.filter = FilterMode::kTrilinear;
+          break;
       }
       const v1::TextureTransform& tt = m.texture_transform();
-      const double values[] = {tt.repeat_u(), tt.repeat_v(), tt.rotation_deg(), tt.offset_u(), tt.offset_v()};
+      const double values[] = {tt.repeat_u(), tt.repeat_v(), tt.rotation_deg(), tt.offset_u(),
+                               tt.offset_v()};
       for (double v : values)
         if (!std::isfinite(v)) return Invalid(where, "texture_transform has a non-finite value");
       if (tt.repeat_u() < 0 || tt.repeat_v() < 0)
@@ -251,7 +270,8 @@ class Builder {
       const std::string where = absl::StrCat("objects[", i, "]");
       auto it = mesh_index.find(o.mesh_id());
       if (it == mesh_index.end())
-        return absl::NotFoundError(absl::StrCat(where, ": mesh_id '", o.mesh_id(), "' is not a mesh of the scene"));
+        return absl::NotFoundError(
+            absl::StrCat(where, ": mesh_id '", o.mesh_id(), "' is not a mesh of the scene"));
       const v1::Transform& t = o.transform();
       ObjectPlacement placement;
       const Vec3 scale = t.has_scale() ? FromProto(t.scale()) : Vec3{1, 1, 1};
@@ -259,10 +279,12 @@ class Builder {
       const double angles[] = {t.yaw_deg(), t.pitch_deg(), t.roll_deg()};
       for (double a : angles)
         if (!std::isfinite(a)) return Invalid(where, "transform angles are not finite");
-      if (!IsFinite(placement.translation)) return Invalid(where, "transform translation is not finite");
+      if (!IsFinite(placement.translation))
+        return Invalid(where, "transform translation is not finite");
       if (!IsFinite(scale) || scale.x == 0 || scale.y == 0 || scale.z == 0)
         return Invalid(where, "transform scale must be finite and non-zero");
-      placement.linear = YawPitchRoll(t.yaw_deg(), t.pitch_deg(), t.roll_deg()) * Mat3::Scale(scale);
+      placement.linear =
+          YawPitchRoll(t.yaw_deg(), t.pitch_deg(), t.roll_deg()) * Mat3::Scale(scale);
       if (auto s = PlaceMesh(it->second, placement, o.material_id(),
                              absl::StrCat(where, " mesh '", o.mesh_id(), "'"));
           !s.ok())
@@ -274,17 +296,18 @@ class Builder {
   absl::StatusOr<int> MaterialIndex(const std::string& id, const std::string& where) {
     auto it = material_index_.find(id);
     if (it == material_index_.end())
-      return absl::NotFoundError(absl::StrCat(where, ": material_id '", id, "' is not a material of the scene"));
+      return absl::NotFoundError(
+          absl::StrCat(where, ": material_id '", id, "' is not a material of the scene"));
     return it->second;
   }
 
-  absl::Status PlaceMesh(int mesh, const ObjectPlacement& placement, const std::string& material_override,
-                         const std::string& where_object) {
+  absl::Status PlaceMesh(int mesh, const ObjectPlacement& placement,
+                         const std::string& material_override, const std::string& where_object) {
     const v1::Mesh& m = proto_.meshes(mesh);
     for (int p = 0; p < m.polygons_size(); ++p) {
       const v1::Polygon& poly = m.polygons(p);
       const std::string where = absl::StrCat(where_object, ".polygons[", p, "]");
-      std::string material_id = !material_override.empty() ? material_override
+      std::string material_id = !material_override.empty()    ? material_override
                                 : !poly.material_id().empty() ? poly.material_id()
                                                               : m.material_id();
       auto material = MaterialIndex(material_id, where);
@@ -297,7 +320,8 @@ class Builder {
   absl::Status PlacePolygon(const v1::Polygon& poly, const ObjectPlacement& placement, int material,
                             const std::string& where) {
     if (poly.vertices_size() < 3)
-      return Invalid(where, absl::StrCat("polygon has ", poly.vertices_size(), " vertices, needs at least 3"));
+      return Invalid(
+          where, absl::StrCat("polygon has ", poly.vertices_size(), " vertices, needs at least 3"));
     if (poly.uvs_size() != 0 && poly.uvs_size() != poly.vertices_size())
       return Invalid(where, absl::StrCat("polygon has ", poly.uvs_size(), " uvs for ",
                                          poly.vertices_size(), " vertices"));
@@ -318,8 +342,7 @@ class Builder {
       uv.push_back(t);
     }
     while (local.size() > 1 && local.front() == local.back()) local.pop_back(), uv.pop_back();
-    if (local.size() < 3)
-      return Invalid(where, "polygon has fewer than 3 distinct vertices");
+    if (local.size() < 3) return Invalid(where, "polygon has fewer than 3 distinct vertices");
 
     std::vector<Vec3> world(local.size());
     for (size_t i = 0; i < local.size(); ++i)
@@ -344,14 +367,16 @@ class Builder {
     const v1::TextureTransform& tt = transforms_[material];
     const double ru = tt.repeat_u() > 0 ? tt.repeat_u() : 1.0;
     const double rv = tt.repeat_v() > 0 ? tt.repeat_v() : ru;
-    const double cr = std::cos(Radians(tt.rotation_deg())), sr = std::sin(Radians(tt.rotation_deg()));
+    const double cr = std::cos(Radians(tt.rotation_deg())),
+                 sr = std::sin(Radians(tt.rotation_deg()));
     for (Vec2& t : uv)
       t = {(cr * t.x - sr * t.y) / ru + tt.offset_u(), (sr * t.x + cr * t.y) / rv + tt.offset_v()};
 
     ScenePolygon base;
     base.normal = normal;
     base.material = material;
-    FitMapping(world, uv, normal, &base.mapping.su, &base.mapping.sv, &base.mapping.u0, &base.mapping.v0);
+    FitMapping(world, uv, normal, &base.mapping.su, &base.mapping.sv, &base.mapping.u0,
+               &base.mapping.v0);
 
     // Convexity and triangulation in the 2D plane the polygon faces most.
     std::vector<Vec2> flat(world.size());

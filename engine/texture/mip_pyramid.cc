@@ -74,7 +74,8 @@ Rgba MipPyramid::Bilinear(int l, double u, double v) const {
   const int y0 = static_cast<int>(fy0) & (h - 1), y1 = (y0 + 1) & (h - 1);
   const Rgba* row0 = &img.at(0, y0);
   const Rgba* row1 = &img.at(0, y1);
-  return (row0[x0] * (1 - fx) + row0[x1] * fx) * (1 - fy) + (row1[x0] * (1 - fx) + row1[x1] * fx) * fy;
+  return (row0[x0] * (1 - fx) + row0[x1] * fx) * (1 - fy) +
+         (row1[x0] * (1 - fx) + row1[x1] * fx) * fy;
 }
 
 Rgba MipPyramid::Trilinear(const TextureFootprint& f) const {

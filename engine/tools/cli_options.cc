@@ -17,14 +17,16 @@ absl::StatusOr<ImageSize> ParseImageSize(const std::string& text) {
   ImageSize size;
   if (x == std::string::npos || !number(text.substr(0, x), &size.width) ||
       !number(text.substr(x + 1), &size.height))
-    return absl::InvalidArgumentError(absl::StrCat("size '", text, "' must be WIDTHxHEIGHT, e.g. 1920x1080"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("size '", text, "' must be WIDTHxHEIGHT, e.g. 1920x1080"));
   return size;
 }
 
 absl::StatusOr<AntiAliasing> ParseAntiAliasing(const std::string& name) {
   for (AntiAliasing aa : {AntiAliasing::kBox1, AntiAliasing::kBox2, AntiAliasing::kTent2})
     if (name == AntiAliasingName(aa)) return aa;
-  return absl::InvalidArgumentError(absl::StrCat("unknown anti-aliasing '", name, "' (box1, box2, tent2)"));
+  return absl::InvalidArgumentError(
+      absl::StrCat("unknown anti-aliasing '", name, "' (box1, box2, tent2)"));
 }
 
 absl::StatusOr<FilterMode> ParseFilterMode(const std::string& name) {
