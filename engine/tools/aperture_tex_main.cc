@@ -1,4 +1,5 @@
 // aperture-tex: texture tools (prefiltered tables, packed vector textures, benchmarks).
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -16,7 +17,12 @@ std::vector<TexCommand> AllCommands() {
 
 int Usage(FILE* out) {
   std::fprintf(out, "usage: aperture-tex COMMAND [ARGS...]\n\ncommands:\n");
-  for (const TexCommand& c : AllCommands()) std::fprintf(out, "  %-14s %s\n", c.name, c.summary);
+  std::vector<std::string> listed;  // `info` is registered by both families: list it once
+  for (const TexCommand& c : AllCommands()) {
+    if (std::find(listed.begin(), listed.end(), c.name) != listed.end()) continue;
+    listed.push_back(c.name);
+    std::fprintf(out, "  %-14s %s\n", c.name, c.summary);
+  }
   std::fprintf(out, "\n'aperture-tex COMMAND --help' describes one command.\n");
   return out == stdout ? 0 : 2;
 }
