@@ -1,6 +1,7 @@
 #include "render/render_options.h"
 
 #include "absl/strings/str_cat.h"
+#include "scene/scene_builder.h"
 
 namespace aperture {
 namespace {
@@ -38,30 +39,12 @@ absl::StatusOr<RenderSettings> RenderSettingsFromProto(const v1::RenderOptions& 
   }
 
   settings.shading.override_filter = options.filter() != v1::TEXTURE_FILTER_DEFAULT;
-  switch (options.filter()) {
-    case v1::TEXTURE_FILTER_DEFAULT:
-      break;
-    case v1::TEXTURE_FILTER_NEAREST:
-      settings.shading.filter = FilterMode::kNearest;
-      break;
-    case v1::TEXTURE_FILTER_BILINEAR:
-      settings.shading.filter = FilterMode::kBilinear;
-      break;
-    case v1::TEXTURE_FILTER_TRILINEAR:
-      settings.shading.filter = FilterMode::kTrilinear;
-      break;
-    case v1::TEXTURE_FILTER_ANISO:
-      settings.shading.filter = FilterMode::kAniso;
-      break;
-    case v1::TEXTURE_FILTER_OIIO:
-      settings.shading.filter = FilterMode::kOiio;
-      break;
-    case v1::TEXTURE_FILTER_REFERENCE:
-      settings.shading.filter = FilterMode::kReference;
-      break;
-    default:
+  if (settings.shading.override_filter) {
+    const std::optional<FilterMode> filter = FilterModeFromProto(options.filter());
+    if (!filter)
       return absl::InvalidArgumentError(
           absl::StrCat("options.filter has unknown value ", options.filter()));
+    settings.shading.filter = *filter;
   }
 
   if (options.texture_aperture() != 0) {

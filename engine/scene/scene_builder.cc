@@ -182,25 +182,10 @@ class Builder {
                                                   "' is not a texture of the scene"));
         mat.texture = it->second;
       }
-      switch (m.filter()) {
-        case v1::TEXTURE_FILTER_NEAREST:
-          mat.filter = FilterMode::kNearest;
-          break;
-        case v1::TEXTURE_FILTER_BILINEAR:
-          mat.filter = FilterMode::kBilinear;
-          break;
-        case v1::TEXTURE_FILTER_ANISO:
-          mat.filter = FilterMode::kAniso;
-          break;
-        case v1::TEXTURE_FILTER_OIIO:
-          mat.filter = FilterMode::kOiio;
-          break;
-        case v1::TEXTURE_FILTER_REFERENCE:
-          mat.filter = FilterMode::kReference;
-          break;
-        default:
-          mat.filter = FilterMode::kTrilinear;
-          break;
+      if (m.filter() != v1::TEXTURE_FILTER_DEFAULT) {
+        const std::optional<FilterMode> filter = FilterModeFromProto(m.filter());
+        if (!filter) return Invalid(where, absl::StrCat("filter has unknown value ", m.filter()));
+        mat.filter = *filter;
       }
       const v1::TextureTransform& tt = m.texture_transform();
       const double values[] = {tt.repeat_u(), tt.repeat_v(), tt.rotation_deg(), tt.offset_u(),
@@ -409,6 +394,25 @@ class Builder {
 };
 
 }  // namespace
+
+std::optional<FilterMode> FilterModeFromProto(int filter) {
+  switch (filter) {
+    case v1::TEXTURE_FILTER_NEAREST:
+      return FilterMode::kNearest;
+    case v1::TEXTURE_FILTER_BILINEAR:
+      return FilterMode::kBilinear;
+    case v1::TEXTURE_FILTER_TRILINEAR:
+      return FilterMode::kTrilinear;
+    case v1::TEXTURE_FILTER_ANISO:
+      return FilterMode::kAniso;
+    case v1::TEXTURE_FILTER_OIIO:
+      return FilterMode::kOiio;
+    case v1::TEXTURE_FILTER_REFERENCE:
+      return FilterMode::kReference;
+    default:
+      return std::nullopt;
+  }
+}
 
 const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
   switch (mode) {

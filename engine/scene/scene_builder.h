@@ -2,6 +2,7 @@
 // one in the error), loads textures, applies object transforms, triangulates concave polygons.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -14,6 +15,10 @@ namespace aperture {
 struct SceneBuildOptions {
   std::string base_dir;  // relative texture paths are resolved against this folder
 };
+
+// The engine's filter for a proto filter value; nullopt for TEXTURE_FILTER_DEFAULT and for
+// values this build does not know.
+std::optional<FilterMode> FilterModeFromProto(int filter);
 
 absl::StatusOr<Scene> BuildScene(const v1::Scene& proto, const SceneBuildOptions& options = {});
 
