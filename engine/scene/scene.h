@@ -10,6 +10,7 @@
 #include "texture/footprint_samplers.h"
 #include "texture/image.h"
 #include "texture/mip_pyramid.h"
+#include "texture/packed/packed_texture.h"
 #include "texture/texture_sampler.h"
 
 namespace aperture {
@@ -19,6 +20,10 @@ struct SceneTexture {
   std::shared_ptr<const MipPyramid> pyramid;
   std::unique_ptr<TextureSampler> nearest, bilinear, trilinear;
   std::unique_ptr<FootprintSamplers> footprint;  // aniso (seed 000 table), oiio, reference
+  // A packed vector texture (seed 001) instead of a raster: sampled in place, nearest for the
+  // nearest mode, the exact area integral over the footprint for every other mode.
+  std::shared_ptr<const packed::PackedTexture> packed;
+  std::unique_ptr<TextureSampler> packed_nearest, packed_area;
 
   const TextureSampler& Sampler(FilterMode mode) const;
 };
@@ -57,6 +62,10 @@ struct Scene {
   double fog_density = 0;
   Rgba sky{0, 0, 0, 1};
 };
+
+// A packed vector texture's samplers.
+std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
+                                                           packed::PackedTexture texture);
 
 // Builds a texture's pyramid (resampled to a power of two when needed) and its samplers.
 std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image);

@@ -6,6 +6,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "scene/triangulate.h"
+#include "texture/packed/apv_file.h"
+#include "texture/packed/packed_sampler.h"
 
 namespace aperture {
 namespace {
@@ -33,6 +35,13 @@ absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Textu
     case v1::Texture::kFile: {
       std::filesystem::path path(t.file());
       if (path.is_relative() && !opt.base_dir.empty()) path = opt.base_dir / path;
+      if (path.extension() == ".apv") {
+        auto packed = packed::ReadApvFile(path.string());
+        if (!packed.ok())
+          return absl::Status(packed.status().code(),
+                              absl::StrCat(where, ": ", packed.status().message()));
+        return MakePackedSceneTexture(t.id(), std::move(*packed));
+      }
       auto image = LoadImageFile(path.string());
       if (!image.ok())
         return absl::Status(image.status().code(),
@@ -42,6 +51,11 @@ absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Textu
     case v1::Texture::kEncoded: {
       auto bytes =
           std::span(reinterpret_cast<const uint8_t*>(t.encoded().data()), t.encoded().size());
+      if (packed::LooksLikeApv(bytes)) {
+        auto packed = packed::DecodeApv(bytes);
+        if (!packed.ok()) return Invalid(where, std::string(packed.status().message()));
+        return MakePackedSceneTexture(t.id(), std::move(*packed));
+      }
       auto image = DecodeImage(bytes);
       if (!image.ok()) return Invalid(where, std::string(image.status().message()));
       return MakeSceneTexture(t.id(), std::move(*image));
@@ -415,6 +429,7 @@ std::optional<FilterMode> FilterModeFromProto(int filter) {
 }
 
 const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
+  if (packed) return mode == FilterMode::kNearest ? *packed_nearest : *packed_area;
   switch (mode) {
     case FilterMode::kNearest:
       return *nearest;
@@ -428,6 +443,19 @@ const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
       return footprint->Get(mode, *trilinear);
   }
   return *trilinear;
+}
+
+std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
+                                                           packed::PackedTexture texture) {
+  auto scene_texture = std::make_shared<SceneTexture>();
+  scene_texture->id = std::move(id);
+  auto shared = std::make_shared<const packed::PackedTexture>(std::move(texture));
+  scene_texture->packed_nearest = std::make_unique<packed::PackedTextureSampler>(
+      shared->view(), packed::PackedSampling::kNearest);
+  scene_texture->packed_area =
+      std::make_unique<packed::PackedTextureSampler>(shared->view(), packed::PackedSampling::kArea);
+  scene_texture->packed = std::move(shared);
+  return scene_texture;
 }
 
 std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image) {
