@@ -121,16 +121,7 @@ void AreaIntegrator::Children(const Block& b, Block out[4]) const {
   const int half = b.level - 1;
   const uint64_t quarter = uint64_t{1} << (2 * half);
   for (uint32_t digit = 0; digit < 4; ++digit) {
-    uint32_t xb, yb, child = b.state;
-    if (texture_.curve() == Curve::kMorton) {
-      xb = digit & 1u;
-      yb = digit >> 1;
-    } else {
-      const HilbertChild c = HilbertChildOf(b.state, digit);
-      xb = c.xb;
-      yb = c.yb;
-      child = c.state;
-    }
+    const auto [xb, yb, child] = ChildQuadrant(texture_.curve(), b.state, digit);
     Block& o = out[digit];
     o.level = half;
     o.x = b.x + (xb << half);

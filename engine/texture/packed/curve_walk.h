@@ -21,16 +21,7 @@ void WalkSquare(Curve curve, int level, uint32_t x0, uint32_t y0, uint32_t state
   const int half_level = level - 1;
   const uint64_t quarter = uint64_t{1} << (2 * half_level);
   for (uint32_t digit = 0; digit < 4; ++digit) {
-    uint32_t xb, yb, child = state;
-    if (curve == Curve::kMorton) {
-      xb = digit & 1u;
-      yb = digit >> 1;
-    } else {
-      const HilbertChild c = HilbertChildOf(state, digit);
-      xb = c.xb;
-      yb = c.yb;
-      child = c.state;
-    }
+    const auto [xb, yb, child] = ChildQuadrant(curve, state, digit);
     WalkSquare(curve, half_level, x0 + (xb << half_level), y0 + (yb << half_level), child,
                step0 + digit * quarter, width, height, visit);
   }

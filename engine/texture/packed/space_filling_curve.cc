@@ -54,16 +54,8 @@ TexelXY CurvePoint(Curve curve, int order, uint32_t step) {
   uint32_t state = 0;
   for (int level = order - 1; level >= 0; --level) {
     const uint32_t digit = (step >> (2 * level)) & 3u;
-    uint32_t xb, yb;
-    if (curve == Curve::kMorton) {
-      xb = digit & 1u;
-      yb = digit >> 1;
-    } else {
-      const HilbertChild c = HilbertChildOf(state, digit);
-      xb = c.xb;
-      yb = c.yb;
-      state = c.state;
-    }
+    const auto [xb, yb, child] = ChildQuadrant(curve, state, digit);
+    state = child;
     p.x |= xb << level;
     p.y |= yb << level;
   }
@@ -77,16 +69,7 @@ uint32_t LastStepInside(Curve curve, uint32_t width, uint32_t height) {
   for (int level = order - 1; level >= 0; --level) {
     // The last of the four sub-squares (in curve order) that holds texels of the texture.
     for (int digit = 3; digit >= 0; --digit) {
-      uint32_t xb, yb, child = state;
-      if (curve == Curve::kMorton) {
-        xb = digit & 1u;
-        yb = static_cast<uint32_t>(digit) >> 1;
-      } else {
-        const HilbertChild c = HilbertChildOf(state, static_cast<uint32_t>(digit));
-        xb = c.xb;
-        yb = c.yb;
-        child = c.state;
-      }
+      const auto [xb, yb, child] = ChildQuadrant(curve, state, static_cast<uint32_t>(digit));
       const uint32_t cx = x0 + (xb << level), cy = y0 + (yb << level);
       if (cx < width && cy < height) {
         x0 = cx;

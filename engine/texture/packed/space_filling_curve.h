@@ -92,4 +92,10 @@ constexpr HilbertChild HilbertChildOf(uint32_t state, uint32_t digit) {
   return {xb, yb, state ^ rotation};
 }
 
+// Quadrant `digit` of a sub-square in either curve (Morton: x bit, y bit; no orientation).
+constexpr HilbertChild ChildQuadrant(Curve curve, uint32_t state, uint32_t digit) {
+  if (curve == Curve::kMorton) return {digit & 1u, digit >> 1, state};
+  return HilbertChildOf(state, digit);
+}
+
 }  // namespace aperture::packed
