@@ -119,8 +119,12 @@ std::string StoredCostModelPath() {
 }
 
 CostModel DefaultCostModel() {
-  auto stored = LoadCostModel(StoredCostModelPath());
-  return stored.ok() ? *stored : CostModel{};
+  // Every RenderSettings starts from this model: read the file once per process, not per frame.
+  static const CostModel model = [] {
+    auto stored = LoadCostModel(StoredCostModelPath());
+    return stored.ok() ? *stored : CostModel{};
+  }();
+  return model;
 }
 
 }  // namespace aperture

@@ -47,7 +47,8 @@ absl::Status SaveCostModel(const CostModel& model, const std::string& path);
 // Where the calibrated model is kept: $APERTURE_COST_MODEL, else the build's
 // aperture_cost_model.txt (written by `aperture-render --calibrate`).
 std::string StoredCostModelPath();
-// The stored model, else the defaults above (fitted on a 2-core x86-64 machine).
+// The stored model (read once per process), else the defaults above (fitted on a 2-core x86-64
+// machine).
 CostModel DefaultCostModel();
 
 }  // namespace aperture
