@@ -7,20 +7,30 @@
 #include "absl/strings/str_cat.h"
 
 namespace aperture {
+namespace {
+
+void SetColor(v1::Color* c, float r, float g, float b) {
+  c->set_r(r);
+  c->set_g(g);
+  c->set_b(b);
+}
+
+void SetSun(v1::Scene& scene, std::array<double, 3> direction, float r, float g, float b) {
+  v1::Vec3* d = scene.mutable_sun()->mutable_direction();
+  d->set_x(direction[0]);
+  d->set_y(direction[1]);
+  d->set_z(direction[2]);
+  SetColor(scene.mutable_sun()->mutable_color(), r, g, b);
+}
+
+}  // namespace
 
 v1::Scene MakeTriangleFieldScene(int count, double screen_size, uint32_t seed) {
   v1::Scene scene;
   scene.set_name(absl::StrCat("triangles-", count));
-  scene.mutable_sky()->set_b(0.2f);
-  scene.mutable_ambient()->set_r(0.3f);
-  scene.mutable_ambient()->set_g(0.3f);
-  scene.mutable_ambient()->set_b(0.3f);
-  scene.mutable_sun()->mutable_direction()->set_x(0.3);
-  scene.mutable_sun()->mutable_direction()->set_y(0.8);
-  scene.mutable_sun()->mutable_direction()->set_z(0.5);
-  scene.mutable_sun()->mutable_color()->set_r(0.8f);
-  scene.mutable_sun()->mutable_color()->set_g(0.8f);
-  scene.mutable_sun()->mutable_color()->set_b(0.7f);
+  SetColor(scene.mutable_sky(), 0, 0, 0.2f);
+  SetColor(scene.mutable_ambient(), 0.3f, 0.3f, 0.3f);
+  SetSun(scene, {0.3, 0.8, 0.5}, 0.8f, 0.8f, 0.7f);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0, 1);
   for (int i = 0; i < 8; ++i) {
@@ -60,23 +70,12 @@ v1::Scene MakeTriangleFieldScene(int count, double screen_size, uint32_t seed) {
 v1::Scene MakeSkewedCityScene(uint32_t seed) {
   v1::Scene scene;
   scene.set_name("skewed-city");
-  scene.mutable_sky()->set_r(0.5f);
-  scene.mutable_sky()->set_g(0.65f);
-  scene.mutable_sky()->set_b(0.9f);
-  scene.mutable_ambient()->set_r(0.35f);
-  scene.mutable_ambient()->set_g(0.35f);
-  scene.mutable_ambient()->set_b(0.4f);
-  scene.mutable_sun()->mutable_direction()->set_x(0.4);
-  scene.mutable_sun()->mutable_direction()->set_y(0.9);
-  scene.mutable_sun()->mutable_direction()->set_z(0.3);
-  scene.mutable_sun()->mutable_color()->set_r(0.8f);
-  scene.mutable_sun()->mutable_color()->set_g(0.8f);
-  scene.mutable_sun()->mutable_color()->set_b(0.75f);
+  SetColor(scene.mutable_sky(), 0.5f, 0.65f, 0.9f);
+  SetColor(scene.mutable_ambient(), 0.35f, 0.35f, 0.4f);
+  SetSun(scene, {0.4, 0.9, 0.3}, 0.8f, 0.8f, 0.75f);
   v1::Material* m = scene.add_materials();
   m->set_id("building");
-  m->mutable_base_color()->set_r(0.7f);
-  m->mutable_base_color()->set_g(0.65f);
-  m->mutable_base_color()->set_b(0.6f);
+  SetColor(m->mutable_base_color(), 0.7f, 0.65f, 0.6f);
   v1::Mesh* mesh = scene.add_meshes();
   mesh->set_id("city");
   mesh->set_material_id("building");
