@@ -3,6 +3,9 @@
 #include "absl/flags/flag.h"
 
 ABSL_FLAG(std::string, server, "127.0.0.1:50051", "server address HOST:PORT");
+ABSL_FLAG(std::string, tls_ca, "",
+          "PEM file of the certificate authority (or the server's self-signed certificate) to "
+          "trust; set: connect with TLS, else plaintext");
 ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
           "batch: servers IPV4:PORT,IPV4:PORT,... (gRPC round_robin over them)");
 ABSL_FLAG(std::string, scene, "demo", "'demo' (built-in airfield) or a scene JSON file");

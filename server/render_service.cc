@@ -231,6 +231,14 @@ grpc::Status RenderService::GetServerInfo(grpc::ServerContext*, const v1::GetSer
   response->set_frames_in_flight(static_cast<uint32_t>(admission_.running()));
   response->set_frames_queued(static_cast<uint32_t>(admission_.queued()));
   response->set_uptime_s(std::chrono::duration<double>(Clock::now() - started_).count());
+  if (const auto& store = textures_.shared()) {
+    const StoreCounters counters = store->counters();
+    v1::StoreInfo& info = *response->mutable_store();
+    info.set_directory(store->directory());
+    info.set_entries_attached(counters.attached);
+    info.set_entries_built(counters.built);
+    info.set_entries_rejected(counters.rejected);
+  }
   return grpc::Status::OK;
 }
 

@@ -55,7 +55,10 @@ absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& re
       return absl::InvalidArgumentError(
           absl::StrCat("texture_sha256['", id, "'] names no texture of the scene"));
 
-  auto built = BuildScene(scene);
+  // Tables of aniso materials and decoded packed textures go to (or come from) the shared store.
+  SceneBuildOptions options;
+  options.store = textures.shared();
+  auto built = BuildScene(scene, options);
   if (!built.ok()) return built.status();
   return LoadedScene{Sha256Hex(DeterministicBytes(request)),
                      std::make_shared<const Scene>(*std::move(built))};

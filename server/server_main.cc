@@ -12,6 +12,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "absl/flags/flag.h"
@@ -21,6 +23,7 @@
 #include "flag_names.h"
 #include "render_service.h"
 #include "scene_store.h"
+#include "store/shared_store.h"
 #include "texture_store.h"
 
 ABSL_FLAG(std::string, listen, "127.0.0.1:50051",
@@ -32,15 +35,44 @@ ABSL_FLAG(uint64_t, max_pixels, 4096ull * 4096, "largest frame, width x height")
 ABSL_FLAG(int, max_message_mb, 64, "largest request message (scenes, chunks), MiB");
 ABSL_FLAG(int, max_texture_mb, 256, "largest uploaded texture, MiB");
 ABSL_FLAG(int, max_scenes, 64, "scenes kept loaded; past it the least recently used is dropped");
-ABSL_FLAG(std::string, store, "",
-          "directory keeping uploaded textures across restarts "
-          "(empty: memory only)");
+ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
+          "shared texture store: a directory (under /dev/shm: POSIX shared memory) holding "
+          "uploads, seed 000 tables and packed textures, mapped by every server on the machine "
+          "and kept across restarts; 'none': memory only, nothing shared");
+ABSL_FLAG(std::string, tls_cert, "",
+          "PEM certificate chain; with --tls-key the server accepts only TLS connections");
+ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls-cert");
 ABSL_FLAG(double, grace_s, 10,
           "on SIGTERM: seconds in-flight frames get to finish before they "
           "are cancelled");
 
 namespace aperture {
 namespace {
+
+// TLS when both --tls-cert and --tls-key are given, plaintext when neither; null (after logging
+// why) when only one is, or a file cannot be read.
+std::shared_ptr<grpc::ServerCredentials> ServerCredentials() {
+  const std::string cert = absl::GetFlag(FLAGS_tls_cert), key = absl::GetFlag(FLAGS_tls_key);
+  if (cert.empty() && key.empty()) return grpc::InsecureServerCredentials();
+  if (cert.empty() || key.empty()) {
+    spdlog::error("--tls-cert and --tls-key go together; give both or neither");
+    return nullptr;
+  }
+  auto read = [](const std::string& path) {
+    std::ifstream in(path);
+    std::ostringstream content;
+    content << in.rdbuf();
+    return content.str();
+  };
+  grpc::SslServerCredentialsOptions options;
+  options.pem_key_cert_pairs.push_back({read(key), read(cert)});
+  if (options.pem_key_cert_pairs[0].private_key.empty() ||
+      options.pem_key_cert_pairs[0].cert_chain.empty()) {
+    spdlog::error("cannot read --tls-key {} or --tls-cert {}", key, cert);
+    return nullptr;
+  }
+  return grpc::SslServerCredentials(options);
+}
 
 int Run() {
   // Signals are taken by one thread with sigwait; block them before gRPC and oneTBB start theirs.
@@ -65,16 +97,27 @@ int Run() {
   // never waits for another's slot), workers capped at threads - 1 by the global control.
   tbb::task_arena arena(limits.threads + limits.concurrent_frames - 1,
                         static_cast<unsigned>(limits.concurrent_frames));
-  TextureStore textures(absl::GetFlag(FLAGS_store));
+  std::shared_ptr<const SharedStore> shared_store;
+  if (const std::string directory = absl::GetFlag(FLAGS_store); directory != "none") {
+    auto opened = SharedStore::Open(directory);
+    if (!opened.ok()) {
+      spdlog::error("--store {}: {}", directory, opened.status().ToString());
+      return 2;
+    }
+    shared_store = *std::move(opened);
+  }
+  TextureStore textures(shared_store);
   SceneStore scenes(static_cast<size_t>(std::max(1, absl::GetFlag(FLAGS_max_scenes))));
   AdmissionControl admission(limits.concurrent_frames, limits.max_queue);
   RenderService service(limits, textures, scenes, admission, arena);
 
+  const std::shared_ptr<grpc::ServerCredentials> credentials = ServerCredentials();
+  if (!credentials) return 2;
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(absl::GetFlag(FLAGS_listen), grpc::InsecureServerCredentials(), &port);
+  builder.AddListeningPort(absl::GetFlag(FLAGS_listen), credentials, &port);
   builder.SetMaxReceiveMessageSize(static_cast<int>(limits.max_message_bytes));
   builder.SetMaxSendMessageSize(-1);  // frames: 3840x2160 float RGBA is ~130 MB uncompressed
   builder.RegisterService(&service);
@@ -90,9 +133,9 @@ int Run() {
   std::fflush(stdout);
   spdlog::info(
       "aperture-server listening on {}:{} threads={} concurrent_frames={} max_queue={} "
-      "max_pixels={} store='{}'",
+      "max_pixels={} store='{}' tls={}",
       host, port, limits.threads, limits.concurrent_frames, limits.max_queue, limits.max_pixels,
-      absl::GetFlag(FLAGS_store));
+      absl::GetFlag(FLAGS_store), absl::GetFlag(FLAGS_tls_cert).empty() ? "off" : "on");
   server->GetHealthCheckService()->SetServingStatus(true);
 
   std::thread signal_waiter([&] {

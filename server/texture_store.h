@@ -1,33 +1,40 @@
-// Uploaded texture images, content-addressed by SHA-256. Kept in memory and, when a directory is
-// given (--store), also as files named by their hash, so a restarted server still has them.
-// Files are written to a temporary name and renamed, so a crash never leaves a partial entry.
+// Uploaded texture images, content-addressed by SHA-256. With a shared store (--store) they live
+// there as blob entries ("upload-<sha256>"), mapped read-only and shared by every server process
+// on the machine and kept across restarts; without one (--store none) they are kept in memory.
+// The shared store also receives the tables and packed textures built from them (engine/store).
 #pragma once
 
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "store/shared_store.h"
 
 namespace aperture {
 
 class TextureStore {
  public:
-  explicit TextureStore(std::string directory = "");
+  // `shared`: the machine's store, or null for memory only.
+  explicit TextureStore(std::shared_ptr<const SharedStore> shared = nullptr);
 
   bool Has(const std::string& sha256) const;
   // Verifies that `bytes` hash to `sha256`, then keeps them.
   absl::Status Put(const std::string& sha256, std::string bytes);
   absl::StatusOr<std::shared_ptr<const std::string>> Get(const std::string& sha256) const;
+  // Uploads this process holds in memory or has mapped from the shared store.
   size_t size() const;
+  const std::shared_ptr<const SharedStore>& shared() const { return shared_; }
 
  private:
-  std::string PathOf(const std::string& sha256) const;
+  static std::string KeyOf(const std::string& sha256) { return "upload-" + sha256; }
 
-  std::string directory_;
+  std::shared_ptr<const SharedStore> shared_;
   mutable std::mutex mutex_;
-  mutable std::map<std::string, std::shared_ptr<const std::string>> textures_;
+  mutable std::map<std::string, std::shared_ptr<const std::string>> textures_;  // memory only
+  mutable std::set<std::string> known_;  // uploads seen in the shared store
 };
 
 }  // namespace aperture

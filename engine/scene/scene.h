@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/vec.h"
+#include "store/shared_store.h"
 #include "texture/footprint_samplers.h"
 #include "texture/image.h"
 #include "texture/mip_pyramid.h"
@@ -22,7 +23,7 @@ struct SceneTexture {
   std::unique_ptr<FootprintSamplers> footprint;  // aniso (seed 000 table), oiio, reference
   // A packed vector texture (seed 001) instead of a raster: sampled in place, nearest for the
   // nearest mode, the exact area integral over the footprint for every other mode.
-  std::shared_ptr<const packed::PackedTexture> packed;
+  std::shared_ptr<const void> packed;  // owns the bytes the samplers read (memory or the store)
   std::unique_ptr<TextureSampler> packed_nearest, packed_area;
 
   const TextureSampler& Sampler(FilterMode mode) const;
@@ -63,11 +64,16 @@ struct Scene {
   Rgba sky{0, 0, 0, 1};
 };
 
-// A packed vector texture's samplers.
+// A packed vector texture's samplers over `view`, whose bytes `owner` keeps alive.
+std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
+                                                           std::shared_ptr<const void> owner,
+                                                           const packed::PackedTextureView& view);
 std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
                                                            packed::PackedTexture texture);
 
-// Builds a texture's pyramid (resampled to a power of two when needed) and its samplers.
-std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image);
+// Builds a texture's pyramid (resampled to a power of two when needed) and its samplers; the
+// aniso table comes from `store` when one is given.
+std::shared_ptr<const SceneTexture> MakeSceneTexture(
+    std::string id, Image image, std::shared_ptr<const SharedStore> store = nullptr);
 
 }  // namespace aperture

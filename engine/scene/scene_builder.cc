@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "scene/triangulate.h"
+#include "store/texture_entries.h"
 #include "texture/packed/apv_file.h"
 #include "texture/packed/packed_sampler.h"
 
@@ -28,6 +29,23 @@ absl::StatusOr<Rgba> ColorFromProto(const v1::Color& c, const std::string& where
   return Rgba{c.r(), c.g(), c.b(), 1.0f};
 }
 
+// A packed texture decoded from .apv bytes: in the store when there is one, else in memory.
+absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildPackedTexture(
+    const std::string& id, std::span<const uint8_t> apv_bytes, const SceneBuildOptions& opt) {
+  if (!opt.store) {
+    auto texture = packed::DecodeApv(apv_bytes);
+    if (!texture.ok()) return texture.status();
+    return MakePackedSceneTexture(id, *std::move(texture));
+  }
+  auto entry = GetOrDecodePackedTexture(*opt.store, apv_bytes);
+  if (!entry.ok()) return entry.status();
+  const auto payload = (*entry)->payload();
+  auto view = packed::PackedTextureView::FromBytes(
+      {reinterpret_cast<const uint8_t*>(payload.data()), payload.size()});
+  if (!view.ok()) return view.status();
+  return MakePackedSceneTexture(id, *std::move(entry), *view);
+}
+
 absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Texture& t,
                                                                  const std::string& where,
                                                                  const SceneBuildOptions& opt) {
@@ -36,29 +54,30 @@ absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Textu
       std::filesystem::path path(t.file());
       if (path.is_relative() && !opt.base_dir.empty()) path = opt.base_dir / path;
       if (path.extension() == ".apv") {
-        auto packed = packed::ReadApvFile(path.string());
+        auto bytes = packed::ReadFileBytes(path.string());
+        auto packed = bytes.ok() ? BuildPackedTexture(t.id(), *bytes, opt) : bytes.status();
         if (!packed.ok())
           return absl::Status(packed.status().code(),
                               absl::StrCat(where, ": ", packed.status().message()));
-        return MakePackedSceneTexture(t.id(), std::move(*packed));
+        return packed;
       }
       auto image = LoadImageFile(path.string());
       if (!image.ok())
         return absl::Status(image.status().code(),
                             absl::StrCat(where, ": ", image.status().message()));
-      return MakeSceneTexture(t.id(), std::move(*image));
+      return MakeSceneTexture(t.id(), std::move(*image), opt.store);
     }
     case v1::Texture::kEncoded: {
       auto bytes =
           std::span(reinterpret_cast<const uint8_t*>(t.encoded().data()), t.encoded().size());
       if (packed::LooksLikeApv(bytes)) {
-        auto packed = packed::DecodeApv(bytes);
+        auto packed = BuildPackedTexture(t.id(), bytes, opt);
         if (!packed.ok()) return Invalid(where, std::string(packed.status().message()));
-        return MakePackedSceneTexture(t.id(), std::move(*packed));
+        return packed;
       }
       auto image = DecodeImage(bytes);
       if (!image.ok()) return Invalid(where, std::string(image.status().message()));
-      return MakeSceneTexture(t.id(), std::move(*image));
+      return MakeSceneTexture(t.id(), std::move(*image), opt.store);
     }
     case v1::Texture::kCheckerboard: {
       const v1::Checkerboard& c = t.checkerboard();
@@ -81,7 +100,7 @@ absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Textu
         if (!cb.ok()) return cb.status();
         b = *cb;
       }
-      return MakeSceneTexture(t.id(), MakeCheckerboard(size, cells, a, b));
+      return MakeSceneTexture(t.id(), MakeCheckerboard(size, cells, a, b), opt.store);
     }
     case v1::Texture::SOURCE_NOT_SET:
       break;
@@ -149,6 +168,7 @@ class Builder {
     scene_.name = proto_.name();
     if (auto s = BuildTextures(); !s.ok()) return s;
     if (auto s = BuildMaterials(); !s.ok()) return s;
+    if (auto s = PrepareAnisoTables(); !s.ok()) return s;
     if (auto s = BuildLights(); !s.ok()) return s;
     if (auto s = BuildObjects(); !s.ok()) return s;
     return std::move(scene_);
@@ -211,6 +231,21 @@ class Builder {
       material_index_[m.id()] = static_cast<int>(scene_.materials.size());
       transforms_.push_back(tt);
       scene_.materials.push_back(mat);
+    }
+    return absl::OkStatus();
+  }
+
+  // With a store, tables are built (or attached) with the scene, not by its first frame.
+  absl::Status PrepareAnisoTables() {
+    if (!options_.store) return absl::OkStatus();
+    for (const Material& m : scene_.materials) {
+      if (m.filter != FilterMode::kAniso || m.texture < 0) continue;
+      const SceneTexture& texture = *scene_.textures[static_cast<size_t>(m.texture)];
+      if (!texture.footprint) continue;  // packed textures have no table
+      if (auto s = texture.footprint->PrepareAniso(); !s.ok())
+        return absl::Status(
+            s.code(), absl::StrCat("materials ('", m.id, "'): aniso table of texture '", texture.id,
+                                   "': ", s.message()));
     }
     return absl::OkStatus();
   }
@@ -446,26 +481,34 @@ const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
 }
 
 std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
-                                                           packed::PackedTexture texture) {
+                                                           std::shared_ptr<const void> owner,
+                                                           const packed::PackedTextureView& view) {
   auto scene_texture = std::make_shared<SceneTexture>();
   scene_texture->id = std::move(id);
-  auto shared = std::make_shared<const packed::PackedTexture>(std::move(texture));
-  scene_texture->packed_nearest = std::make_unique<packed::PackedTextureSampler>(
-      shared->view(), packed::PackedSampling::kNearest);
+  scene_texture->packed_nearest =
+      std::make_unique<packed::PackedTextureSampler>(view, packed::PackedSampling::kNearest);
   scene_texture->packed_area =
-      std::make_unique<packed::PackedTextureSampler>(shared->view(), packed::PackedSampling::kArea);
-  scene_texture->packed = std::move(shared);
+      std::make_unique<packed::PackedTextureSampler>(view, packed::PackedSampling::kArea);
+  scene_texture->packed = std::move(owner);
   return scene_texture;
 }
 
-std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image) {
+std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
+                                                           packed::PackedTexture texture) {
+  auto shared = std::make_shared<const packed::PackedTexture>(std::move(texture));
+  const packed::PackedTextureView view = shared->view();
+  return MakePackedSceneTexture(std::move(id), std::move(shared), view);
+}
+
+std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image,
+                                                     std::shared_ptr<const SharedStore> store) {
   auto texture = std::make_shared<SceneTexture>();
   texture->id = std::move(id);
   auto pyramid = std::make_shared<MipPyramid>(ResizeToPowerOfTwo(image));
   texture->nearest = std::make_unique<NearestSampler>(*pyramid);
   texture->bilinear = std::make_unique<BilinearSampler>(*pyramid);
   texture->trilinear = std::make_unique<TrilinearSampler>(*pyramid);
-  texture->footprint = std::make_unique<FootprintSamplers>(pyramid->level(0));
+  texture->footprint = std::make_unique<FootprintSamplers>(pyramid->level(0), std::move(store));
   texture->pyramid = std::move(pyramid);
   return texture;
 }

@@ -2,6 +2,7 @@
 // one in the error), loads textures, applies object transforms, triangulates concave polygons.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -9,11 +10,15 @@
 #include "aperture/v1/scene.pb.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "store/shared_store.h"
 
 namespace aperture {
 
 struct SceneBuildOptions {
   std::string base_dir;  // relative texture paths are resolved against this folder
+  // When set, seed 000 tables and decoded packed textures come from (and go to) this store, and
+  // the tables of materials filtered `aniso` are prepared while the scene is built.
+  std::shared_ptr<const SharedStore> store;
 };
 
 // The engine's filter for a proto filter value; nullopt for TEXTURE_FILTER_DEFAULT and for

@@ -42,11 +42,13 @@ std::string SceneToJson(const v1::Scene& scene) {
   return json;
 }
 
-absl::StatusOr<Scene> LoadSceneFile(const std::string& path) {
+absl::StatusOr<Scene> LoadSceneFile(const std::string& path,
+                                    std::shared_ptr<const SharedStore> store) {
   auto proto = ReadSceneFile(path);
   if (!proto.ok()) return proto.status();
   SceneBuildOptions options;
   options.base_dir = std::filesystem::path(path).parent_path().string();
+  options.store = std::move(store);
   auto scene = BuildScene(*proto, options);
   if (!scene.ok())
     return absl::Status(scene.status().code(), absl::StrCat(path, ": ", scene.status().message()));

@@ -1,11 +1,13 @@
 // Scene files: the proto3 JSON mapping of aperture.v1.Scene, parsed by protobuf's own parser.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "absl/status/statusor.h"
 #include "aperture/v1/scene.pb.h"
 #include "scene/scene.h"
+#include "store/shared_store.h"
 
 namespace aperture {
 
@@ -14,7 +16,9 @@ absl::StatusOr<v1::Scene> ParseSceneJson(const std::string& json);
 absl::StatusOr<v1::Scene> ReadSceneFile(const std::string& path);
 std::string SceneToJson(const v1::Scene& scene);
 
-// Reads, validates and builds: textures relative to the file's folder.
-absl::StatusOr<Scene> LoadSceneFile(const std::string& path);
+// Reads, validates and builds: textures relative to the file's folder; tables and packed textures
+// in `store` when one is given (scene_builder.h).
+absl::StatusOr<Scene> LoadSceneFile(const std::string& path,
+                                    std::shared_ptr<const SharedStore> store = nullptr);
 
 }  // namespace aperture

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
+#include "store/texture_entries.h"
 #include "texture/aniso_sampler.h"
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table_builder.h"
@@ -12,25 +13,48 @@ namespace aperture {
 
 FootprintSamplers::~FootprintSamplers() = default;
 
+absl::Status FootprintSamplers::PrepareAniso() const {
+  std::call_once(aniso_once_, [&] {
+    // Isolated: while waiting for its own parallel loops this thread must not pick up an outer
+    // task that could ask for the same table.
+    tbb::this_task_arena::isolate([&] {
+      std::span<const std::byte> bytes;
+      if (store_) {
+        auto entry = GetOrBuildPrefilteredTable(*store_, base_);
+        if (!entry.ok()) {
+          aniso_status_ = entry.status();
+          return;
+        }
+        bytes = (*entry)->payload();
+        table_bytes_ = *std::move(entry);
+      } else {
+        auto block = BuildPrefilteredTable(base_);
+        if (!block.ok()) {
+          aniso_status_ = block.status();
+          return;
+        }
+        auto owned = std::make_shared<TableBlock>(*std::move(block));
+        bytes = owned->bytes;
+        table_bytes_ = std::move(owned);
+      }
+      auto view = PrefilteredTable::View(bytes);
+      if (!view.ok()) {
+        aniso_status_ = view.status();
+        return;
+      }
+      aniso_ = std::make_unique<AnisoSampler>(*view);
+    });
+    if (!aniso_status_.ok())
+      spdlog::error("aniso filter unavailable, using trilinear: {}", aniso_status_.ToString());
+  });
+  return aniso_status_;
+}
+
 const TextureSampler& FootprintSamplers::Get(FilterMode mode,
                                              const TextureSampler& fallback) const {
   switch (mode) {
     case FilterMode::kAniso:
-      std::call_once(aniso_once_, [&] {
-        // Isolated: while waiting for its own parallel loops this thread must not pick up an
-        // outer task that could ask for the same table.
-        tbb::this_task_arena::isolate([&] {
-          auto block = BuildPrefilteredTable(base_);
-          if (!block.ok()) {
-            spdlog::error("aniso filter unavailable, using trilinear: {}",
-                          block.status().ToString());
-            return;
-          }
-          table_ = std::move(*block);
-          auto view = table_.View();
-          if (view.ok()) aniso_ = std::make_unique<AnisoSampler>(*view);
-        });
-      });
+      (void)PrepareAniso();  // logged once when it fails
       return aniso_ ? *aniso_ : fallback;
     case FilterMode::kOiio:
       std::call_once(oiio_once_, [&] {

@@ -1,11 +1,14 @@
 // The samplers of a scene texture that need more than its mip-map: seed 000's table (aniso),
 // OpenImageIO's TextureSystem (oiio) and the supersampled reference. Each is built on its first
-// use, once, so scenes that never ask for them pay nothing.
+// use, once, so scenes that never ask for them pay nothing. With a shared store the table is
+// taken from it (built there once for every process on the machine) and used in place.
 #pragma once
 
 #include <memory>
 #include <mutex>
 
+#include "absl/status/status.h"
+#include "store/shared_store.h"
 #include "texture/image.h"
 #include "texture/prefiltered_table.h"
 #include "texture/texture_sampler.h"
@@ -15,8 +18,12 @@ namespace aperture {
 class FootprintSamplers {
  public:
   // `base`: the power-of-two texture (the pyramid's level 0); must outlive this object.
-  explicit FootprintSamplers(const Image& base) : base_(base) {}
+  FootprintSamplers(const Image& base, std::shared_ptr<const SharedStore> store)
+      : base_(base), store_(std::move(store)) {}
   ~FootprintSamplers();
+
+  // Builds (or attaches) the aniso table now; the error when that fails.
+  absl::Status PrepareAniso() const;
 
   // The sampler for kAniso, kOiio or kReference; `fallback` (trilinear) when building the
   // table or the OpenImageIO copy fails (logged) or for any other mode.
@@ -24,8 +31,10 @@ class FootprintSamplers {
 
  private:
   const Image& base_;
+  std::shared_ptr<const SharedStore> store_;
   mutable std::once_flag aniso_once_, oiio_once_, reference_once_;
-  mutable TableBlock table_;
+  mutable absl::Status aniso_status_;
+  mutable std::shared_ptr<const void> table_bytes_;  // a StoreEntry or a TableBlock
   mutable std::unique_ptr<TextureSampler> aniso_, oiio_, reference_;
 };
 

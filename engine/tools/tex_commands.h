@@ -11,9 +11,11 @@ struct TexCommand {
   int (*run)(int argc, char** argv);  // argv[0] is the subcommand name; returns the exit code
 };
 
-// Prefiltered anisotropic tables (seed 000): prefilter, info, bench-filter, bake.
+// Prefiltered anisotropic tables (seed 000): prefilter, info, bench-filter.
 std::vector<TexCommand> PrefilteredTableCommands();
 // Packed vector textures (seed 001): pack, unpack, info, bench-packed.
 std::vector<TexCommand> PackedTextureCommands();
+// The machine's shared texture store: bake, store.
+std::vector<TexCommand> StoreCommands();
 
 }  // namespace aperture

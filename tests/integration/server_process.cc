@@ -6,8 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -65,6 +67,13 @@ std::unique_ptr<ServerProcess> ServerProcess::Start(const std::vector<std::strin
   const int err_fd = open(server->log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   std::vector<std::string> argv = {APERTURE_SERVER_BIN, "--listen=127.0.0.1:0"};
   argv.insert(argv.end(), args.begin(), args.end());
+  // A store of its own unless the test names one: tests never touch the machine's real store.
+  const bool names_store = std::any_of(
+      args.begin(), args.end(), [](const std::string& a) { return a.rfind("--store", 0) == 0; });
+  if (!names_store) {
+    server->store_path_ = TempPath("store");
+    argv.push_back("--store=" + server->store_path_);
+  }
   server->pid_ = Spawn(argv, out[1], err_fd);
   close(out[1]);
   close(err_fd);
@@ -96,6 +105,10 @@ ServerProcess::~ServerProcess() {
     WaitPid(pid_, 10);
   }
   if (!log_path_.empty()) unlink(log_path_.c_str());
+  if (!store_path_.empty()) {
+    std::error_code error;
+    std::filesystem::remove_all(store_path_, error);
+  }
 }
 
 void ServerProcess::Signal(int signal) const { kill(pid_, signal); }

@@ -29,7 +29,7 @@ class ServerProcess {
   ServerProcess() = default;
   pid_t pid_ = -1;
   bool reaped_ = false;
-  std::string address_, log_path_;
+  std::string address_, log_path_, store_path_;
 };
 
 struct CommandResult {

@@ -12,7 +12,7 @@ TEST(FootprintSamplers, BuildsEachModeOnceAndFallsBackForTheOthers) {
   const Rgba c{0.2f, 0.4f, 0.6f, 1.0f};
   const MipPyramid pyramid(Image(64, 64, c));
   const TrilinearSampler trilinear(pyramid);
-  const FootprintSamplers samplers(pyramid.level(0));
+  const FootprintSamplers samplers(pyramid.level(0), nullptr);
   const TextureFootprint f{0.3, 0.7, 0.25f, 0.01f, -0.02f, 0.03f};
   for (FilterMode mode : {FilterMode::kAniso, FilterMode::kOiio, FilterMode::kReference}) {
     SCOPED_TRACE(FilterModeName(mode));

@@ -1,0 +1,207 @@
+#include "store/shared_store.h"
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "store/entry_file.h"
+
+namespace aperture {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kEntrySuffix[] = ".entry";
+constexpr char kTemporaryInfix[] = ".entry.tmp.";
+
+}  // namespace
+
+StoreEntry::~StoreEntry() {
+  if (mapping_) munmap(mapping_, mapping_bytes_);
+}
+
+absl::StatusOr<std::shared_ptr<SharedStore>> SharedStore::Open(const std::string& directory) {
+  if (directory.empty()) return absl::InvalidArgumentError("store directory is empty");
+  std::error_code error;
+  fs::create_directories(directory, error);
+  if (error)
+    return absl::FailedPreconditionError(
+        absl::StrCat("cannot create store directory ", directory, ": ", error.message()));
+  if (access(directory.c_str(), W_OK | X_OK) != 0)
+    return absl::PermissionDeniedError(
+        absl::StrCat("store directory ", directory, " is not writable by this user"));
+  std::shared_ptr<SharedStore> store(new SharedStore(directory));
+  store->SweepTemporaries("");
+  return store;
+}
+
+bool SharedStore::IsValidKey(const std::string& key) {
+  if (key.empty() || key.size() > static_cast<size_t>(kMaxKeyLength) || key.front() == '.')
+    return false;
+  for (char c : key)
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-'))
+      return false;
+  return true;
+}
+
+std::string SharedStore::EntryPath(const std::string& key) const {
+  return (fs::path(directory_) / absl::StrCat(key, kEntrySuffix)).string();
+}
+
+std::shared_ptr<const StoreEntry> SharedStore::Cached(const std::string& key) const {
+  std::lock_guard lock(mutex_);
+  auto it = mapped_.find(key);
+  return it == mapped_.end() ? nullptr : it->second;
+}
+
+void SharedStore::Remember(const std::shared_ptr<const StoreEntry>& entry) const {
+  std::lock_guard lock(mutex_);
+  mapped_.emplace(entry->key(), entry);
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::MapFile(const std::string& path,
+                                                                       const std::string& key,
+                                                                       EntryKind kind) const {
+  auto file = MapEntryFile(path, key, kind);
+  if (!file.ok()) return file.status();
+  std::shared_ptr<StoreEntry> entry(new StoreEntry);
+  entry->key_ = std::string(key);
+  entry->kind_ = kind;
+  entry->mapping_ = file->mapping;
+  entry->mapping_bytes_ = file->bytes;
+  entry->payload_ = file->payload;
+  entry->build_ms_ = static_cast<double>(file->header->build_microseconds) / 1000.0;
+  return std::shared_ptr<const StoreEntry>(std::move(entry));
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::Attach(const std::string& key,
+                                                                      EntryKind kind) const {
+  if (!IsValidKey(key))
+    return absl::InvalidArgumentError(absl::StrCat("bad store key '", key, "'"));
+  if (auto cached = Cached(key)) {
+    if (cached->kind() != kind)
+      return absl::FailedPreconditionError(
+          absl::StrCat("store entry ", key, " holds a ", EntryKindName(cached->kind())));
+    return cached;
+  }
+  auto entry = MapFile(EntryPath(key), key, kind);
+  if (!entry.ok()) return entry.status();
+  attached_.fetch_add(1, std::memory_order_relaxed);
+  Remember(*entry);
+  return *entry;
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
+    const std::string& key, EntryKind kind, const Builder& build) const {
+  auto entry = Attach(key, kind);
+  if (entry.ok() || (!absl::IsNotFound(entry.status()) && !absl::IsDataLoss(entry.status())))
+    return entry;
+
+  const std::string path = EntryPath(key);
+  auto lock = KeyLock::Acquire((fs::path(directory_) / absl::StrCat(key, ".lock")).string(), true);
+  if (!lock.ok()) return lock.status();
+  // Another process may have published it while this one waited for the lock.
+  entry = Attach(key, kind);
+  if (entry.ok() || (!absl::IsNotFound(entry.status()) && !absl::IsDataLoss(entry.status())))
+    return entry;
+  if (absl::IsDataLoss(entry.status())) {
+    rejected_.fetch_add(1, std::memory_order_relaxed);
+    unlink(path.c_str());
+  }
+  SweepTemporaries(key);
+
+  auto writer = EntryWriter::Begin(absl::StrCat(path, ".tmp.", getpid()), key, kind);
+  if (!writer.ok()) return writer.status();
+  const auto start = std::chrono::steady_clock::now();
+  auto payload = build();
+  if (!payload.ok()) return payload.status();
+  const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
+                          std::chrono::steady_clock::now() - start)
+                          .count();
+  if (auto status = writer->Publish(*payload, static_cast<uint64_t>(micros), path); !status.ok())
+    return status;
+  auto published = MapFile(path, key, kind);
+  if (!published.ok()) return published.status();
+  built_.fetch_add(1, std::memory_order_relaxed);
+  Remember(*published);
+  return *published;
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::Put(
+    const std::string& key, EntryKind kind, std::span<const std::byte> payload) const {
+  return GetOrBuild(key, kind, [&]() -> absl::StatusOr<std::vector<std::byte>> {
+    return std::vector<std::byte>(payload.begin(), payload.end());
+  });
+}
+
+bool SharedStore::Has(const std::string& key, EntryKind kind) const {
+  return Attach(key, kind).ok();
+}
+
+void SharedStore::SweepTemporaries(const std::string& only_key) const {
+  std::error_code error;
+  for (const auto& item : fs::directory_iterator(directory_, error)) {
+    const std::string name = item.path().filename().string();
+    const size_t infix = name.find(kTemporaryInfix);
+    if (infix == std::string::npos || infix == 0) continue;
+    const std::string key = name.substr(0, infix);
+    if (!only_key.empty()) {
+      // The caller holds this key's lock: whoever wrote the file is gone.
+      if (key == only_key) fs::remove(item.path(), error);
+      continue;
+    }
+    auto lock = KeyLock::Acquire((fs::path(directory_) / absl::StrCat(key, ".lock")).string(),
+                                 /*wait=*/false);
+    if (lock.ok()) fs::remove(item.path(), error);  // its builder died mid-build
+  }
+}
+
+std::vector<StoreEntryInfo> SharedStore::List() const {
+  std::vector<StoreEntryInfo> entries;
+  std::error_code error;
+  for (const auto& item : fs::directory_iterator(directory_, error)) {
+    const std::string name = item.path().filename().string();
+    StoreEntryInfo info;
+    info.file = item.path().string();
+    info.bytes = item.is_regular_file(error) ? item.file_size(error) : 0;
+    if (const size_t infix = name.find(kTemporaryInfix); infix != std::string::npos) {
+      info.key = name.substr(0, infix);
+      info.state = "building (or left by a crashed builder)";
+    } else if (absl::EndsWith(name, kEntrySuffix)) {
+      info.key = name.substr(0, name.size() - std::strlen(kEntrySuffix));
+      // Any kind: read the header's kind by trying each.
+      info.state = "unreadable";
+      for (EntryKind kind :
+           {EntryKind::kBlob, EntryKind::kPrefilteredTable, EntryKind::kPackedTexture}) {
+        auto file = MapEntryFile(info.file, info.key, kind);
+        if (file.ok()) {
+          info.state = absl::StrCat("complete ", EntryKindName(kind));
+          UnmapEntryFile(*file);
+          break;
+        }
+        if (!absl::IsFailedPrecondition(file.status())) {
+          info.state = std::string(file.status().message());
+          break;
+        }
+      }
+    } else {
+      continue;
+    }
+    entries.push_back(std::move(info));
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const StoreEntryInfo& a, const StoreEntryInfo& b) { return a.file < b.file; });
+  return entries;
+}
+
+StoreCounters SharedStore::counters() const {
+  return {attached_.load(), built_.load(), rejected_.load()};
+}
+
+}  // namespace aperture

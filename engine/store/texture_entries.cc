@@ -1,0 +1,74 @@
+#include "store/texture_entries.h"
+
+#include <xxhash.h>
+
+#include <cstring>
+
+#include "absl/strings/str_format.h"
+#include "texture/packed/apv_file.h"
+#include "texture/packed/packed_texture.h"
+#include "texture/prefiltered_table.h"
+#include "texture/prefiltered_table_builder.h"
+
+namespace aperture {
+namespace {
+
+std::string Hex(XXH128_hash_t hash) {
+  return absl::StrFormat("%016x%016x", hash.high64, hash.low64);
+}
+
+std::vector<std::byte> ToBytes(std::span<const uint8_t> bytes) {
+  std::vector<std::byte> out(bytes.size());
+  if (!bytes.empty()) std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
+}
+
+}  // namespace
+
+std::string PrefilteredTableKey(const Image& base) {
+  XXH3_state_t* state = XXH3_createState();
+  XXH3_128bits_reset(state);
+  const int32_t size[2] = {base.width(), base.height()};
+  XXH3_128bits_update(state, size, sizeof(size));
+  XXH3_128bits_update(state, base.texels().data(), base.texels().size_bytes());
+  const XXH128_hash_t hash = XXH3_128bits_digest(state);
+  XXH3_freeState(state);
+  return absl::StrFormat("table-v%d-%s", kTableVersion, Hex(hash));
+}
+
+std::string PackedTextureKey(std::span<const uint8_t> apv_bytes) {
+  return absl::StrFormat("packed-v%d-%s", packed::kPackedVersion,
+                         Hex(XXH3_128bits(apv_bytes.data(), apv_bytes.size())));
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
+    const SharedStore& store, const Image& base) {
+  auto entry = store.GetOrBuild(PrefilteredTableKey(base), EntryKind::kPrefilteredTable,
+                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
+                                  auto block = BuildPrefilteredTable(base);
+                                  if (!block.ok()) return block.status();
+                                  return std::move(block->bytes);
+                                });
+  if (!entry.ok()) return entry.status();
+  // The store vouches for the bytes; the table's own checks guard against a foreign writer.
+  if (auto view = PrefilteredTable::View((*entry)->payload()); !view.ok()) return view.status();
+  return entry;
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrDecodePackedTexture(
+    const SharedStore& store, std::span<const uint8_t> apv_bytes) {
+  auto entry = store.GetOrBuild(PackedTextureKey(apv_bytes), EntryKind::kPackedTexture,
+                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
+                                  auto texture = packed::DecodeApv(apv_bytes);
+                                  if (!texture.ok()) return texture.status();
+                                  return ToBytes(texture->bytes());
+                                });
+  if (!entry.ok()) return entry.status();
+  const auto payload = (*entry)->payload();
+  auto view = packed::PackedTextureView::FromBytes(
+      {reinterpret_cast<const uint8_t*>(payload.data()), payload.size()});
+  if (!view.ok()) return view.status();
+  return entry;
+}
+
+}  // namespace aperture

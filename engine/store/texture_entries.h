@@ -1,0 +1,32 @@
+// What the engine keeps in the shared store (shared_store.h): seed 000 tables and seed 001 packed
+// textures, each keyed by a hash of its source so that every process (and a restarted server)
+// finds the entry another built.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "store/shared_store.h"
+#include "texture/image.h"
+
+namespace aperture {
+
+// "table-v<table version>-<XXH3-128 of the power-of-two image's size and texels>".
+std::string PrefilteredTableKey(const Image& base);
+// "packed-v<format version>-<XXH3-128 of the .apv bytes>".
+std::string PackedTextureKey(std::span<const uint8_t> apv_bytes);
+
+// The table of `base` (a 2^n x 2^n image), built with BuildPrefilteredTable when the store has
+// none; the payload is a block PrefilteredTable::View accepts.
+absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
+    const SharedStore& store, const Image& base);
+
+// The in-memory packed texture decoded from .apv bytes; the payload is what
+// packed::PackedTextureView::FromBytes accepts.
+absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrDecodePackedTexture(
+    const SharedStore& store, std::span<const uint8_t> apv_bytes);
+
+}  // namespace aperture

@@ -1,0 +1,230 @@
+#include "store/shared_store.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "gtest/gtest.h"
+#include "store/entry_file.h"
+
+namespace aperture {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::byte> Bytes(std::string_view text) {
+  std::vector<std::byte> bytes(text.size());
+  std::memcpy(bytes.data(), text.data(), text.size());
+  return bytes;
+}
+
+std::string Text(std::span<const std::byte> bytes) {
+  return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+class SharedStoreTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    directory_ = fs::path("/dev/shm") / (std::string("aperture-store-test-") + info->name() + "-" +
+                                         std::to_string(getpid()));
+    fs::remove_all(directory_);
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  std::shared_ptr<SharedStore> OpenStore() {
+    auto store = SharedStore::Open(directory_.string());
+    EXPECT_TRUE(store.ok()) << store.status();
+    return *store;
+  }
+  fs::path EntryFile(const std::string& key) { return directory_ / (key + ".entry"); }
+
+  fs::path directory_;
+};
+
+TEST_F(SharedStoreTest, PublishedEntryIsReadBackByAnotherStoreOnTheDirectory) {
+  auto writer = OpenStore();
+  auto put = writer->Put("blob-1", EntryKind::kBlob, Bytes("hello, shared memory"));
+  ASSERT_TRUE(put.ok()) << put.status();
+  EXPECT_EQ(Text((*put)->payload()), "hello, shared memory");
+  EXPECT_EQ(reinterpret_cast<uintptr_t>((*put)->payload().data()) % kPayloadAlignment, 0u);
+
+  auto reader = OpenStore();  // as a second process would
+  auto attached = reader->Attach("blob-1", EntryKind::kBlob);
+  ASSERT_TRUE(attached.ok()) << attached.status();
+  EXPECT_EQ(Text((*attached)->payload()), "hello, shared memory");
+  EXPECT_EQ(reader->counters().attached, 1u);
+  EXPECT_EQ(reader->counters().built, 0u);
+  EXPECT_TRUE(reader->Has("blob-1", EntryKind::kBlob));
+  EXPECT_FALSE(reader->Has("blob-2", EntryKind::kBlob));
+}
+
+TEST_F(SharedStoreTest, MissingKeyIsNotFoundAndBadKeysAreRefused) {
+  auto store = OpenStore();
+  EXPECT_TRUE(absl::IsNotFound(store->Attach("nothing", EntryKind::kBlob).status()));
+  for (const char* key : {"", ".hidden", "UPPER", "a/b", "../up"})
+    EXPECT_TRUE(absl::IsInvalidArgument(store->Attach(key, EntryKind::kBlob).status())) << key;
+  EXPECT_FALSE(SharedStore::IsValidKey(std::string(kMaxKeyLength + 1, 'a')));
+  EXPECT_TRUE(SharedStore::IsValidKey("table-0123abcd.v1_x"));
+}
+
+TEST_F(SharedStoreTest, AnEntryOfAnotherKindIsRefused) {
+  auto store = OpenStore();
+  ASSERT_TRUE(store->Put("k", EntryKind::kBlob, Bytes("x")).ok());
+  auto other = OpenStore();
+  auto status = other->Attach("k", EntryKind::kPrefilteredTable).status();
+  EXPECT_TRUE(absl::IsFailedPrecondition(status)) << status;
+  EXPECT_NE(status.message().find("blob"), std::string::npos) << status;
+}
+
+TEST_F(SharedStoreTest, GetOrBuildBuildsOnceThenEveryStoreAttaches) {
+  int builds = 0;
+  auto builder = [&]() -> absl::StatusOr<std::vector<std::byte>> {
+    ++builds;
+    return Bytes("built payload");
+  };
+  auto first = OpenStore()->GetOrBuild("table-a", EntryKind::kPrefilteredTable, builder);
+  ASSERT_TRUE(first.ok()) << first.status();
+  auto second_store = OpenStore();
+  auto second = second_store->GetOrBuild("table-a", EntryKind::kPrefilteredTable, builder);
+  ASSERT_TRUE(second.ok()) << second.status();
+  EXPECT_EQ(builds, 1);
+  EXPECT_EQ(Text((*second)->payload()), "built payload");
+  EXPECT_EQ(second_store->counters().attached, 1u);
+  EXPECT_EQ(second_store->counters().built, 0u);
+}
+
+TEST_F(SharedStoreTest, ConcurrentBuildersOfOneKeyBuildItOnce) {
+  std::atomic<int> builds{0};
+  auto builder = [&]() -> absl::StatusOr<std::vector<std::byte>> {
+    builds.fetch_add(1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    return Bytes("slow payload");
+  };
+  std::vector<std::thread> threads;
+  std::atomic<int> ok{0};
+  for (int i = 0; i < 4; ++i)
+    threads.emplace_back([&] {
+      auto store = SharedStore::Open(directory_.string());  // each its own "process"
+      if (!store.ok()) return;
+      auto entry = (*store)->GetOrBuild("shared", EntryKind::kBlob, builder);
+      if (entry.ok() && Text((*entry)->payload()) == "slow payload") ok.fetch_add(1);
+    });
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(ok.load(), 4);
+  EXPECT_EQ(builds.load(), 1);
+}
+
+TEST_F(SharedStoreTest, ACorruptEntryIsDetectedNeverUsedAndRebuilt) {
+  ASSERT_TRUE(OpenStore()->Put("blob", EntryKind::kBlob, Bytes("original bytes")).ok());
+  {
+    std::fstream file(EntryFile("blob"), std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(-3, std::ios::end);
+    file.put('X');
+  }
+  auto store = OpenStore();
+  auto status = store->Attach("blob", EntryKind::kBlob).status();
+  EXPECT_TRUE(absl::IsDataLoss(status)) << status;
+  EXPECT_NE(status.message().find("checksum"), std::string::npos) << status;
+
+  int builds = 0;
+  auto rebuilt = store->GetOrBuild("blob", EntryKind::kBlob, [&] {
+    ++builds;
+    return absl::StatusOr<std::vector<std::byte>>(Bytes("original bytes"));
+  });
+  ASSERT_TRUE(rebuilt.ok()) << rebuilt.status();
+  EXPECT_EQ(builds, 1);
+  EXPECT_EQ(Text((*rebuilt)->payload()), "original bytes");
+  EXPECT_EQ(store->counters().rejected, 1u);
+  EXPECT_TRUE(OpenStore()->Attach("blob", EntryKind::kBlob).ok());
+}
+
+TEST_F(SharedStoreTest, ATruncatedEntryIsDetected) {
+  ASSERT_TRUE(OpenStore()->Put("blob", EntryKind::kBlob, Bytes(std::string(1000, 'z'))).ok());
+  fs::resize_file(EntryFile("blob"), fs::file_size(EntryFile("blob")) - 10);
+  auto status = OpenStore()->Attach("blob", EntryKind::kBlob).status();
+  EXPECT_TRUE(absl::IsDataLoss(status)) << status;
+}
+
+TEST_F(SharedStoreTest, AnEntryNotMarkedCompleteIsNeverUsed) {
+  // A writer that stops before publishing (as a crash would) leaves a file without the mark;
+  // even under the final name it is refused.
+  ASSERT_TRUE(OpenStore().get());
+  {
+    auto writer =
+        EntryWriter::Begin((directory_ / "half.entry.tmp.1").string(), "half", EntryKind::kBlob);
+    ASSERT_TRUE(writer.ok());
+    fs::copy_file(directory_ / "half.entry.tmp.1", EntryFile("half"));
+  }
+  auto status = OpenStore()->Attach("half", EntryKind::kBlob).status();
+  EXPECT_TRUE(absl::IsDataLoss(status)) << status;
+  EXPECT_NE(status.message().find("half written"), std::string::npos) << status;
+}
+
+TEST_F(SharedStoreTest, ABuilderKilledMidBuildLeavesOnlyATemporaryThatIsSweptAndRebuilt) {
+  ASSERT_TRUE(OpenStore().get());
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    auto store = SharedStore::Open(directory_.string());
+    if (store.ok())
+      (void)(*store)->GetOrBuild("slow", EntryKind::kBlob, [] {
+        sleep(30);  // killed long before this returns
+        return absl::StatusOr<std::vector<std::byte>>(std::vector<std::byte>{});
+      });
+    _exit(0);
+  }
+  const fs::path temporary = directory_ / ("slow.entry.tmp." + std::to_string(child));
+  for (int i = 0; i < 500 && !fs::exists(temporary); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(fs::exists(temporary));
+  kill(child, SIGKILL);
+  waitpid(child, nullptr, 0);
+
+  EXPECT_FALSE(fs::exists(EntryFile("slow")));
+  auto store = OpenStore();  // a restart: sweeps what the dead builder left
+  EXPECT_FALSE(fs::exists(temporary));
+  EXPECT_TRUE(absl::IsNotFound(store->Attach("slow", EntryKind::kBlob).status()));
+  auto built = store->GetOrBuild("slow", EntryKind::kBlob, [] {
+    return absl::StatusOr<std::vector<std::byte>>(Bytes("now complete"));
+  });
+  ASSERT_TRUE(built.ok()) << built.status();
+  EXPECT_EQ(store->counters().built, 1u);
+}
+
+TEST_F(SharedStoreTest, AFailingBuilderPublishesNothing) {
+  auto store = OpenStore();
+  auto status = store->GetOrBuild("bad", EntryKind::kBlob, [] {
+    return absl::StatusOr<std::vector<std::byte>>(absl::InvalidArgumentError("no such image"));
+  });
+  EXPECT_TRUE(absl::IsInvalidArgument(status.status()));
+  EXPECT_TRUE(store->List().empty() ||
+              std::all_of(store->List().begin(), store->List().end(),
+                          [](const StoreEntryInfo& e) { return e.key != "bad"; }));
+}
+
+TEST_F(SharedStoreTest, ListShowsCompleteAndBrokenEntries) {
+  auto store = OpenStore();
+  ASSERT_TRUE(store->Put("good", EntryKind::kPackedTexture, Bytes("packed")).ok());
+  ASSERT_TRUE(store->Put("broken", EntryKind::kBlob, Bytes("some bytes")).ok());
+  fs::resize_file(EntryFile("broken"), 20);
+  auto entries = store->List();
+  ASSERT_EQ(entries.size(), 2u);
+  EXPECT_EQ(entries[0].key, "broken");
+  EXPECT_NE(entries[0].state.find("shorter than a header"), std::string::npos) << entries[0].state;
+  EXPECT_EQ(entries[1].key, "good");
+  EXPECT_EQ(entries[1].state, "complete packed-texture");
+}
+
+TEST(SharedStoreOpen, AnUnwritableDirectoryIsAClearError) {
+  auto store = SharedStore::Open("/proc/aperture-cannot-be-here");
+  ASSERT_FALSE(store.ok());
+  EXPECT_NE(store.status().message().find("/proc/aperture-cannot-be-here"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aperture
