@@ -1,9 +1,32 @@
 #!/usr/bin/env bash
-# First command of the README: install what is missing, build, render the built-in demo scene.
+# First command of the README: install what is missing, build, then the main job on the built-in
+# demo scene: render it locally, and through the service (a server on loopback, the client).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 mkdir -p out
 build/engine/aperture-render --scene demo -o out/demo.exr
-echo "setup: done. Open out/demo.png (preview) or out/demo.exr."
+
+# The service: a server on a free loopback port with a store of its own under out/, the client
+# renders the same frame through it; the server is stopped (SIGTERM) whatever happens.
+store="out/store"
+build/server/aperture-server --listen 127.0.0.1:0 --store "$store" >out/server.stdout \
+  2>out/server.log &
+server_pid=$!
+trap 'kill "$server_pid" 2>/dev/null || true; wait "$server_pid" 2>/dev/null || true' EXIT
+address=""
+for _ in $(seq 1 200); do
+  address=$(sed -n 's/^listening on //p' out/server.stdout)
+  [ -n "$address" ] && break
+  kill -0 "$server_pid" 2>/dev/null || { cat out/server.log >&2; exit 1; }
+  sleep 0.1
+done
+[ -n "$address" ] || { echo "setup: the server did not start; see out/server.log" >&2; exit 1; }
+build/client/aperture health --server "$address"
+build/client/aperture render --server "$address" --scene demo -o out/demo-service.exr
+kill -TERM "$server_pid"
+wait "$server_pid" || true
+trap - EXIT
+echo "setup: done. Open out/demo.png (preview) or out/demo.exr; out/demo-service.exr came" \
+  "through the render service (server log: out/server.log)."
