@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# Service benchmarks of issue 5, all on loopback, each bounded in time:
+#   overhead  a 1920x1080 demo frame through the service vs the local render + encode (same run,
+#             rounds interleaved);
+#   restart   a server started on a baked store: time from its start to its first frame, vs a
+#             server on an empty store (which builds the demo's tables first);
+#   load      `aperture load` for 640x480 frames at concurrency 1, 8 and 32, LOAD_S seconds each;
+#   soak      server RSS at minute 1 and at minute SOAK_MIN of a concurrency-8 load.
+# Usage: scripts/bench-service.sh [overhead|restart|load|soak|all]   (default all)
+# Environment: LOAD_S (default 60), SOAK_MIN (default 5), ROUNDS (default 5).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+what="${1:-all}"
+load_s="${LOAD_S:-60}"
+soak_min="${SOAK_MIN:-5}"
+rounds="${ROUNDS:-5}"
+server_bin=build/server/aperture-server
+client_bin=build/client/aperture
+render_bin=build/engine/aperture-render
+tex_bin=build/engine/aperture-tex
+work=$(mktemp -d)
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+# start_server STORE [flags...]: starts a server on a free loopback port; sets $address, $pid.
+start_server() {
+  local store="$1"
+  shift
+  local log="$work/server.$RANDOM"
+  log_of_last_server="$log"
+  "$server_bin" --listen 127.0.0.1:0 --threads 2 --store "$store" "$@" >"$log.out" 2>"$log.err" &
+  pid=$!
+  pids+=("$pid")
+  address=""
+  for _ in $(seq 1 400); do
+    address=$(sed -n 's/^listening on //p' "$log.out")
+    [ -n "$address" ] && return 0
+    sleep 0.005
+  done
+  echo "server did not start: $(cat "$log.err")" >&2
+  exit 1
+}
+stop_server() { kill -TERM "$pid" 2>/dev/null || true; wait "$pid" 2>/dev/null || true; }
+ms_of() { grep -oE "$1 [0-9.]+" | head -1 | awk '{print $NF}'; }
+now_ms() { date +%s%3N; }
+
+overhead() {
+  echo "== overhead: demo 1920x1080, box2, 2 threads, half/zip; fastest of $rounds rounds"
+  start_server "$work/store-overhead"
+  "$client_bin" render --server "$address" --scene demo --size 64x64 -o "$work/warm.exr" >/dev/null
+  local best_local=1e9 best_service=1e9
+  for _ in $(seq 1 "$rounds"); do
+    line=$("$render_bin" --scene demo --size 1920x1080 --threads 2 --nopreview -o "$work/l.exr")
+    local_ms=$(awk -v a="$(echo "$line" | ms_of setup)" -v b="$(echo "$line" | ms_of raster)" \
+      -v c="$(echo "$line" | ms_of encode)" 'BEGIN {print a + b + c}')
+    line=$("$client_bin" render --server "$address" --scene demo --size 1920x1080 -o "$work/s.exr")
+    service_ms=$(echo "$line" | ms_of "round trip")
+    best_local=$(awk -v a="$best_local" -v b="$local_ms" 'BEGIN {print (b < a) ? b : a}')
+    best_service=$(awk -v a="$best_service" -v b="$service_ms" 'BEGIN {print (b < a) ? b : a}')
+  done
+  stop_server
+  awk -v l="$best_local" -v s="$best_service" 'BEGIN {
+    printf "local setup+raster+encode %.1f ms, service round trip %.1f ms: %.3fx\n", l, s, s / l }'
+}
+
+restart() {
+  echo "== restart: a server (re)started on a baked store vs an empty one; demo frame, aniso"
+  "$tex_bin" bake demo --store "$work/store-baked" | tail -1
+  for size in 640x480 1920x1080; do
+    for store in baked empty; do
+      for _ in $(seq 1 3); do
+        local t0 t1 t2
+        t0=$(now_ms)
+        start_server "$work/store-$store"
+        t1=$(now_ms)
+        "$client_bin" render --server "$address" --scene demo --size "$size" --filter aniso \
+          -o "$work/r.exr" >/dev/null
+        t2=$(now_ms)
+        stop_server
+        # Server-side work of the first frame: loading the scene (textures, tables) and the frame.
+        local log="${log_of_last_server}.err"
+        local work_ms
+        work_ms=$(awk '/rpc=LoadScene/ {for (i = 1; i <= NF; i++) if ($i ~ /^ms=/) s += substr($i, 4)}
+                       /rpc=RenderFrame/ {for (i = 1; i <= NF; i++) if ($i ~ /^total_ms=/) s += substr($i, 10)}
+                       END {printf "%.0f", s}' "$log")
+        echo "$size store $store: listening after $((t1 - t0)) ms; scene load + first frame" \
+          "$work_ms ms in the server: $((t1 - t0 + work_ms)) ms; client end to end $((t2 - t0)) ms"
+        [ "$store" = empty ] && rm -rf "$work/store-empty"
+      done
+    done
+  done
+}
+
+load() {
+  echo "== load: 640x480 demo frames, $load_s s per concurrency, server --threads 2"
+  start_server "$work/store-load" --max-queue 64
+  for c in 1 8 32; do
+    "$client_bin" load --server "$address" --scene demo --size 640x480 --concurrency "$c" \
+      --duration "$load_s" | sed "s/^/concurrency $c: /"
+  done
+  stop_server
+}
+
+rss_kb() { awk '/VmRSS/ {print $2}' "/proc/$1/status"; }
+
+soak() {
+  echo "== soak: concurrency 8, 640x480, $soak_min min; server RSS at minute 1 and at the end"
+  start_server "$work/store-soak" --max-queue 64
+  "$client_bin" load --server "$address" --scene demo --size 640x480 --concurrency 8 \
+    --duration $((soak_min * 60)) >"$work/soak.txt" &
+  local load_pid=$!
+  pids+=("$load_pid")
+  sleep 60
+  local first
+  first=$(rss_kb "$pid")
+  echo "minute 1: RSS $((first / 1024)) MiB"
+  wait "$load_pid"
+  local last
+  last=$(rss_kb "$pid")
+  echo "minute $soak_min: RSS $((last / 1024)) MiB"
+  sed 's/^/soak load: /' "$work/soak.txt"
+  awk -v a="$first" -v b="$last" 'BEGIN {printf "RSS growth minute 1 -> end: %+.1f%%\n", 100 * (b - a) / a}'
+  stop_server
+}
+
+case "$what" in
+  overhead | restart | load | soak) "$what" ;;
+  all) overhead; restart; load; soak ;;
+  *) echo "usage: $0 [overhead|restart|load|soak|all]" >&2; exit 2 ;;
+esac
