@@ -169,14 +169,14 @@ size_t CountFrames(const std::filesystem::path& dir) {
 }
 
 TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
-  constexpr int kFrames = 30;
+  constexpr int kFrames = 200;
   std::string error;
   auto a = ServerProcess::Start({"--threads=1"}, &error);
   ASSERT_NE(a, nullptr) << error;
   auto b = ServerProcess::Start({"--threads=1"}, &error);
   ASSERT_NE(b, nullptr) << error;
   const std::string job = (dir_ / "job.json").string();
-  std::ofstream(job) << R"({"scene": "demo", "size": "96x64", "filter": "trilinear",
+  std::ofstream(job) << R"({"scene": "demo", "size": "64x48", "filter": "trilinear",
       "path": {"from": "0,14,-100,0,-5,0", "to": "0,14,-400,0,-5,0", "frames": )"
                      << kFrames << "}}";
   const std::filesystem::path out = dir_ / "frames";
@@ -185,9 +185,9 @@ TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
       "-o=" + out.string(), "--concurrency=2"};
   auto run = std::async(std::launch::async, [&] { return RunCommand(batch, 120); });
 
-  // Kill one server once a fifth of the frames are written.
+  // Kill one server half-way through the job.
   const auto start = std::chrono::steady_clock::now();
-  while (CountFrames(out) < kFrames / 5 &&
+  while (CountFrames(out) < kFrames / 2 &&
          std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   const size_t written_at_kill = CountFrames(out);
@@ -203,15 +203,15 @@ TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
     std::snprintf(name, sizeof name, "frame_%06d.exr", i);
     int w = 0, h = 0;
     EXPECT_FALSE(Pixels((out / name).string(), &w, &h).empty()) << name;
-    EXPECT_EQ(w, 96) << name;
-    EXPECT_EQ(h, 64) << name;
+    EXPECT_EQ(w, 64) << name;
+    EXPECT_EQ(h, 48) << name;
   }
 
   // A rerun finds every frame written and valid, and renders nothing.
   const CommandResult second = RunCommand(
       {APERTURE_CLIENT_BIN, "batch", job, "--servers=" + a->address(), "-o=" + out.string()}, 60);
   EXPECT_EQ(second.exit_code, 0) << second.err;
-  EXPECT_THAT(second.out, HasSubstr("0 rendered, 30 skipped"));
+  EXPECT_THAT(second.out, HasSubstr("0 rendered, 200 skipped"));
 }
 
 }  // namespace
