@@ -106,9 +106,12 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
     response->set_polygons(static_cast<uint32_t>(loaded->scene->polygons.size()));
     response->set_textures(static_cast<uint32_t>(loaded->scene->textures.size()));
     response->set_build_ms(MillisecondsSince(start));
+    if (loaded->default_camera) *response->mutable_default_camera() = *loaded->default_camera;
   }
   spdlog::info("req={} rpc=LoadScene peer={} scene={} name='{}' ms={:.2f} status={}{}", id,
-               context->peer(), loaded.ok() ? Short(loaded->id) : "-", request->scene().name(),
+               context->peer(), loaded.ok() ? Short(loaded->id) : "-",
+               request->builtin_scene().empty() ? request->scene().name()
+                                                : "builtin:" + request->builtin_scene(),
                MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),
                loaded.ok() ? "" : absl::StrCat(" error='", loaded.status().message(), "'"));
   return ToGrpcStatus(loaded.status());

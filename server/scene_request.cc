@@ -1,11 +1,13 @@
 #include "scene_request.h"
 
+#include <optional>
 #include <set>
 
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
 #include "google/protobuf/io/coded_stream.h"
 #include "google/protobuf/io/zero_copy_stream_impl_lite.h"
+#include "scene/builtin_scenes.h"
 #include "scene/scene_builder.h"
 
 namespace aperture {
@@ -26,6 +28,18 @@ std::string DeterministicBytes(const v1::LoadSceneRequest& request) {
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
                                                   const TextureStore& textures) {
   v1::Scene scene = request.scene();
+  std::optional<v1::Camera> default_camera;
+  if (!request.builtin_scene().empty()) {
+    if (request.has_scene() || !request.texture_sha256().empty())
+      return absl::InvalidArgumentError(
+          "builtin_scene: give either a built-in scene's name or a scene, not both");
+    auto builtin = FindBuiltinScene(request.builtin_scene());
+    if (!builtin.ok())
+      return absl::InvalidArgumentError(
+          absl::StrCat("builtin_scene: ", builtin.status().message()));
+    scene = std::move(builtin->scene);
+    default_camera = CameraToProto(builtin->camera);
+  }
   std::set<std::string> referenced;
   for (int i = 0; i < scene.textures_size(); ++i) {
     v1::Texture& texture = *scene.mutable_textures(i);
@@ -61,7 +75,7 @@ absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& re
   auto built = BuildScene(scene, options);
   if (!built.ok()) return built.status();
   return LoadedScene{Sha256Hex(DeterministicBytes(request)),
-                     std::make_shared<const Scene>(*std::move(built))};
+                     std::make_shared<const Scene>(*std::move(built)), std::move(default_camera)};
 }
 
 }  // namespace aperture

@@ -1,8 +1,10 @@
-// A LoadScene request made into an engine scene: textures referenced by hash are taken from the
-// texture store, file paths are refused, then the engine validates and builds the scene.
+// A LoadScene request made into an engine scene: a built-in scene by name, or the scene sent with
+// textures referenced by hash taken from the texture store (file paths are refused); then the
+// engine validates and builds it.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -15,6 +17,7 @@ namespace aperture {
 struct LoadedScene {
   std::string id;  // SHA-256 of the request: the same scene loads to the same id
   std::shared_ptr<const Scene> scene;
+  std::optional<v1::Camera> default_camera;  // built-in scenes: the camera they are seen from
 };
 
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,

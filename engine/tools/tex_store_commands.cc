@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "scene/demo_scene.h"
+#include "scene/builtin_scenes.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
 #include "store/shared_store.h"
@@ -48,10 +48,11 @@ absl::StatusOr<StoreArgs> ParseStoreArgs(int argc, char** argv) {
 
 absl::StatusOr<Scene> LoadForBake(const std::string& argument,
                                   std::shared_ptr<const SharedStore> store) {
-  if (argument != "demo") return LoadSceneFile(argument, std::move(store));
+  auto builtin = FindBuiltinScene(argument);
+  if (!builtin.ok()) return LoadSceneFile(argument, std::move(store));
   SceneBuildOptions options;
   options.store = std::move(store);
-  return BuildScene(MakeDemoScene(), options);
+  return BuildScene(builtin->scene, options);
 }
 
 // ---- bake ------------------------------------------------------------------------------------
@@ -61,7 +62,7 @@ int RunBake(int argc, char** argv) {
   if (!args.ok()) return Fail("bake", std::string(args.status().message()));
   if (args->help || args->positional.empty()) {
     std::fprintf(args->help ? stdout : stderr,
-                 "usage: aperture-tex bake SCENE.json|demo ... [--store DIR]\n"
+                 "usage: aperture-tex bake SCENE.json|demo|triangles|skewed ... [--store DIR]\n"
                  "Fills the shared texture store (default %s) with every table and packed\n"
                  "texture the scenes use, so servers map them at once instead of building them.\n"
                  "Entries already there are checked and kept; broken ones are rebuilt.\n",

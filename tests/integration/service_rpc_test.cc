@@ -11,6 +11,8 @@
 #include "content_hash.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "integration/service_fixture.h"
+#include "scene/demo_scene.h"
+#include "scene/scene_builder.h"
 
 namespace aperture::testing {
 namespace {
@@ -173,6 +175,35 @@ TEST_F(ServiceTest, LoadSceneResolvesUploadedTexturesAndRefusesUnknownOnes) {
   status = stub_->LoadScene(&context2, with_file, &response);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(status.error_message(), HasSubstr("scene.textures[0]"));
+}
+
+TEST_F(ServiceTest, BuiltinScenesAreBuiltByTheServerWithTheirCamera) {
+  StartServer();
+  v1::LoadSceneRequest request;
+  request.set_builtin_scene("demo");
+  grpc::ClientContext context;
+  v1::LoadSceneResponse response;
+  grpc::Status status = stub_->LoadScene(&context, request, &response);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(response.scene_id().size(), 64u);
+  EXPECT_GT(response.polygons(), 1000u);
+  const v1::Camera expected = CameraToProto(DemoCamera());
+  EXPECT_EQ(response.default_camera().SerializeAsString(), expected.SerializeAsString());
+  EXPECT_TRUE(Render(FrameRequest(response.scene_id(), 32, 24), 30).ok());
+
+  v1::LoadSceneRequest unknown;
+  unknown.set_builtin_scene("moon");
+  grpc::ClientContext context2;
+  status = stub_->LoadScene(&context2, unknown, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("builtin_scene: unknown built-in scene 'moon'"));
+
+  v1::LoadSceneRequest both = request;
+  both.mutable_scene()->set_name("also a scene");
+  grpc::ClientContext context3;
+  status = stub_->LoadScene(&context3, both, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("not both"));
 }
 
 TEST_F(ServiceTest, RenderFrameReturnsExrAndTimings) {

@@ -1,0 +1,22 @@
+// The scenes built into every tool and the server, by name: "demo" (the airfield on final
+// approach), "triangles" (10,000 random triangles) and "skewed" (a dense city block in one corner
+// of the view). Each comes with the camera it is meant to be seen from.
+#pragma once
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "aperture/v1/scene.pb.h"
+#include "scene/camera.h"
+
+namespace aperture {
+
+struct BuiltinScene {
+  v1::Scene scene;
+  Camera camera;
+};
+
+// InvalidArgument naming the known scenes for any other name.
+absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name);
+
+}  // namespace aperture
