@@ -19,6 +19,9 @@ client_bin=build/client/aperture
 render_bin=build/engine/aperture-render
 tex_bin=build/engine/aperture-tex
 work=$(mktemp -d)
+# Server logs are kept for a look afterwards (one line per request, errors named).
+logs=out/bench-service
+mkdir -p "$logs"
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
@@ -30,7 +33,7 @@ trap cleanup EXIT
 start_server() {
   local store="$1"
   shift
-  local log="$work/server.$RANDOM"
+  local log="$logs/server.$(date +%H%M%S).$RANDOM"
   log_of_last_server="$log"
   "$server_bin" --listen 127.0.0.1:0 --threads 2 --store "$store" "$@" >"$log.out" 2>"$log.err" &
   pid=$!
@@ -125,6 +128,9 @@ soak() {
   sed 's/^/soak load: /' "$work/soak.txt"
   awk -v a="$first" -v b="$last" 'BEGIN {printf "RSS growth minute 1 -> end: %+.1f%%\n", 100 * (b - a) / a}'
   stop_server
+  echo "requests the server did not answer OK (log ${log_of_last_server}.err):"
+  grep -c "rpc=RenderFrame.*status=" "${log_of_last_server}.err" | sed 's/^/  RenderFrame lines: /'
+  grep "rpc=RenderFrame" "${log_of_last_server}.err" | grep -v "status=OK" | head -5 || true
 }
 
 case "$what" in
