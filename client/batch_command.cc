@@ -72,7 +72,7 @@ int RunBatch(const std::string& job_path) {
   std::vector<std::string> servers =
       absl::StrSplit(absl::GetFlag(FLAGS_servers), ',', absl::SkipEmpty());
   std::vector<std::string> ready;
-  std::string scene_id;
+  SceneOnServer loaded;
   for (const std::string& server : servers) {
     auto stub = v1::Render::NewStub(MakeChannel(server));
     auto scene = LoadSceneOnServer(*stub, job->scene);
@@ -81,11 +81,11 @@ int RunBatch(const std::string& job_path) {
                    std::string(scene.status().message()).c_str());
       continue;
     }
-    scene_id = scene->scene_id;
+    loaded = *std::move(scene);
     ready.push_back(server);
   }
   if (ready.empty()) return fail(absl::UnavailableError("no server could load the scene"));
-  auto base = FrameRequestFromFlags(scene_id);
+  auto base = FrameRequestFromFlags(loaded);
   if (!base.ok()) return fail(base.status());
 
   // gRPC's round_robin policy spreads the frames over the servers; a failed frame is retried,
@@ -94,7 +94,7 @@ int RunBatch(const std::string& job_path) {
   args.SetMaxReceiveMessageSize(-1);
   args.SetLoadBalancingPolicyName("round_robin");
   auto stub = v1::Render::NewStub(grpc::CreateCustomChannel(
-      absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), grpc::InsecureChannelCredentials(), args));
+      absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), ClientCredentials(), args));
 
   const size_t frames = job->cameras.size();
   const uint32_t width = base->options().width(), height = base->options().height();

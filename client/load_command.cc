@@ -23,7 +23,7 @@ int RunLoad() {
   using Clock = std::chrono::steady_clock;
   auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
   auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
-  auto request = scene.ok() ? FrameRequestFromFlags(scene->scene_id)
+  auto request = scene.ok() ? FrameRequestFromFlags(*scene)
                             : absl::StatusOr<v1::RenderFrameRequest>(scene.status());
   if (!request.ok()) {
     std::fprintf(stderr, "aperture load: error: %s\n",

@@ -19,7 +19,7 @@ int RunRender() {
   auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
   auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
   if (!scene.ok()) return fail(scene.status());
-  auto request = FrameRequestFromFlags(scene->scene_id);
+  auto request = FrameRequestFromFlags(*scene);
   if (!request.ok()) return fail(request.status());
 
   grpc::ClientContext context;

@@ -8,8 +8,6 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "client_flags.h"
-#include "scene/demo_scene.h"
-#include "scene/scene_builder.h"
 
 namespace aperture {
 namespace {
@@ -68,13 +66,13 @@ absl::Status ParseCameraInto(const std::string& spec, v1::Camera* camera) {
   return absl::OkStatus();
 }
 
-absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const std::string& scene_id) {
+absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const SceneOnServer& scene) {
   v1::RenderFrameRequest request;
-  request.set_scene_id(scene_id);
+  request.set_scene_id(scene.scene_id);
 
   v1::Camera& camera = *request.mutable_camera();
-  if (absl::GetFlag(FLAGS_scene) == "demo") {
-    camera = CameraToProto(DemoCamera());
+  if (scene.default_camera) {
+    camera = *scene.default_camera;
   } else {
     camera.mutable_position()->set_y(1.7);
     camera.set_near(0.1);

@@ -6,12 +6,14 @@
 
 #include "absl/status/statusor.h"
 #include "aperture/v1/render_service.pb.h"
+#include "scene_upload.h"
 
 namespace aperture {
 
 // "X,Y,Z,YAW,PITCH,ROLL" into `camera` (other fields kept).
 absl::Status ParseCameraInto(const std::string& spec, v1::Camera* camera);
 
-absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const std::string& scene_id);
+// Without --camera: the scene's own camera (built-in scenes), else eye height at the origin.
+absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const SceneOnServer& scene);
 
 }  // namespace aperture

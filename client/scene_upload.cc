@@ -9,7 +9,6 @@
 #include "absl/strings/str_cat.h"
 #include "channel.h"
 #include "grpc_status.h"
-#include "scene/demo_scene.h"
 #include "texture_upload.h"
 
 namespace aperture {
@@ -23,8 +22,11 @@ absl::StatusOr<std::string> ReadFile(const std::string& path) {
   return std::move(content).str();
 }
 
+bool IsBuiltinScene(const std::string& argument) {
+  return argument == "demo" || argument == "triangles" || argument == "skewed";
+}
+
 absl::StatusOr<v1::Scene> ReadScene(const std::string& argument) {
-  if (argument == "demo") return MakeDemoScene();
   auto json = ReadFile(argument);
   if (!json.ok()) return json.status();
   v1::Scene scene;
@@ -35,17 +37,32 @@ absl::StatusOr<v1::Scene> ReadScene(const std::string& argument) {
   return scene;
 }
 
+absl::StatusOr<SceneOnServer> Load(v1::Render::Stub& stub, const v1::LoadSceneRequest& request,
+                                   SceneOnServer result) {
+  grpc::ClientContext context;
+  context.set_deadline(DeadlineIn(120));
+  v1::LoadSceneResponse response;
+  if (auto s = FromGrpcStatus(stub.LoadScene(&context, request, &response), "LoadScene"); !s.ok())
+    return s;
+  result.scene_id = response.scene_id();
+  result.polygons = response.polygons();
+  if (response.has_default_camera()) result.default_camera = response.default_camera();
+  return result;
+}
+
 }  // namespace
 
 absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
                                                 const std::string& scene_argument) {
-  auto scene = ReadScene(scene_argument);
-  if (!scene.ok()) return scene.status();
-  const std::filesystem::path base =
-      scene_argument == "demo" ? "" : std::filesystem::path(scene_argument).parent_path();
-
   SceneOnServer result;
   v1::LoadSceneRequest request;
+  if (IsBuiltinScene(scene_argument)) {
+    request.set_builtin_scene(scene_argument);  // the server builds it
+    return Load(stub, request, result);
+  }
+  auto scene = ReadScene(scene_argument);
+  if (!scene.ok()) return scene.status();
+  const std::filesystem::path base = std::filesystem::path(scene_argument).parent_path();
   for (v1::Texture& texture : *scene->mutable_textures()) {
     std::string bytes;
     if (texture.source_case() == v1::Texture::kFile) {
@@ -66,15 +83,7 @@ absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
   }
   if (scene->name().empty()) scene->set_name(scene_argument);
   *request.mutable_scene() = *std::move(scene);
-
-  grpc::ClientContext context;
-  context.set_deadline(DeadlineIn(120));
-  v1::LoadSceneResponse response;
-  if (auto s = FromGrpcStatus(stub.LoadScene(&context, request, &response), "LoadScene"); !s.ok())
-    return s;
-  result.scene_id = response.scene_id();
-  result.polygons = response.polygons();
-  return result;
+  return Load(stub, request, result);
 }
 
 }  // namespace aperture

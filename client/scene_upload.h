@@ -1,7 +1,9 @@
-// Gets a scene onto a server: reads `demo` or a scene JSON file, uploads its image textures
-// (skipping those the server already has), then loads the scene with textures referenced by hash.
+// Gets a scene onto a server: a built-in scene by name (demo, triangles, skewed: the server builds
+// it), or a scene JSON file whose image textures are uploaded (skipping those the server already
+// has) and then referenced by hash.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -13,9 +15,10 @@ struct SceneOnServer {
   std::string scene_id;
   uint32_t polygons = 0;
   int textures_sent = 0, textures_skipped = 0;
+  std::optional<v1::Camera> default_camera;  // built-in scenes: the camera they are seen from
 };
 
-// `demo` or the path of a scene file (proto3 JSON of aperture.v1.Scene).
+// A built-in scene's name or the path of a scene file (proto3 JSON of aperture.v1.Scene).
 absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
                                                 const std::string& scene_argument);
 

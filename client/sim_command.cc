@@ -55,7 +55,7 @@ int RunSim() {
   auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
   auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
   if (!scene.ok()) return fail(scene.status());
-  auto base = FrameRequestFromFlags(scene->scene_id);
+  auto base = FrameRequestFromFlags(*scene);
   if (!base.ok()) return fail(base.status());
   auto path = CameraPath(base->camera(), absl::GetFlag(FLAGS_frames), rate);
   if (!path.ok()) return fail(path.status());

@@ -98,7 +98,8 @@ TEST_F(ClientTest, FrameEqualsWhatApertureRenderWrites) {
   remote.insert(remote.end(), frame_flags.begin(), frame_flags.end());
   const CommandResult first = Client(remote);
   ASSERT_EQ(first.exit_code, 0) << first.err;
-  EXPECT_THAT(first.out, HasSubstr("textures uploaded 2, already on the server 0"));
+  // The server builds the built-in demo itself: nothing to upload.
+  EXPECT_THAT(first.out, HasSubstr("textures uploaded 0, already on the server 0"));
 
   int lw = 0, lh = 0, rw = 0, rh = 0;
   const std::vector<float> a = Pixels((dir_ / "local.exr").string(), &lw, &lh);
@@ -109,11 +110,19 @@ TEST_F(ClientTest, FrameEqualsWhatApertureRenderWrites) {
   EXPECT_EQ(rw, lw);
   EXPECT_EQ(rh, lh);
   EXPECT_TRUE(a == b) << "the service's pixels differ from aperture-render's";
+}
 
-  // The second render finds both textures on the server and sends none.
-  const CommandResult second = Client(remote);
+TEST_F(ClientTest, ASceneFilesTexturesAreUploadedOnceThenFoundOnTheServer) {
+  const std::vector<std::string> render = {"render", "--scene=" + WriteGroundScene(dir_),
+                                           "--camera=0,1.7,0,0,-10,0", "--size=64x48",
+                                           "-o=" + (dir_ / "ground.exr").string()};
+  const CommandResult first = Client(render);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_THAT(first.out, HasSubstr("textures uploaded 1, already on the server 0"));
+  // The second render finds the texture on the server and sends none.
+  const CommandResult second = Client(render);
   ASSERT_EQ(second.exit_code, 0) << second.err;
-  EXPECT_THAT(second.out, HasSubstr("textures uploaded 0, already on the server 2"));
+  EXPECT_THAT(second.out, HasSubstr("textures uploaded 0, already on the server 1"));
 }
 
 TEST_F(ClientTest, RenderReportsBadInputWithExitStatus2) {
