@@ -3,6 +3,7 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <malloc.h>
 #include <signal.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -10,6 +11,7 @@
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -165,6 +167,11 @@ int main(int argc, char** argv) {
       "--threads 0 --max-queue 16 --max-pixels 16777216 --store DIR");
   aperture::DashedFlagNames args(argc, argv);
   absl::ParseCommandLine(args.argc(), args.argv());
+  // glibc gives every thread that allocates its own heap arena (up to 8 per core) and keeps freed
+  // frame buffers in each, so a long load run grew RSS by 20 % in 5 minutes (gRPC runs requests
+  // on a changing set of threads). A few arenas keep it flat at the same throughput
+  // (docs/BENCHMARKS.md, issue 5 soak).
+  mallopt(M_ARENA_MAX, std::max(2, absl::GetFlag(FLAGS_threads)));
   // Logs go to stderr; stdout carries only the "listening on" line.
   spdlog::set_default_logger(spdlog::stderr_color_mt("aperture-server"));
   return aperture::Run();
