@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -147,6 +148,15 @@ int Run() {
     spdlog::info("signal {}: shutting down; {} frames rendering, {} queued, grace {} s", signal,
                  admission.running(), admission.queued(), grace);
     server->GetHealthCheckService()->SetServingStatus(false);
+    // A frame stuck where no stop test reaches it (inside a library) must not keep the process
+    // alive for ever: past the grace period and a margin, exit so the supervisor restarts it.
+    std::thread([grace] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<int64_t>(grace * 1000)) +
+                                  std::chrono::seconds(5));
+      spdlog::error("shutdown still waiting for a request {} s after the grace period; exiting", 5);
+      spdlog::default_logger()->flush();
+      std::_Exit(1);
+    }).detach();
     // New calls are refused; calls still running at the deadline are cancelled, which stops
     // their frames between tasks.
     server->Shutdown(std::chrono::system_clock::now() +

@@ -27,9 +27,13 @@ struct ExrMetadata {
 struct ExrOptions {
   ExrPixelType pixel_type = ExrPixelType::kHalf;
   ExrCompression compression = ExrCompression::kZip;
-  // OpenEXR's own thread pool for compression (0: all cores). A process-wide setting of
-  // OpenImageIO: a server encoding beside busy render workers keeps it at 1.
-  int threads = 1;
+  // OpenEXR's own thread pool for compression, a process-wide setting of OpenImageIO
+  // ("exr_threads"): N pool threads, 0 all cores, -1 no pool (the caller compresses). The default
+  // is -1 because a process encoding several frames at once must not share the pool: a server's two
+  // concurrent frames waiting on OpenEXR 3.1's one global pool left a request waiting forever in
+  // OutputFile::writePixels once in a 5-minute load run. Only a lone encoder (aperture-render)
+  // should ask for a pool.
+  int threads = -1;
   ExrMetadata metadata;
 };
 
