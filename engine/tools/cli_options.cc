@@ -22,6 +22,13 @@ absl::StatusOr<ImageSize> ParseImageSize(const std::string& text) {
   return size;
 }
 
+absl::StatusOr<RenderMode> ParseRenderMode(const std::string& name) {
+  if (name == "raster") return RenderMode::kRaster;
+  if (name == "raytrace") return RenderMode::kRaytrace;
+  return absl::InvalidArgumentError(
+      absl::StrCat("unknown render mode '", name, "' (raster, raytrace)"));
+}
+
 absl::StatusOr<AntiAliasing> ParseAntiAliasing(const std::string& name) {
   for (AntiAliasing aa : {AntiAliasing::kBox1, AntiAliasing::kBox2, AntiAliasing::kTent2})
     if (name == AntiAliasingName(aa)) return aa;

@@ -17,4 +17,8 @@ absl::StatusOr<ImageSize> ParseImageSize(const std::string& text);  // "1920x108
 absl::StatusOr<AntiAliasing> ParseAntiAliasing(const std::string& name);
 absl::StatusOr<FilterMode> ParseFilterMode(const std::string& name);
 
+// How a frame is made: the Warnock rasterizer, or seed 003's reverse ray tracing (issue 7).
+enum class RenderMode { kRaster, kRaytrace };
+absl::StatusOr<RenderMode> ParseRenderMode(const std::string& name);  // "raster", "raytrace"
+
 }  // namespace aperture

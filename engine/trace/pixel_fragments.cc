@@ -1,0 +1,122 @@
+#include "trace/pixel_fragments.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aperture {
+namespace {
+
+// One axis of the construction: `along` picks the coordinate the grid lines cross (x for Lx).
+// Fills `out` with the group rectangles and returns their total area.
+double BuildGroups(const std::array<TexPoint, 4>& quad, double l, bool along_x,
+                   std::vector<TexRect>* out, std::vector<TexPoint>* points) {
+  auto key = [&](const TexPoint& p) { return along_x ? p.x : p.z; };
+  auto other = [&](const TexPoint& p) { return along_x ? p.z : p.x; };
+  // Step 3-4: the list L = {a, b, c, d, crossings of the edges with the lines key = m l}.
+  points->assign(quad.begin(), quad.end());
+  for (int e = 0; e < 4; ++e) {
+    const TexPoint &p = quad[e], &q = quad[(e + 1) % 4];
+    const double kp = key(p), kq = key(q);
+    if (kp == kq) continue;  // parallel to the lines: its ends are vertices already
+    const double lo = std::min(kp, kq), hi = std::max(kp, kq);
+    for (double m = std::ceil(lo / l); m * l <= hi; m += 1) {
+      const double k = m * l, t = (k - kp) / (kq - kp);
+      const double o = other(p) + t * (other(q) - other(p));
+      points->push_back(along_x ? TexPoint{k, o} : TexPoint{o, k});
+    }
+  }
+  // Step 5: sort by the key.
+  std::sort(points->begin(), points->end(),
+            [&](const TexPoint& p, const TexPoint& q) { return key(p) < key(q); });
+  // Step 6-7: group by grid cell (a point on a line joins both cells it separates) and bound
+  // each group. Sorted, the points of one cell are consecutive; a cell's rectangle is out[cell -
+  // first], first the cell of the first point (minus one when it lies on a line).
+  out->clear();
+  const double first = std::ceil(key(points->front()) / l) - 1;
+  auto add = [&](double cell, const TexPoint& p) {
+    const double k = key(p), o = other(p);
+    const size_t index = static_cast<size_t>(cell - first);
+    if (index >= out->size()) {
+      out->resize(index + 1, TexRect{INFINITY, INFINITY, -INFINITY, -INFINITY});
+    }
+    TexRect& r = (*out)[index];
+    const double x = along_x ? k : o, z = along_x ? o : k;
+    r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x);
+    r.z0 = std::min(r.z0, z), r.z1 = std::max(r.z1, z);
+  };
+  for (const TexPoint& p : *points) {
+    const double c = key(p) / l, cell = std::floor(c);
+    if (c == cell) add(cell - 1, p);  // on a grid line: also the cell before it
+    add(cell, p);
+  }
+  // A cell holding only points on its border line has no width: not a fragment.
+  double area = 0;
+  size_t kept = 0;
+  for (const TexRect& r : *out) {
+    if (!(r.x1 > r.x0 && r.z1 > r.z0)) continue;
+    area += r.Area();
+    (*out)[kept++] = r;
+  }
+  out->resize(kept);
+  return area;
+}
+
+}  // namespace
+
+int FragmentLevel(double delta, double quad_area, double quad_perimeter) {
+  // seed 003, eq. 9
+  return static_cast<int>(std::ceil(-std::log2(delta * quad_area / quad_perimeter) - 1.0));
+}
+
+void BuildFragments(const std::array<TexPoint, 4>& quad, const FragmentOptions& options,
+                    FragmentSet* out) {
+  out->fragments.clear();
+  // S and P of abcd (shoelace; either orientation).
+  double twice_area = 0, perimeter = 0;
+  double x0 = quad[0].x, x1 = x0, z0 = quad[0].z, z1 = z0;
+  for (int e = 0; e < 4; ++e) {
+    const TexPoint &p = quad[e], &q = quad[(e + 1) % 4];
+    twice_area += p.x * q.z - q.x * p.z;
+    perimeter += std::hypot(q.x - p.x, q.z - p.z);
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), z0 = std::min(z0, p.z), z1 = std::max(z1, p.z);
+  }
+  out->quad_area = 0.5 * std::abs(twice_area);
+  out->quad_perimeter = perimeter;
+  const double extent = std::max(x1 - x0, z1 - z0);
+  if (!(out->quad_area > 1e-12 * perimeter * perimeter)) {
+    // Degenerate (a pixel seen edge-on): the bounding box, or nothing when that is empty too.
+    out->level = 0;
+    out->columns = true;
+    const TexRect box{x0, z0, x1, z1};
+    out->area = box.Area();
+    if (out->area > 0) out->fragments.push_back(box);
+    return;
+  }
+  // Step 1-2: level k from delta (eq. 9), within the limits.
+  int k = std::min(FragmentLevel(options.delta, out->quad_area, perimeter), options.max_level);
+  while (k > -60 && extent * std::ldexp(1.0, k) > options.max_cells) --k;
+  out->level = k;
+  const double l = std::ldexp(1.0, -k);
+  // Steps 3-7 along each axis; step 8: keep the set of smaller area.
+  thread_local std::vector<TexPoint> points;  // scratch, kept between calls
+  thread_local std::vector<TexRect> gz;
+  const double area_x = BuildGroups(quad, l, true, &out->fragments, &points);
+  const double area_z = BuildGroups(quad, l, false, &gz, &points);
+  out->columns = area_x <= area_z;
+  out->area = out->columns ? area_x : area_z;
+  if (!out->columns) out->fragments.swap(gz);
+}
+
+void ChildFragments(const TexRect& f, std::vector<TexRect>* out) {
+  const double i0 = std::floor(f.x0), j0 = std::floor(f.z0);
+  for (double j = j0; j < f.z1; j += 1) {
+    const double z0 = std::max(f.z0, j) - j, z1 = std::min(f.z1, j + 1) - j;
+    if (z1 <= z0) continue;
+    for (double i = i0; i < f.x1; i += 1) {
+      const double x0 = std::max(f.x0, i) - i, x1 = std::min(f.x1, i + 1) - i;
+      if (x1 > x0) out->push_back({x0, z0, x1, z1});
+    }
+  }
+}
+
+}  // namespace aperture

@@ -1,0 +1,43 @@
+// Seed 003, eq. 3-4: the colour of a pixel's projection abcd on the texture plane, the integral of
+// the texture over its fragments divided by their area, with the integrals of the child
+// fragments taken from a summed-area table.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "texture/image.h"
+#include "trace/pixel_fragments.h"
+#include "trace/summed_area_table.h"
+
+namespace aperture {
+
+// Totals over the quads integrated, for the measured mean S_fragments / S_quad - 1.
+struct FragmentStats {
+  double quads = 0;
+  double relative_error_sum = 0;  // sum of S_fragments / S_quad - 1
+  double fragments = 0, children = 0;
+
+  double MeanRelativeError() const { return quads > 0 ? relative_error_sum / quads : 0; }
+  void Add(const FragmentStats& o) {
+    quads += o.quads, relative_error_sum += o.relative_error_sum;
+    fragments += o.fragments, children += o.children;
+  }
+};
+
+// Keeps its scratch buffers between calls: one per thread.
+class ProjectionIntegrator {
+ public:
+  explicit ProjectionIntegrator(FragmentOptions options) : options_(options) {}
+
+  // The mean of the texture over the fragments covering `quad` (texture repeats).
+  Rgba Color(const std::array<TexPoint, 4>& quad, const SummedAreaTable& sat,
+             FragmentStats* stats = nullptr);
+
+ private:
+  FragmentOptions options_;
+  FragmentSet set_;
+  std::vector<TexRect> children_;
+};
+
+}  // namespace aperture

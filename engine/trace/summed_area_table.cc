@@ -1,0 +1,115 @@
+#include "trace/summed_area_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aperture {
+namespace {
+
+enum Table { kT = 0, kQT = 1, kTQ = 2, kQQ = 3 };
+
+int Wrap(int i, int n) { return ((i % n) + n) % n; }
+
+// One axis of [lo, hi] cut at the period borders: pieces within [0, period], each with how many
+// times it occurs (the whole periods in the middle are one piece counted n times).
+struct Piece {
+  double lo, hi, count;
+};
+
+int SplitPeriods(double lo, double hi, double period, Piece out[3]) {
+  if (!(hi > lo)) return 0;
+  const double p0 = std::floor(lo / period), p1 = std::floor(hi / period);
+  if (p0 == p1) {
+    out[0] = {lo - p0 * period, hi - p0 * period, 1};
+    return 1;
+  }
+  int n = 0;
+  out[n++] = {lo - p0 * period, period, 1};
+  if (p1 - p0 > 1) out[n++] = {0, period, p1 - p0 - 1};
+  if (hi > p1 * period) out[n++] = {0, hi - p1 * period, 1};
+  return n;
+}
+
+}  // namespace
+
+SummedAreaTable::SummedAreaTable(const Image& image, int channels)
+    : width_(image.width()), height_(image.height()), channels_(std::clamp(channels, 1, 4)) {
+  const int w2 = width_ + 2, h2 = height_ + 2;
+  tables_.assign(static_cast<size_t>(4) * w2 * h2 * channels_, 0.0);
+  auto at = [&](int table, int i, int j) {
+    return &tables_[((static_cast<size_t>(j + 1) * w2 + (i + 1)) * 4 + table) * channels_];
+  };
+  // The samples, wrapped one texel past every border.
+  for (int j = -1; j <= height_; ++j)
+    for (int i = -1; i <= width_; ++i) {
+      const Rgba& t = image.at(Wrap(i, width_), Wrap(j, height_));
+      const float v[4] = {t.r, t.g, t.b, t.a};
+      double* d = at(kT, i, j);
+      for (int c = 0; c < channels_; ++c) d[c] = v[c];
+    }
+  // Trapezoid prefix sums from c_-1: QT along x (per row), TQ along y (per column), QQ along x
+  // of TQ. Entry -1 stays 0.
+  for (int j = -1; j <= height_; ++j)
+    for (int i = -1; i < width_; ++i) {
+      const double *t0 = at(kT, i, j), *t1 = at(kT, i + 1, j), *q0 = at(kQT, i, j);
+      double* q1 = at(kQT, i + 1, j);
+      for (int c = 0; c < channels_; ++c) q1[c] = q0[c] + 0.5 * (t0[c] + t1[c]);
+    }
+  for (int j = -1; j < height_; ++j)
+    for (int i = -1; i <= width_; ++i) {
+      const double *t0 = at(kT, i, j), *t1 = at(kT, i, j + 1), *q0 = at(kTQ, i, j);
+      double* q1 = at(kTQ, i, j + 1);
+      for (int c = 0; c < channels_; ++c) q1[c] = q0[c] + 0.5 * (t0[c] + t1[c]);
+    }
+  for (int j = -1; j <= height_; ++j)
+    for (int i = -1; i < width_; ++i) {
+      const double *t0 = at(kTQ, i, j), *t1 = at(kTQ, i + 1, j), *q0 = at(kQQ, i, j);
+      double* q1 = at(kQQ, i + 1, j);
+      for (int c = 0; c < channels_; ++c) q1[c] = q0[c] + 0.5 * (t0[c] + t1[c]);
+    }
+}
+
+void SummedAreaTable::Corner(double x, double y, double* out) const {
+  // x = c_i + s with c_i = i + 0.5, i in [-1, width - 1]; likewise y = c_j + r.
+  const double xs = x - 0.5, ys = y - 0.5;
+  const int i = std::clamp(static_cast<int>(std::floor(xs)), -1, width_ - 1);
+  const int j = std::clamp(static_cast<int>(std::floor(ys)), -1, height_ - 1);
+  const double s = xs - i, r = ys - j;
+  const double as = s - 0.5 * s * s, bs = 0.5 * s * s;  // weights of t_i and t_(i+1)
+  const double ar = r - 0.5 * r * r, br = 0.5 * r * r;
+  const double *qq = At(kQQ, i, j), *qt0 = At(kQT, i, j), *qt1 = At(kQT, i, j + 1),
+               *tq0 = At(kTQ, i, j), *tq1 = At(kTQ, i + 1, j), *t00 = At(kT, i, j),
+               *t01 = At(kT, i, j + 1), *t10 = At(kT, i + 1, j), *t11 = At(kT, i + 1, j + 1);
+  for (int c = 0; c < channels_; ++c)
+    out[c] = qq[c] + ar * qt0[c] + br * qt1[c] + as * tq0[c] + bs * tq1[c] +
+             as * (ar * t00[c] + br * t01[c]) + bs * (ar * t10[c] + br * t11[c]);
+}
+
+std::array<double, 4> SummedAreaTable::Integrate(double x0, double y0, double x1, double y1) const {
+  std::array<double, 4> sum{};
+  x0 = std::clamp(x0, 0.0, double(width_)), x1 = std::clamp(x1, x0, double(width_));
+  y0 = std::clamp(y0, 0.0, double(height_)), y1 = std::clamp(y1, y0, double(height_));
+  if (x1 <= x0 || y1 <= y0) return sum;
+  double c11[4], c01[4], c10[4], c00[4];
+  Corner(x1, y1, c11);
+  Corner(x0, y1, c01);
+  Corner(x1, y0, c10);
+  Corner(x0, y0, c00);
+  for (int c = 0; c < channels_; ++c) sum[c] = (c11[c] - c01[c]) - (c10[c] - c00[c]);
+  return sum;
+}
+
+std::array<double, 4> SummedAreaTable::IntegratePeriodic(double x0, double y0, double x1,
+                                                         double y1) const {
+  std::array<double, 4> sum{};
+  Piece px[3], py[3];
+  const int nx = SplitPeriods(x0, x1, width_, px), ny = SplitPeriods(y0, y1, height_, py);
+  for (int a = 0; a < nx; ++a)
+    for (int b = 0; b < ny; ++b) {
+      const auto part = Integrate(px[a].lo, py[b].lo, px[a].hi, py[b].hi);
+      for (int c = 0; c < 4; ++c) sum[c] += px[a].count * py[b].count * part[c];
+    }
+  return sum;
+}
+
+}  // namespace aperture

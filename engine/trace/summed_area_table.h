@@ -1,0 +1,56 @@
+// Summed-area tables (seed 003's ref. 8, Crow 1984) for raster textures: the exact integral of the
+// continuous texture over an axis-aligned rectangle with fractional edges, in O(1).
+//
+// The continuous texture is the one DESIGN.md's grazing-plane reference samples: the bilinear
+// reconstruction of the texels, texel (i, j) centred at (i + 0.5, j + 0.5) in texel units, repeated
+// periodically. Along one axis it is piecewise linear between texel centres c_i = i + 0.5, so its
+// integral G(x) from c_-1 is piecewise quadratic: for x = c_i + s, 0 <= s < 1,
+//   G(x) = Q_i + a(s) t_i + b(s) t_(i+1),  a(s) = s - s^2 / 2,  b(s) = s^2 / 2,
+// with Q_i the trapezoid sums of the samples up to c_i. In two dimensions the integral from the
+// corner is the tensor product of two such functionals, which needs four tables: the samples T,
+// the trapezoid prefix sums along x of every row (QT), along y of every column (TQ) and both (QQ).
+// Every table is accumulated in double, so a 4096 x 4096 texture keeps about 1e-9 absolute
+// precision (the sums reach 1.7e7; double carries 16 digits).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "texture/image.h"
+
+namespace aperture {
+
+class SummedAreaTable {
+ public:
+  // `channels` = 1 (red only), 3 (RGB) or 4 (RGBA) of `image` are tabulated.
+  explicit SummedAreaTable(const Image& image, int channels = 4);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int channels() const { return channels_; }
+  size_t bytes() const { return tables_.size() * sizeof(double); }
+
+  // The integral of the continuous texture over [x0, x1] x [y0, y1] in texel units, within one
+  // period: 0 <= x0 <= x1 <= width, 0 <= y0 <= y1 <= height (clamped to it). Channels past
+  // channels() are 0.
+  std::array<double, 4> Integrate(double x0, double y0, double x1, double y1) const;
+
+  // The same over any rectangle of the periodic plane (split at the period borders).
+  std::array<double, 4> IntegratePeriodic(double x0, double y0, double x1, double y1) const;
+
+ private:
+  // Integral over [0.5 - 1, x] x [0.5 - 1, y] (from the centre of texel (-1, -1)), per channel.
+  void Corner(double x, double y, double* out) const;
+  const double* At(int table, int i, int j) const {
+    return &tables_[((static_cast<size_t>(j + 1) * (width_ + 2) + (i + 1)) * 4 + table) *
+                    channels_];
+  }
+
+  int width_ = 0, height_ = 0, channels_ = 0;
+  // Four tables T, QT, TQ, QQ, each (width + 2) x (height + 2) entries for texel indices -1 ..
+  // width (resp. height), the borders wrapped; interleaved per texel (the four tables, each
+  // with its channels), so that one corner's nine reads touch few cache lines.
+  std::vector<double> tables_;
+};
+
+}  // namespace aperture

@@ -1,0 +1,63 @@
+// Seed 003's render mode (--mode raytrace): rays through the (W + 1) x (H + 1) pixel corners, each
+// shared by its four pixels, traced with Embree on oneTBB tiles. A pixel whose four corners hit
+// one polygon takes the texture's integral over the corners' quad abcd in the texture plane
+// (fragments and summed-area tables); a pixel whose corners disagree (an edge, a corner in the
+// sky) is split into four with more corner rays, down to a bounded depth, and its sub-pixels are
+// weighted by area. Shading matches the raster path (render/polygon_shader): base colour times
+// texture, Lambert sun plus ambient on the side facing the camera, distance fog.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "render/frame_renderer.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "trace/projection_integral.h"
+#include "trace/ray_scene.h"
+#include "trace/summed_area_table.h"
+
+namespace aperture {
+
+struct TraceOptions {
+  FragmentOptions fragments;  // delta: the allowed relative area error (seed 003, eq. 9)
+  int max_depth = 3;          // pixel subdivisions where corners disagree: 4^3 sub-pixels at most
+};
+
+// delta > 0 and max_depth in [0, 8]; names the offending option.
+absl::Status ValidateTraceOptions(const TraceOptions& options);
+
+struct TraceStats {
+  double corner_ms = 0;  // the (W + 1) x (H + 1) corner rays
+  double shade_ms = 0;   // pixels: fragments, integrals, subdivision (with its extra rays)
+  size_t corner_rays = 0, extra_rays = 0;
+  size_t subdivided_pixels = 0;
+  FragmentStats fragments;
+};
+
+// The scene's ray-tracing state, built once and shared by frames: the Embree BVH and a
+// summed-area table per raster texture.
+class TracedScene {
+ public:
+  static absl::StatusOr<std::unique_ptr<TracedScene>> Build(const Scene& scene);
+
+  // Renders settings.width x settings.height (the region is ignored: the whole frame) on
+  // settings.threads threads (0: the caller's arena). Only settings.shading.filter matters for
+  // packed vector textures, which have no table: they take their area sampler over the quad's
+  // parallelogram.
+  absl::StatusOr<RenderedFrame> Render(const Camera& camera, const RenderSettings& settings,
+                                       const TraceOptions& options,
+                                       TraceStats* stats = nullptr) const;
+
+  const Scene& scene() const { return scene_; }
+  const RayScene& rays() const { return *rays_; }
+
+ private:
+  explicit TracedScene(const Scene& scene) : scene_(scene) {}
+  const Scene& scene_;
+  std::unique_ptr<RayScene> rays_;
+  std::vector<std::shared_ptr<const SummedAreaTable>> tables_;  // per scene texture, or null
+};
+
+}  // namespace aperture
