@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
       "client of aperture-server.\n"
       "  aperture render --server ADDR --scene demo|FILE.json --camera X,Y,Z,YAW,PITCH,ROLL "
       "--size WxH -o frame.exr\n"
+      "  aperture render --split K --servers A,B,... [same options]: one frame over servers\n"
       "  aperture load --server ADDR --concurrency N (--requests M | --duration S) --size WxH "
       "[--json]\n"
       "  aperture sim --server ADDR --rate HZ --frames N [--path FILE.csv]\n"

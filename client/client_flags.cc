@@ -8,6 +8,9 @@ ABSL_FLAG(std::string, tls_ca, "",
           "trust; set: connect with TLS, else plaintext");
 ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
           "batch: servers IPV4:PORT,IPV4:PORT,... (gRPC round_robin over them)");
+ABSL_FLAG(int, split, 0,
+          "render: cut the frame into this many regions of equal predicted cost (PlanRegions) "
+          "and render them on --servers at once, then assemble one EXR (0: one server)");
 ABSL_FLAG(std::string, scene, "demo", "'demo' (built-in airfield) or a scene JSON file");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "

@@ -9,6 +9,7 @@
 ABSL_DECLARE_FLAG(std::string, server);
 ABSL_DECLARE_FLAG(std::string, servers);
 ABSL_DECLARE_FLAG(std::string, tls_ca);
+ABSL_DECLARE_FLAG(int, split);
 ABSL_DECLARE_FLAG(std::string, scene);
 ABSL_DECLARE_FLAG(std::string, camera);
 ABSL_DECLARE_FLAG(double, fov);

@@ -16,6 +16,7 @@ int RunRender() {
     std::fprintf(stderr, "aperture render: error: %s\n", std::string(status.message()).c_str());
     return absl::IsInvalidArgument(status) ? 2 : 1;
   };
+  if (absl::GetFlag(FLAGS_split) != 0) return RunSplitRender();
   auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
   auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
   if (!scene.ok()) return fail(scene.status());

@@ -5,8 +5,10 @@
 #   restart   a server started on a baked store: time from its start to its first frame, vs a
 #             server on an empty store (which builds the demo's tables first);
 #   load      `aperture load` for 640x480 frames at concurrency 1, 8 and 32, LOAD_S seconds each;
-#   soak      server RSS at minute 1 and at minute SOAK_MIN of a concurrency-8 load.
-# Usage: scripts/bench-service.sh [overhead|restart|load|soak|all]   (default all)
+#   soak      server RSS at minute 1 and at minute SOAK_MIN of a concurrency-8 load;
+#   split     a 1920x1080 frame split over 2 local servers (issue 6): slowest region's render
+#             time over the mean, demo and skewed scenes, ROUNDS rounds, and the median.
+# Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|all]   (default all)
 # Environment: LOAD_S (default 60), SOAK_MIN (default 5), ROUNDS (default 5).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -133,8 +135,31 @@ soak() {
   grep "rpc=RenderFrame" "${log_of_last_server}.err" | grep -v "status=OK" | head -5 || true
 }
 
+split() {
+  echo "== split: 1920x1080 over 2 local servers (--threads 1 each), $rounds rounds per scene"
+  # The plan is only as good as the cost model: fit it on this machine once (about a minute).
+  [ -f build/aperture_cost_model.txt ] || "$render_bin" --calibrate | tail -1
+  start_server "$work/store-split" --threads 1
+  local a="$address" pid_a="$pid"
+  start_server "$work/store-split" --threads 1
+  local b="$address"
+  for scene in demo skewed; do
+    "$client_bin" render --split 2 --servers "$a,$b" --scene "$scene" --size 64x64 \
+      -o "$work/w.exr" >/dev/null
+    for _ in $(seq 1 "$rounds"); do
+      "$client_bin" render --split 2 --servers "$a,$b" --scene "$scene" --size 1920x1080 \
+        -o "$work/split.exr" | grep -oE 'slowest / mean [0-9.]+' | awk '{print $4}'
+    done | sort -n | awk -v s="$scene" '{r[NR] = $1} END {
+      printf "%s: slowest / mean region render time, %d rounds: min %.3f median %.3f max %.3f\n",
+             s, NR, r[1], r[int((NR + 1) / 2)], r[NR] }'
+  done
+  stop_server
+  pid="$pid_a"
+  stop_server
+}
+
 case "$what" in
-  overhead | restart | load | soak) "$what" ;;
-  all) overhead; restart; load; soak ;;
-  *) echo "usage: $0 [overhead|restart|load|soak|all]" >&2; exit 2 ;;
+  overhead | restart | load | soak | split) "$what" ;;
+  all) overhead; restart; load; soak; split ;;
+  *) echo "usage: $0 [overhead|restart|load|soak|split|all]" >&2; exit 2 ;;
 esac

@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
 #include "frame_request.h"
+#include "region_plan_request.h"
 #include "render/frame_renderer.h"
 #include "scene_request.h"
 #include "status_mapping.h"
@@ -216,6 +217,26 @@ grpc::Status RenderService::RenderStream(
                context->peer(), frames, failed, MillisecondsSince(stream_start),
                cancelled ? "CANCELLED" : "OK");
   return cancelled ? grpc::Status::CANCELLED : grpc::Status::OK;
+}
+
+grpc::Status RenderService::PlanRegions(grpc::ServerContext* context,
+                                        const v1::PlanRegionsRequest* request,
+                                        v1::PlanRegionsResponse* response) {
+  const uint64_t id = next_request_id_++;
+  const auto start = Clock::now();
+  std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
+  const absl::Status status =
+      scene ? PlanRegionsForRequest(*scene, *request, limits_.max_pixels, response)
+            : absl::NotFoundError(absl::StrCat("scene_id '", request->scene_id(),
+                                               "' is not loaded (LoadScene first)"));
+  spdlog::info(
+      "req={} rpc=PlanRegions peer={} scene={} size={}x{} regions={} ms={:.2f} status={}{}", id,
+      context->peer(), Short(request->scene_id()), request->options().width(),
+      request->options().height(), request->regions(), MillisecondsSince(start),
+      absl::StatusCodeToString(status.code()),
+      status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
+  if (!status.ok()) response->Clear();
+  return ToGrpcStatus(status);
 }
 
 grpc::Status RenderService::GetServerInfo(grpc::ServerContext*, const v1::GetServerInfoRequest*,

@@ -43,6 +43,8 @@ class RenderService final : public v1::Render::Service {
       grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream) override;
   grpc::Status GetServerInfo(grpc::ServerContext* context, const v1::GetServerInfoRequest* request,
                              v1::GetServerInfoResponse* response) override;
+  grpc::Status PlanRegions(grpc::ServerContext* context, const v1::PlanRegionsRequest* request,
+                           v1::PlanRegionsResponse* response) override;
 
  private:
   // Validation, admission, rendering on the shared arena, encoding; fills `response`.

@@ -1,0 +1,135 @@
+// One frame split over two servers (issue 6): PlanRegions cuts it into bands of equal predicted
+// cost, `aperture render --split` renders them on both servers at once and assembles one EXR
+// whose pixels equal one server's frame.
+#include <gmock/gmock.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "aperture/v1/render_service.grpc.pb.h"
+#include "integration/server_process.h"
+// After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.
+#include <OpenImageIO/imagebuf.h>
+
+namespace aperture::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+std::vector<float> Pixels(const std::string& path, int* width, int* height) {
+  OIIO::ImageBuf image(path);
+  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {};
+  *width = image.spec().width;
+  *height = image.spec().height;
+  std::vector<float> pixels(static_cast<size_t>(*width) * *height * image.spec().nchannels);
+  image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pixels.data());
+  return pixels;
+}
+
+class SplitRenderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) / ("aperture_split_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+    std::string error;
+    a_ = ServerProcess::Start({"--threads=1"}, &error);
+    ASSERT_NE(a_, nullptr) << error;
+    b_ = ServerProcess::Start({"--threads=1"}, &error);
+    ASSERT_NE(b_, nullptr) << error;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CommandResult Client(std::vector<std::string> args) {
+    args.insert(args.begin(), APERTURE_CLIENT_BIN);
+    return RunCommand(args, 120);
+  }
+
+  fs::path dir_;
+  std::unique_ptr<ServerProcess> a_, b_;
+};
+
+TEST_F(SplitRenderTest, TheAssembledFrameEqualsOneServersFrame) {
+  const std::vector<std::string> frame = {"--scene=skewed", "--size=240x160", "--aa=tent2"};
+  std::vector<std::string> split = {"render", "--split=3",
+                                    "--servers=" + a_->address() + "," + b_->address(),
+                                    "-o=" + (dir_ / "split.exr").string()};
+  split.insert(split.end(), frame.begin(), frame.end());
+  const CommandResult assembled = Client(split);
+  ASSERT_EQ(assembled.exit_code, 0) << assembled.out << assembled.err;
+  EXPECT_THAT(assembled.out, HasSubstr("split 240x160 into 3 regions over 2 servers"));
+  EXPECT_THAT(assembled.out, HasSubstr("on " + a_->address()));
+  EXPECT_THAT(assembled.out, HasSubstr("on " + b_->address()));
+
+  std::vector<std::string> single = {"render", "--server=" + b_->address(),
+                                     "-o=" + (dir_ / "single.exr").string()};
+  single.insert(single.end(), frame.begin(), frame.end());
+  const CommandResult whole = Client(single);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+
+  int sw = 0, sh = 0, ww = 0, wh = 0;
+  const std::vector<float> p = Pixels((dir_ / "split.exr").string(), &sw, &sh);
+  const std::vector<float> q = Pixels((dir_ / "single.exr").string(), &ww, &wh);
+  ASSERT_FALSE(p.empty());
+  EXPECT_EQ(sw, 240);
+  EXPECT_EQ(sh, 160);
+  ASSERT_EQ(p.size(), q.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < p.size(); ++i) differing += p[i] != q[i];
+  EXPECT_EQ(differing, 0u) << "the assembled frame differs from the single-server frame";
+}
+
+TEST_F(SplitRenderTest, PlanRegionsTilesTheFrameAndChecksItsInput) {
+  grpc::ChannelArguments args;
+  auto stub = v1::Render::NewStub(
+      grpc::CreateCustomChannel(a_->address(), grpc::InsecureChannelCredentials(), args));
+  v1::LoadSceneRequest load;
+  load.set_builtin_scene("demo");
+  v1::LoadSceneResponse loaded;
+  {
+    grpc::ClientContext context;
+    ASSERT_TRUE(stub->LoadScene(&context, load, &loaded).ok());
+  }
+  v1::PlanRegionsRequest request;
+  request.set_scene_id(loaded.scene_id());
+  *request.mutable_camera() = loaded.default_camera();
+  request.mutable_options()->set_width(320);
+  request.mutable_options()->set_height(180);
+  request.set_regions(4);
+  v1::PlanRegionsResponse plan;
+  {
+    grpc::ClientContext context;
+    const grpc::Status status = stub->PlanRegions(&context, request, &plan);
+    ASSERT_TRUE(status.ok()) << status.error_message();
+  }
+  ASSERT_EQ(plan.regions_size(), 4);
+  uint32_t y = 0;
+  for (const v1::PlannedRegion& r : plan.regions()) {
+    EXPECT_EQ(r.region().x(), 0u);
+    EXPECT_EQ(r.region().width(), 320u);
+    EXPECT_EQ(r.region().y(), y);
+    EXPECT_GT(r.region().height(), 0u);
+    EXPECT_GT(r.predicted_ms(), 0.0);
+    y += r.region().height();
+  }
+  EXPECT_EQ(y, 180u);
+
+  request.set_regions(0);
+  grpc::ClientContext bad;
+  grpc::Status status = stub->PlanRegions(&bad, request, &plan);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("regions: 0 is not in 1..180"));
+
+  request.set_regions(2);
+  request.set_scene_id(std::string(64, 'f'));
+  grpc::ClientContext unknown;
+  status = stub->PlanRegions(&unknown, request, &plan);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
+}
+
+}  // namespace
+}  // namespace aperture::testing
