@@ -57,6 +57,7 @@ TEST(RegionPlanner, TheBandsShareThePredictedCostOfTheUniformPlan) {
   options.mode = Scheduling::kUniform;
   options.uniform_tile = 16;
   options.predict_uniform = true;
+  options.model = model;  // not the machine's stored model: the same constants on both sides
   double total = 0;
   for (const TaskWindow& t :
        PlanTasks(g, ShapeOf(AntiAliasing::kBox2), PixelRect{0, 0, 200, 120}, options, 1))
