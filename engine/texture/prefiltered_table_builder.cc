@@ -34,7 +34,10 @@ struct Sum4 {
 };
 
 uint8_t Quantize(float v) {
-  return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+  // std::lround for x >= 0 without the libm call: x - trunc(x) is exact.
+  const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
+  const int i = static_cast<int>(x);
+  return static_cast<uint8_t>(i + (x - static_cast<float>(i) >= 0.5f ? 1 : 0));
 }
 
 void StoreTexel(uint8_t* dst, const Rgba& c) {
@@ -75,7 +78,9 @@ void MinorBoxAverage(const Image& src, bool transposed, int L, std::vector<Packe
   g.resize(static_cast<size_t>(N) * N);
   const double scale = 65535.0 / (2.0 * L);
   auto pack = [](double v) {
-    return static_cast<uint16_t>(std::lround(std::clamp(v, 0.0, 65535.0)));
+    const double x = std::clamp(v, 0.0, 65535.0);  // std::lround for x >= 0, as in Quantize
+    const int i = static_cast<int>(x);
+    return static_cast<uint16_t>(i + (x - static_cast<double>(i) >= 0.5 ? 1 : 0));
   };
   tbb::parallel_for(0, (N + kBlock - 1) / kBlock, [&](int block) {
     const int c0 = block * kBlock, c1 = std::min(N, c0 + kBlock);
@@ -122,6 +127,43 @@ struct Accumulator {
 };
 #endif
 
+// Running sums of kLanes sheared lines (line r + l passes column c at minor row
+// k_base[c] + (r + l) L, weight[c] towards the next row) over the columns [c0, c1): the lanes'
+// accumulators stay in registers and their dependency chains interleave. Each line's sum is
+// formed in the same order as one line at a time, so the result does not depend on kLanes.
+struct LineSweep {
+  int N = 0, L = 1, step = 1, stride = 0;
+  const int* k_base = nullptr;
+  const float* weight = nullptr;
+  const Packed* g = nullptr;
+  Rgba* prefix = nullptr;
+};
+
+template <int kLanes>
+void SweepLines(const LineSweep& s, int r, int c0, int c1, Accumulator* acc) {
+  const int mask = s.N - 1;
+  Accumulator a[kLanes];
+  Rgba* P[kLanes];
+  int offset[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    a[l] = acc[l];
+    P[l] = s.prefix + static_cast<size_t>(r + l) * s.stride;
+    offset[l] = (r + l) * s.L;
+  }
+  for (int c = c0; c < c1; ++c) {
+    const int kb = s.k_base[c];
+    const float w = s.weight[c];
+    for (int l = 0; l < kLanes; ++l) {
+      const int k0 = (kb + offset[l]) & mask, k1 = (k0 + 1) & mask;
+      a[l].AddLerp(s.g[static_cast<size_t>(k0) * s.N + c], s.g[static_cast<size_t>(k1) * s.N + c],
+                   w);
+    }
+    if (((c + 1) & (s.step - 1)) == 0)
+      for (int l = 0; l < kLanes; ++l) P[l][(c + 1) / s.step] = a[l].Get();
+  }
+  for (int l = 0; l < kLanes; ++l) acc[l] = a[l];
+}
+
 struct CopyJob {
   int N = 0;
   int L = 1;      // half-thickness (texels)
@@ -156,37 +198,34 @@ void BuildShearedCopy(const CopyJob& job, const std::vector<Packed>& g, std::vec
     weight[c] = static_cast<float>(y - fy);
   }
   // Tiles of kRows lines x kCols columns keep the sheared strip of g they read in cache.
-  constexpr int kRows = 32, kCols = 64;
+  constexpr int kRows = 32, kCols = 64, kLanes = 4;
+  const LineSweep sweep{N, L, step, stride, k_base.data(), weight.data(), g.data(), prefix.data()};
   tbb::parallel_for(0, (rows + kRows - 1) / kRows, [&](int tile) {
     const int r0 = tile * kRows, r1 = std::min(rows, r0 + kRows);
     Accumulator acc[kRows];
     for (int r = r0; r < r1; ++r) prefix[static_cast<size_t>(r) * stride] = {};
     for (int c0 = 0; c0 < N; c0 += kCols) {
       const int c1 = std::min(N, c0 + kCols);
-      for (int r = r0; r < r1; ++r) {
-        Accumulator& a = acc[r - r0];
-        Rgba* P = &prefix[static_cast<size_t>(r) * stride];
-        const int offset = r * L;
-        for (int c = c0; c < c1; ++c) {
-          const int k0 = (k_base[c] + offset) & (N - 1), k1 = (k0 + 1) & (N - 1);
-          a.AddLerp(g[static_cast<size_t>(k0) * N + c], g[static_cast<size_t>(k1) * N + c],
-                    weight[c]);
-          if (((c + 1) & (step - 1)) == 0) P[(c + 1) / step] = a.Get();
-        }
-      }
+      int r = r0;
+      for (; r + kLanes <= r1; r += kLanes) SweepLines<kLanes>(sweep, r, c0, c1, &acc[r - r0]);
+      for (; r < r1; ++r) SweepLines<1>(sweep, r, c0, c1, &acc[r - r0]);
     }
   });
-  auto row_of = [&](long r) { return static_cast<int>(((r % rows) + rows) % rows); };
+  // N, rows = N / L and step are powers of two: wrap and divide by masks and shifts.
+  int log2_n = 0, log2_step = 0;
+  while ((1 << log2_n) < N) ++log2_n;
+  while ((1 << log2_step) < step) ++log2_step;
+  auto row_of = [&](long r) { return static_cast<int>(r & static_cast<long>(rows - 1)); };
   // Running sum along the extended line r from column 0 to column c (a multiple of `step`).
   auto ext = [&](int r, long c, Sum4& acc, double sign) {
-    const long k = c >= 0 ? c / N : -((-c + N - 1) / N);
+    const long k = c >= 0 ? c >> log2_n : -((-c + N - 1) >> log2_n);
     const long cc = c - k * N;
     const size_t last = static_cast<size_t>(N / step);
     for (long kk = 0; kk < k; ++kk)
       acc.Add(prefix[row_of(r + kk * wrap) * size_t(stride) + last], sign);
     for (long kk = k; kk < 0; ++kk)
       acc.Add(prefix[row_of(r + kk * wrap) * size_t(stride) + last], -sign);
-    acc.Add(prefix[row_of(r + k * wrap) * size_t(stride) + cc / step], sign);
+    acc.Add(prefix[row_of(r + k * wrap) * size_t(stride) + (cc >> log2_step)], sign);
   };
   const double inv = 1.0 / (2.0 * job.H * 65535.0);  // sums are in units of 1 / 65535
   tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), [&](const tbb::blocked_range<int>& rr) {

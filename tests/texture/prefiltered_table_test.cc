@@ -188,6 +188,57 @@ TEST(PrefilteredTableBuilder, CopiesAreTheBoxParallelogramAverages) {
   }
 }
 
+// Every texel of every copy of a small table (all cells: untilted, both tilt axes, the frozen
+// region, lines wrapping across the period, tiles whose line count is not a multiple of the
+// builder's interleaved lanes) against the brute-force average.
+TEST(PrefilteredTableBuilder, EveryTexelOfEveryCopyIsTheBoxParallelogramAverage) {
+  for (int n : {1, 2, 4}) {
+    const int N = 1 << n;
+    const Image img = RandomImage(N, 40 + n);
+    auto block = BuildPrefilteredTable(img);
+    ASSERT_TRUE(block.ok());
+    auto table = block->View();
+    ASSERT_TRUE(table.ok());
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const PrefilteredTable::Cell& cell = table->cell(j, i);
+        for (uint32_t c = 0; c < cell.lambda; ++c) {
+          const CopyEntry& e = table->copy(cell.first + c);
+          const bool tilt_v = e.axis == TiltAxis::kV;
+          const double H = std::ldexp(1.0, i + j), L = std::ldexp(1.0, j);
+          const double sx = double(N) / (tilt_v ? e.height : e.width);
+          const double sy = double(N) / (tilt_v ? e.width : e.height);
+          for (uint32_t y = 0; y < e.height; ++y) {
+            for (uint32_t x = 0; x < e.width; ++x) {
+              const double p = tilt_v ? y : x, q = tilt_v ? x : y;
+              const float want =
+                  BruteForce(img, tilt_v ? (q + 0.5) * sy : (p + 0.5) * sx,
+                             tilt_v ? (p + 0.5) * sx : (q + 0.5) * sy, H, L, e.tg, tilt_v);
+              const float got = table->texels(e)[4 * (size_t(y) * e.width + x)] / 255.0f;
+              ASSERT_NEAR(got, want, 0.012f) << "n " << n << " cell (" << j << ", " << i
+                                             << ") copy " << c << " texel " << x << "," << y;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+// The parallel build does not depend on the number of threads.
+TEST(PrefilteredTableBuilder, OneAndTwoThreadsBuildTheSameBytes) {
+  const Image img = RandomImage(64, 7);
+  TableBuildOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  auto a = BuildPrefilteredTable(img, one), b = BuildPrefilteredTable(img, two);
+  ASSERT_TRUE(a.ok());
+  ASSERT_TRUE(b.ok());
+  ASSERT_EQ(a->bytes.size(), b->bytes.size());
+  const size_t data = a->View()->header().data_offset;
+  EXPECT_EQ(std::memcmp(a->bytes.data() + data, b->bytes.data() + data, a->bytes.size() - data), 0);
+}
+
 TEST(PrefilteredTableBuilder, ResamplesNonPowerOfTwoImages) {
   auto block = BuildPrefilteredTable(Image(20, 12, {0.5f, 0.5f, 0.5f, 1}));
   ASSERT_TRUE(block.ok());
