@@ -130,6 +130,13 @@ absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& came
                                           const StopRequested& stop) {
   if (auto s = ValidateRenderSettings(settings); !s.ok()) return s;
   if (auto s = ValidateCamera(camera); !s.ok()) return s;
+  // Spheres and cylinders are seed 003's curved primitives: the Warnock rasterizer draws planar
+  // polygons only, and a frame silently missing objects would be wrong, so it refuses.
+  if (!scene.curved.empty())
+    return absl::InvalidArgumentError(absl::StrCat(
+        "the scene has ", scene.curved.size(),
+        " sphere(s)/cylinder(s), which only the raytrace mode draws (--mode raytrace); the raster "
+        "mode renders planar polygons only"));
   if (settings.threads == 0) return RenderInArena(scene, camera, settings, stop);
   tbb::task_arena arena(settings.threads);
   return arena.execute([&] { return RenderInArena(scene, camera, settings, stop); });

@@ -51,12 +51,34 @@ struct ScenePolygon {
   TextureMapping mapping;
 };
 
+// An affine map of the texture plane, (x, z) -> (a x + b z + e, c x + d z + f): seed 003's F2
+// (eq. 2), from a material's texture transform.
+struct TextureAffine {
+  double a = 1, b = 0, c = 0, d = 1, e = 0, f = 0;
+};
+
+enum class CurvedKind { kSphere, kCylinder };
+
+// A sphere or a finite cylinder (seed 003's curved primitives). Only the raytrace mode draws
+// them; the raster renderer refuses a scene that has any.
+struct CurvedPrimitive {
+  CurvedKind kind = CurvedKind::kSphere;
+  Vec3 origin;  // the sphere's centre; the centre of the cylinder's base disc
+  Mat3 axes;    // orthonormal, columns the frame's x, y, z in world space; y: pole / axis
+  double radius = 1;
+  double height = 0;  // cylinder: from the base disc along axes y
+  bool capped = false;
+  int material = 0;
+  TextureAffine texture;  // F2 after the spherical / cylindrical F1
+};
+
 struct Scene {
   std::string name;
   std::vector<std::shared_ptr<const SceneTexture>> textures;
   std::vector<Material> materials;
   std::vector<ScenePolygon> polygons;
-  Vec3 sun_direction{0, 1, 0};  // unit, towards the sun
+  std::vector<CurvedPrimitive> curved;  // spheres, then cylinders (raytrace mode only)
+  Vec3 sun_direction{0, 1, 0};          // unit, towards the sun
   Rgba sun_color{0, 0, 0, 1};
   Rgba ambient{1, 1, 1, 1};
   Rgba fog_color{0, 0, 0, 1};

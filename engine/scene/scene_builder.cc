@@ -171,6 +171,7 @@ class Builder {
     if (auto s = PrepareAnisoTables(); !s.ok()) return s;
     if (auto s = BuildLights(); !s.ok()) return s;
     if (auto s = BuildObjects(); !s.ok()) return s;
+    if (auto s = BuildCurved(); !s.ok()) return s;
     return std::move(scene_);
   }
 
@@ -432,6 +433,79 @@ class Builder {
       piece.vertices = {world[tri[0]], world[tri[1]], world[tri[2]]};
       scene_.polygons.push_back(std::move(piece));
     }
+    return absl::OkStatus();
+  }
+
+  // Spheres, then cylinders, each with its frame and the material's texture transform as F2.
+  absl::Status BuildCurved() {
+    for (int i = 0; i < proto_.spheres_size(); ++i) {
+      const v1::Sphere& sp = proto_.spheres(i);
+      const std::string where = absl::StrCat("spheres[", i, "]");
+      CurvedPrimitive c;
+      c.kind = CurvedKind::kSphere;
+      c.origin = FromProto(sp.center());
+      if (!IsFinite(c.origin)) return Invalid(where + ".center", "coordinate is NaN or infinite");
+      if (auto s = CheckRadius(sp.radius(), where); !s.ok()) return s;
+      c.radius = sp.radius();
+      const Vec3 pole = sp.has_pole() ? FromProto(sp.pole()) : Vec3{0, 1, 0};
+      if (!IsFinite(pole) || !(Length(pole) > 0))
+        return Invalid(where + ".pole", "must be a finite non-zero direction");
+      c.axes = FrameAround(pole);
+      if (auto s = SetCurvedMaterial(sp.material_id(), where, &c); !s.ok()) return s;
+      scene_.curved.push_back(c);
+    }
+    for (int i = 0; i < proto_.cylinders_size(); ++i) {
+      const v1::Cylinder& cy = proto_.cylinders(i);
+      const std::string where = absl::StrCat("cylinders[", i, "]");
+      CurvedPrimitive c;
+      c.kind = CurvedKind::kCylinder;
+      c.origin = FromProto(cy.base());
+      const Vec3 top = FromProto(cy.top());
+      if (!IsFinite(c.origin)) return Invalid(where + ".base", "coordinate is NaN or infinite");
+      if (!IsFinite(top)) return Invalid(where + ".top", "coordinate is NaN or infinite");
+      if (auto s = CheckRadius(cy.radius(), where); !s.ok()) return s;
+      c.radius = cy.radius();
+      c.height = Length(top - c.origin);
+      if (!(c.height > 0) || !std::isfinite(c.height))
+        return Invalid(where + ".top", "must differ from base (the cylinder has no length)");
+      c.axes = FrameAround(top - c.origin);
+      c.capped = cy.capped();
+      if (auto s = SetCurvedMaterial(cy.material_id(), where, &c); !s.ok()) return s;
+      scene_.curved.push_back(c);
+    }
+    return absl::OkStatus();
+  }
+
+  static absl::Status CheckRadius(double radius, const std::string& where) {
+    if (!std::isfinite(radius)) return Invalid(where + ".radius", "is NaN or infinite");
+    if (!(radius > 0)) return Invalid(where + ".radius", absl::StrCat("must be > 0, is ", radius));
+    return absl::OkStatus();
+  }
+
+  // An orthonormal frame whose y is `axis`: (x, y, z) = identity for +y.
+  static Mat3 FrameAround(const Vec3& axis) {
+    const Vec3 y = Normalize(axis);
+    const Vec3 helper = std::abs(y.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 0, -1};
+    const Vec3 z = Normalize(Cross(helper, y));
+    const Vec3 x = Cross(y, z);
+    Mat3 m;
+    const Vec3 cols[3] = {x, y, z};
+    for (int j = 0; j < 3; ++j) m.m[0][j] = cols[j].x, m.m[1][j] = cols[j].y, m.m[2][j] = cols[j].z;
+    return m;
+  }
+
+  // seed 003's F2 from the material's texture transform: rotation, then repeats and shift.
+  absl::Status SetCurvedMaterial(const std::string& id, const std::string& where,
+                                 CurvedPrimitive* c) {
+    auto material = MaterialIndex(id, where);
+    if (!material.ok()) return material.status();
+    c->material = *material;
+    const v1::TextureTransform& tt = transforms_[*material];
+    const double ru = tt.repeat_u() > 0 ? tt.repeat_u() : 1.0;
+    const double rv = tt.repeat_v() > 0 ? tt.repeat_v() : ru;
+    const double cr = std::cos(Radians(tt.rotation_deg())),
+                 sr = std::sin(Radians(tt.rotation_deg()));
+    c->texture = {cr / ru, -sr / ru, sr / rv, cr / rv, tt.offset_u(), tt.offset_v()};
     return absl::OkStatus();
   }
 

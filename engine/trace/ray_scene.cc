@@ -7,8 +7,55 @@
 #include <limits>
 
 #include "absl/strings/str_cat.h"
+#include "trace/curved_intersect.h"
 
 namespace aperture {
+namespace {
+
+// Embree user geometry over RayScene::curved_ (origin-relative, float rays from rtcIntersect1).
+void CurvedBoundsCallback(const RTCBoundsFunctionArguments* args) {
+  const auto& curved = *static_cast<const std::vector<CurvedPrimitive>*>(args->geometryUserPtr);
+  Vec3 lo, hi;
+  CurvedBounds(curved[args->primID], &lo, &hi);
+  // Padded by a little more than float rounding, so that grazing rays are not culled.
+  const double pad = 1e-5 * (1 + std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}));
+  args->bounds_o->lower_x = static_cast<float>(lo.x - pad);
+  args->bounds_o->lower_y = static_cast<float>(lo.y - pad);
+  args->bounds_o->lower_z = static_cast<float>(lo.z - pad);
+  args->bounds_o->upper_x = static_cast<float>(hi.x + pad);
+  args->bounds_o->upper_y = static_cast<float>(hi.y + pad);
+  args->bounds_o->upper_z = static_cast<float>(hi.z + pad);
+}
+
+// Only rtcIntersect1 is used: N is 1 and the ray is an RTCRayHit.
+void CurvedIntersectCallback(const RTCIntersectFunctionNArguments* args) {
+  if (args->N != 1 || args->valid[0] == 0) return;
+  const auto& curved = *static_cast<const std::vector<CurvedPrimitive>*>(args->geometryUserPtr);
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const Vec3 o{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z};
+  const Vec3 d{rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z};
+  const auto hit = IntersectCurved(curved[args->primID], o, d, rh->ray.tnear, rh->ray.tfar);
+  if (!hit) return;
+  rh->ray.tfar = static_cast<float>(hit->t);
+  rh->hit.Ng_x = static_cast<float>(hit->normal.x);
+  rh->hit.Ng_y = static_cast<float>(hit->normal.y);
+  rh->hit.Ng_z = static_cast<float>(hit->normal.z);
+  rh->hit.u = rh->hit.v = 0;
+  rh->hit.primID = args->primID;
+  rh->hit.geomID = args->geomID;
+  rh->hit.instID[0] = args->context->instID[0];
+}
+
+void CurvedOccludedCallback(const RTCOccludedFunctionNArguments* args) {
+  if (args->N != 1 || args->valid[0] == 0) return;
+  const auto& curved = *static_cast<const std::vector<CurvedPrimitive>*>(args->geometryUserPtr);
+  RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
+  const Vec3 o{ray->org_x, ray->org_y, ray->org_z}, d{ray->dir_x, ray->dir_y, ray->dir_z};
+  if (IntersectCurved(curved[args->primID], o, d, ray->tnear, ray->tfar))
+    ray->tfar = -std::numeric_limits<float>::infinity();
+}
+
+}  // namespace
 
 absl::StatusOr<std::unique_ptr<RayScene>> RayScene::Build(const Scene& scene) {
   std::unique_ptr<RayScene> rs(new RayScene());
@@ -21,7 +68,14 @@ absl::StatusOr<std::unique_ptr<RayScene>> RayScene::Build(const Scene& scene) {
       hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
     }
   }
-  if (vertices > 0) rs->origin_ = (lo + hi) * 0.5;
+  for (const CurvedPrimitive& c : scene.curved) {
+    Vec3 clo, chi;
+    CurvedBounds(c, &clo, &chi);
+    lo = {std::min(lo.x, clo.x), std::min(lo.y, clo.y), std::min(lo.z, clo.z)};
+    hi = {std::max(hi.x, chi.x), std::max(hi.y, chi.y), std::max(hi.z, chi.z)};
+  }
+  if (vertices > 0 || !scene.curved.empty()) rs->origin_ = (lo + hi) * 0.5;
+  rs->polygons_ = static_cast<int>(scene.polygons.size());
 
   RTCDevice device = rtcNewDevice(nullptr);
   if (device == nullptr) return absl::InternalError("Embree: cannot create a device");
@@ -57,7 +111,20 @@ absl::StatusOr<std::unique_ptr<RayScene>> RayScene::Build(const Scene& scene) {
       base += static_cast<unsigned>(p.vertices.size());
     }
     rtcCommitGeometry(geom);
-    rtcAttachGeometry(rtc_scene, geom);
+    rs->triangle_geometry_ = rtcAttachGeometry(rtc_scene, geom);
+    rtcReleaseGeometry(geom);
+  }
+  if (!scene.curved.empty()) {
+    rs->curved_ = scene.curved;
+    for (CurvedPrimitive& c : rs->curved_) c.origin = c.origin - rs->origin_;
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(rs->curved_.size()));
+    rtcSetGeometryUserData(geom, &rs->curved_);
+    rtcSetGeometryBoundsFunction(geom, CurvedBoundsCallback, nullptr);
+    rtcSetGeometryIntersectFunction(geom, CurvedIntersectCallback);
+    rtcSetGeometryOccludedFunction(geom, CurvedOccludedCallback);
+    rtcCommitGeometry(geom);
+    rs->curved_geometry_ = rtcAttachGeometry(rtc_scene, geom);
     rtcReleaseGeometry(geom);
   }
   rtcCommitScene(rtc_scene);
@@ -73,7 +140,7 @@ RayScene::~RayScene() {
 }
 
 int RayScene::Intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const {
-  if (triangle_polygon_.empty()) return -1;
+  if (triangle_polygon_.empty() && curved_.empty()) return -1;
   const Vec3 o = origin - origin_;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -95,6 +162,7 @@ int RayScene::Intersect(const Vec3& origin, const Vec3& dir, double t_near, doub
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
+  if (rh.hit.geomID == curved_geometry_) return polygons_ + static_cast<int>(rh.hit.primID);
   return triangle_polygon_[rh.hit.primID];
 }
 

@@ -1,12 +1,13 @@
 // Seed 003, eq. 1-2: the texture mapping F = F2(F1(P)) of a primitive. F1 takes a point of the
 // primitive (in the primitive's own frame) to the texture plane X'_T Z'_T: linear (planar faces),
 // cylindrical or spherical; F2 is an affine transform of that plane (scale, rotation, shift).
-// The curved primitives themselves (spheres and cylinders in the scene schema and the ray
-// kernels) are still to come; these mappings are their texture side.
+// Spheres and cylinders (scene.curved) take the spherical and cylindrical F1 on their surface and
+// a disc's linear F1 on a cylinder's caps.
 #pragma once
 
 #include <array>
 
+#include "scene/scene.h"
 #include "scene/vec.h"
 #include "trace/pixel_fragments.h"
 
@@ -22,7 +23,7 @@ struct Affine2 {
   TexPoint Apply(const TexPoint& p) const { return {a * p.x + b * p.z + e, c * p.x + d * p.z + f}; }
 };
 
-enum class MappingKind { kLinear, kCylindrical, kSpherical };
+enum class MappingKind { kLinear, kCylindrical, kSpherical, kDisc };
 
 struct PrimitiveMapping {
   MappingKind kind = MappingKind::kLinear;
@@ -34,6 +35,9 @@ struct PrimitiveMapping {
   Vec3 su{1, 0, 0}, sv{0, 0, 1};
   // kCylindrical: z' = y / height (the cylinder from y = 0 to height).
   double height = 1;
+  // kDisc (a cylinder's cap): x' = (x / radius + 1) / 2, z' = (z / radius + 1) / 2, one repeat
+  // across the diameter.
+  double radius = 1;
   Affine2 f2;
 };
 
@@ -46,5 +50,12 @@ TexPoint F1(const PrimitiveMapping& mapping, const Vec3& world_point);
 // quad is the pixel's projection and not a band across the whole texture.
 std::array<TexPoint, 4> MapQuad(const PrimitiveMapping& mapping,
                                 const std::array<Vec3, 4>& world_points);
+
+// The second half of MapQuad: F1 images of the four corners unwrapped across the seam, then F2.
+std::array<TexPoint, 4> UnwrapAndTransform(const PrimitiveMapping& mapping,
+                                           std::array<TexPoint, 4> f1_points);
+
+// The mapping of a curved primitive's part (side or cap) with F2 from its material.
+PrimitiveMapping CurvedMapping(const CurvedPrimitive& primitive, bool cap);
 
 }  // namespace aperture
