@@ -4,7 +4,7 @@
 
 namespace aperture {
 
-Rgba ProjectionIntegrator::Color(const std::array<TexPoint, 4>& quad, const SummedAreaTable& sat,
+Rgba ProjectionIntegrator::Color(const std::array<TexPoint, 4>& quad, const TextureIntegral& sat,
                                  FragmentStats* stats) {
   // Move the quad by whole periods next to the origin (the texture is periodic), so that its
   // coordinates keep their precision however far the surface runs.

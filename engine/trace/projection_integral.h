@@ -1,6 +1,7 @@
 // Seed 003, eq. 3-4: the colour of a pixel's projection abcd on the texture plane, the integral of
 // the texture over its fragments divided by their area, with the integrals of the child
-// fragments taken from a summed-area table.
+// fragments taken from a summed-area table (raster textures) or the packed format's exact area
+// integral (seed 001's vector textures, without unpacking).
 #pragma once
 
 #include <array>
@@ -9,6 +10,7 @@
 #include "texture/image.h"
 #include "trace/pixel_fragments.h"
 #include "trace/summed_area_table.h"
+#include "trace/texture_integral.h"
 
 namespace aperture {
 
@@ -30,9 +32,14 @@ class ProjectionIntegrator {
  public:
   explicit ProjectionIntegrator(FragmentOptions options) : options_(options) {}
 
-  // The mean of the texture over the fragments covering `quad` (texture repeats).
-  Rgba Color(const std::array<TexPoint, 4>& quad, const SummedAreaTable& sat,
+  // The mean of the texture over the fragments covering `quad` (texture repeats): raster
+  // textures by their summed-area table, packed vector textures by their own area integral.
+  Rgba Color(const std::array<TexPoint, 4>& quad, const TextureIntegral& texture,
              FragmentStats* stats = nullptr);
+  Rgba Color(const std::array<TexPoint, 4>& quad, const SummedAreaTable& sat,
+             FragmentStats* stats = nullptr) {
+    return Color(quad, TableIntegral(sat), stats);
+  }
 
  private:
   FragmentOptions options_;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 
+#include "texture/packed/packed_sampler.h"
 #include "trace/curved_intersect.h"
 #include "trace/texture_mapping.h"
 
@@ -38,7 +39,7 @@ bool SameSurface(const Hit& a, const Hit& b) { return a.polygon == b.polygon && 
 class Frame {
  public:
   Frame(const Scene& scene, const RayScene& rays,
-        const std::vector<std::shared_ptr<const SummedAreaTable>>& tables, const Camera& camera,
+        const std::vector<std::unique_ptr<TextureIntegral>>& tables, const Camera& camera,
         const RenderSettings& settings, const TraceOptions& options)
       : scene_(scene),
         rays_(rays),
@@ -186,12 +187,14 @@ class Frame {
     Rgba colour = mat.base_color;
     if (mat.texture >= 0) {
       Rgba texture{1, 1, 1, 1};
-      if (const SummedAreaTable* sat = tables_[mat.texture].get(); sat != nullptr) {
-        // seed 003: the quad abcd, its fragments and their integrals (eq. 3-4).
+      if (const TextureIntegral* sat = tables_[mat.texture].get(); sat != nullptr) {
+        // seed 003: the quad abcd, its fragments and their integrals (eq. 3-4), from the
+        // summed-area table or the packed texture's runs.
         texture = integrator->Color(quad, *sat, stats);
         if (sat->channels() < 4) texture.a = 1;
       } else {
-        // A packed vector texture: its own area sampler over the quad's parallelogram.
+        // No integral (not expected: every texture has one): the texture's own sampler over
+        // the quad's parallelogram.
         const SceneTexture& tex = *scene_.textures[mat.texture];
         const FilterMode mode =
             settings_.shading.override_filter ? settings_.shading.filter : mat.filter;
@@ -288,7 +291,7 @@ class Frame {
   };
   const Scene& scene_;
   const RayScene& rays_;
-  const std::vector<std::shared_ptr<const SummedAreaTable>>& tables_;
+  const std::vector<std::unique_ptr<TextureIntegral>>& tables_;
   const Camera& camera_;
   const RenderSettings& settings_;
   const TraceOptions& options_;
@@ -328,6 +331,19 @@ absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(const Scene& sce
     for (const Rgba& texel : base.texels()) alpha = alpha || texel.a < 1.0f;
     ts->tables_[i] = std::make_shared<SummedAreaTable>(base, alpha ? 4 : 3);
   }
+  // What the fragments integrate: the tables, and packed vector textures' runs in place.
+  ts->integrals_.resize(scene.textures.size());
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    if (ts->tables_[i]) {
+      ts->integrals_[i] = std::make_unique<TableIntegral>(*ts->tables_[i]);
+    } else if (const auto* p = dynamic_cast<const packed::PackedTextureSampler*>(
+                   scene.textures[i]->packed_area.get());
+               used[i] && p != nullptr) {
+      ts->integrals_[i] =
+          std::make_unique<PackedIntegral>(p->area(), static_cast<int>(p->texture().width()),
+                                           static_cast<int>(p->texture().height()));
+    }
+  }
   return ts;
 }
 
@@ -339,7 +355,7 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
   if (auto s = ValidateCamera(camera); !s.ok()) return s;
   if (auto s = ValidateTraceOptions(options); !s.ok()) return s;
   const int w = settings.width, h = settings.height;
-  const Frame frame(scene_, *rays_, tables_, camera, settings, options);
+  const Frame frame(scene_, *rays_, integrals_, camera, settings, options);
   RenderedFrame out;
   out.region = {0, 0, w, h};
   out.image = Image::Uninitialized(w, h);

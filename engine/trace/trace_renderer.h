@@ -17,6 +17,7 @@
 #include "trace/projection_integral.h"
 #include "trace/ray_scene.h"
 #include "trace/summed_area_table.h"
+#include "trace/texture_integral.h"
 
 namespace aperture {
 
@@ -36,16 +37,16 @@ struct TraceStats {
   FragmentStats fragments;
 };
 
-// The scene's ray-tracing state, built once and shared by frames: the Embree BVH and a
-// summed-area table per raster texture.
+// The scene's ray-tracing state, built once and shared by frames: the Embree BVH, a summed-area
+// table per raster texture and the integral of every texture (table or packed runs).
 class TracedScene {
  public:
   static absl::StatusOr<std::unique_ptr<TracedScene>> Build(const Scene& scene);
 
   // Renders settings.width x settings.height (the region is ignored: the whole frame) on
-  // settings.threads threads (0: the caller's arena). Only settings.shading.filter matters for
-  // packed vector textures, which have no table: they take their area sampler over the quad's
-  // parallelogram.
+  // settings.threads threads (0: the caller's arena). Texture filters do not apply: every texture
+  // is integrated over the fragments (raster ones by their summed-area tables, packed vector ones
+  // by the packed format's area integral).
   absl::StatusOr<RenderedFrame> Render(const Camera& camera, const RenderSettings& settings,
                                        const TraceOptions& options,
                                        TraceStats* stats = nullptr) const;
@@ -58,6 +59,7 @@ class TracedScene {
   const Scene& scene_;
   std::unique_ptr<RayScene> rays_;
   std::vector<std::shared_ptr<const SummedAreaTable>> tables_;  // per scene texture, or null
+  std::vector<std::unique_ptr<TextureIntegral>> integrals_;     // per scene texture, or null
 };
 
 }  // namespace aperture

@@ -29,6 +29,10 @@ class PackedTextureSampler : public TextureSampler {
   // parallelogram (centre (u, v), edge vectors (dudx, dvdx) and (dudy, dvdy)).
   Rgba Sample(const TextureFootprint& footprint) const override;
 
+  const PackedTextureView& texture() const { return texture_; }
+  // The exact area integral (seed 003's fragments integrate through it in the raytrace mode).
+  const AreaIntegrator& area() const { return area_; }
+
  private:
   PackedTextureView texture_;
   PackedSampling mode_;
