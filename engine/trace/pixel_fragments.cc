@@ -8,46 +8,44 @@ namespace {
 
 // One axis of the construction: `along` picks the coordinate the grid lines cross (x for Lx).
 // Fills `out` with the group rectangles and returns their total area.
+//
+// Steps 3-7: the list L = {a, b, c, d, crossings of the edges with the lines key = m l}, sorted by
+// the key and grouped by grid cell (a point on a line joins both cells it separates), each group
+// bounded by a rectangle. Sorting only serves to bring a cell's points together, so each point
+// goes straight to its cell's rectangle instead (the same rectangles, without the sort): cell
+// `first` is the one of the smallest key (minus one when it lies on a line), out[cell - first].
 double BuildGroups(const std::array<TexPoint, 4>& quad, double l, bool along_x,
-                   std::vector<TexRect>* out, std::vector<TexPoint>* points) {
+                   std::vector<TexRect>* out) {
   auto key = [&](const TexPoint& p) { return along_x ? p.x : p.z; };
   auto other = [&](const TexPoint& p) { return along_x ? p.z : p.x; };
-  // Step 3-4: the list L = {a, b, c, d, crossings of the edges with the lines key = m l}.
-  points->assign(quad.begin(), quad.end());
-  for (int e = 0; e < 4; ++e) {
-    const TexPoint &p = quad[e], &q = quad[(e + 1) % 4];
-    const double kp = key(p), kq = key(q);
-    if (kp == kq) continue;  // parallel to the lines: its ends are vertices already
-    const double lo = std::min(kp, kq), hi = std::max(kp, kq);
-    for (double m = std::ceil(lo / l); m * l <= hi; m += 1) {
-      const double k = m * l, t = (k - kp) / (kq - kp);
-      const double o = other(p) + t * (other(q) - other(p));
-      points->push_back(along_x ? TexPoint{k, o} : TexPoint{o, k});
-    }
-  }
-  // Step 5: sort by the key.
-  std::sort(points->begin(), points->end(),
-            [&](const TexPoint& p, const TexPoint& q) { return key(p) < key(q); });
-  // Step 6-7: group by grid cell (a point on a line joins both cells it separates) and bound
-  // each group. Sorted, the points of one cell are consecutive; a cell's rectangle is out[cell -
-  // first], first the cell of the first point (minus one when it lies on a line).
-  out->clear();
-  const double first = std::ceil(key(points->front()) / l) - 1;
-  auto add = [&](double cell, const TexPoint& p) {
-    const double k = key(p), o = other(p);
+  double kmin = key(quad[0]), kmax = kmin;
+  for (const TexPoint& p : quad) kmin = std::min(kmin, key(p)), kmax = std::max(kmax, key(p));
+  const double first = std::ceil(kmin / l) - 1;
+  out->assign(static_cast<size_t>(std::floor(kmax / l) - first) + 1,
+              TexRect{INFINITY, INFINITY, -INFINITY, -INFINITY});
+  auto add = [&](double cell, double k, double o) {
     const size_t index = static_cast<size_t>(cell - first);
-    if (index >= out->size()) {
-      out->resize(index + 1, TexRect{INFINITY, INFINITY, -INFINITY, -INFINITY});
-    }
+    if (index >= out->size()) return;  // not reached: every key lies in [kmin, kmax]
     TexRect& r = (*out)[index];
     const double x = along_x ? k : o, z = along_x ? o : k;
     r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x);
     r.z0 = std::min(r.z0, z), r.z1 = std::max(r.z1, z);
   };
-  for (const TexPoint& p : *points) {
-    const double c = key(p) / l, cell = std::floor(c);
-    if (c == cell) add(cell - 1, p);  // on a grid line: also the cell before it
-    add(cell, p);
+  auto place = [&](double k, double o) {
+    const double c = k / l, cell = std::floor(c);
+    if (c == cell) add(cell - 1, k, o);  // on a grid line: also the cell before it
+    add(cell, k, o);
+  };
+  for (int e = 0; e < 4; ++e) {
+    const TexPoint &p = quad[e], &q = quad[(e + 1) % 4];
+    place(key(p), other(p));
+    const double kp = key(p), kq = key(q);
+    if (kp == kq) continue;  // parallel to the lines: its ends are vertices already
+    const double lo = std::min(kp, kq), hi = std::max(kp, kq);
+    for (double m = std::ceil(lo / l); m * l <= hi; m += 1) {
+      const double k = m * l, t = (k - kp) / (kq - kp);
+      place(k, other(p) + t * (other(q) - other(p)));
+    }
   }
   // A cell holding only points on its border line has no width: not a fragment.
   double area = 0;
@@ -98,10 +96,9 @@ void BuildFragments(const std::array<TexPoint, 4>& quad, const FragmentOptions& 
   out->level = k;
   const double l = std::ldexp(1.0, -k);
   // Steps 3-7 along each axis; step 8: keep the set of smaller area.
-  thread_local std::vector<TexPoint> points;  // scratch, kept between calls
-  thread_local std::vector<TexRect> gz;
-  const double area_x = BuildGroups(quad, l, true, &out->fragments, &points);
-  const double area_z = BuildGroups(quad, l, false, &gz, &points);
+  thread_local std::vector<TexRect> gz;  // scratch, kept between calls
+  const double area_x = BuildGroups(quad, l, true, &out->fragments);
+  const double area_z = BuildGroups(quad, l, false, &gz);
   out->columns = area_x <= area_z;
   out->area = out->columns ? area_x : area_z;
   if (!out->columns) out->fragments.swap(gz);

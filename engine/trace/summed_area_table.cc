@@ -85,11 +85,79 @@ void SummedAreaTable::Corner(double x, double y, double* out) const {
              as * (ar * t00[c] + br * t01[c]) + bs * (ar * t10[c] + br * t11[c]);
 }
 
+// The integral of texel column i's piecewise-linear samples over [y0, y1] (the one-axis form of
+// Corner: TQ plus the partial trapezoid, at both ends).
+void SummedAreaTable::AlongY(int i, double y0, double y1, double* out) const {
+  double a[4], b[4];
+  for (int e = 0; e < 2; ++e) {
+    const double ys = (e == 0 ? y0 : y1) - 0.5;
+    const int j = std::clamp(static_cast<int>(std::floor(ys)), -1, height_ - 1);
+    const double r = ys - j, ar = r - 0.5 * r * r, br = 0.5 * r * r;
+    const double *tq = At(kTQ, i, j), *t0 = At(kT, i, j), *t1 = At(kT, i, j + 1);
+    double* g = e == 0 ? a : b;
+    for (int c = 0; c < channels_; ++c) g[c] = tq[c] + ar * t0[c] + br * t1[c];
+  }
+  for (int c = 0; c < channels_; ++c) out[c] = b[c] - a[c];
+}
+
+// Texel row j's integral over [x0, x1] from QT.
+void SummedAreaTable::AlongX(int j, double x0, double x1, double* out) const {
+  double a[4], b[4];
+  for (int e = 0; e < 2; ++e) {
+    const double xs = (e == 0 ? x0 : x1) - 0.5;
+    const int i = std::clamp(static_cast<int>(std::floor(xs)), -1, width_ - 1);
+    const double s = xs - i, as = s - 0.5 * s * s, bs = 0.5 * s * s;
+    const double *qt = At(kQT, i, j), *t0 = At(kT, i, j), *t1 = At(kT, i + 1, j);
+    double* g = e == 0 ? a : b;
+    for (int c = 0; c < channels_; ++c) g[c] = qt[c] + as * t0[c] + bs * t1[c];
+  }
+  for (int c = 0; c < channels_; ++c) out[c] = b[c] - a[c];
+}
+
 std::array<double, 4> SummedAreaTable::Integrate(double x0, double y0, double x1, double y1) const {
   std::array<double, 4> sum{};
   x0 = std::clamp(x0, 0.0, double(width_)), x1 = std::clamp(x1, x0, double(width_));
   y0 = std::clamp(y0, 0.0, double(height_)), y1 = std::clamp(y1, y0, double(height_));
   if (x1 <= x0 || y1 <= y0) return sum;
+  // Within one cell between texel centres the texture is bilinear, and the integral of a bilinear
+  // function over a rectangle is its area times the value at the rectangle's centre: four samples
+  // instead of four corners of nine entries each (most of seed 003's fragments are this small).
+  const double xs0 = x0 - 0.5, ys0 = y0 - 0.5;
+  const double fi = std::floor(xs0), fj = std::floor(ys0);
+  if (x1 - 0.5 <= fi + 1 && y1 - 0.5 <= fj + 1) {
+    const int i = static_cast<int>(fi), j = static_cast<int>(fj);
+    const double s = 0.5 * (x0 + x1) - 0.5 - fi, r = 0.5 * (y0 + y1) - 0.5 - fj;
+    const double area = (x1 - x0) * (y1 - y0);
+    const double w00 = (1 - s) * (1 - r) * area, w10 = s * (1 - r) * area, w01 = (1 - s) * r * area,
+                 w11 = s * r * area;
+    const double *t00 = At(kT, i, j), *t10 = At(kT, i + 1, j), *t01 = At(kT, i, j + 1),
+                 *t11 = At(kT, i + 1, j + 1);
+    for (int c = 0; c < channels_; ++c)
+      sum[c] = w00 * t00[c] + w10 * t10[c] + w01 * t01[c] + w11 * t11[c];
+    return sum;
+  }
+  // Within one cell column (row) the texture is linear across it: the integral is the width
+  // times the integral along the column of the texture at the middle, from the one-axis prefix
+  // sums of the two texel columns (rows) either side: 12 entries instead of 36 (seed 003's Gx
+  // fragments are thin columns, its Gz fragments thin rows).
+  if (x1 - 0.5 <= fi + 1) {
+    const int i = static_cast<int>(fi);
+    const double s = 0.5 * (x0 + x1) - 0.5 - fi;
+    double g0[4], g1[4];
+    AlongY(i, y0, y1, g0);
+    AlongY(i + 1, y0, y1, g1);
+    for (int c = 0; c < channels_; ++c) sum[c] = (x1 - x0) * ((1 - s) * g0[c] + s * g1[c]);
+    return sum;
+  }
+  if (y1 - 0.5 <= fj + 1) {
+    const int j = static_cast<int>(fj);
+    const double r = 0.5 * (y0 + y1) - 0.5 - fj;
+    double g0[4], g1[4];
+    AlongX(j, x0, x1, g0);
+    AlongX(j + 1, x0, x1, g1);
+    for (int c = 0; c < channels_; ++c) sum[c] = (y1 - y0) * ((1 - r) * g0[c] + r * g1[c]);
+    return sum;
+  }
   double c11[4], c01[4], c10[4], c00[4];
   Corner(x1, y1, c11);
   Corner(x0, y1, c01);

@@ -41,6 +41,9 @@ class SummedAreaTable {
  private:
   // Integral over [0.5 - 1, x] x [0.5 - 1, y] (from the centre of texel (-1, -1)), per channel.
   void Corner(double x, double y, double* out) const;
+  // One-axis integrals of texel column i over [y0, y1], of texel row j over [x0, x1].
+  void AlongY(int i, double y0, double y1, double* out) const;
+  void AlongX(int j, double x0, double x1, double* out) const;
   const double* At(int table, int i, int j) const {
     return &tables_[((static_cast<size_t>(j + 1) * (width_ + 2) + (i + 1)) * 4 + table) *
                     channels_];

@@ -154,3 +154,50 @@ TEST(SummedAreaTable, LargeTextureKeepsPrecision) {
 
 }  // namespace
 }  // namespace aperture
+
+namespace aperture {
+namespace {
+
+// The fast paths: rectangles within one cell between texel centres, thin columns within one cell
+// column spanning many rows, thin rows likewise, including cells at the texture's borders.
+TEST(SummedAreaTable, InCellColumnAndRowRectanglesMatchBruteForce) {
+  const Image img = RandomTexture(32, 16, 11);
+  const SummedAreaTable sat(img, 4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u01(0, 1);
+  double worst = 0;
+  for (int k = 0; k < 600; ++k) {
+    // A cell [c, c + 1] between texel centres, c = i + 0.5 for i in -1 .. n - 1 (clipped to the
+    // texture), and a random sub-interval of it; the other axis in-cell, thin or long.
+    auto in_cell = [&](int n, double* lo, double* hi) {
+      const double c = std::floor(u01(rng) * (n + 1)) - 0.5;
+      double a = c + u01(rng), b = c + u01(rng);
+      if (a > b) std::swap(a, b);
+      *lo = std::clamp(a, 0.0, double(n)), *hi = std::clamp(b, 0.0, double(n));
+    };
+    auto any = [&](int n, double* lo, double* hi) {
+      double a = u01(rng) * n, b = u01(rng) * n;
+      if (a > b) std::swap(a, b);
+      *lo = a, *hi = b;
+    };
+    double x0, x1, y0, y1;
+    switch (k % 3) {
+      case 0:
+        in_cell(32, &x0, &x1), in_cell(16, &y0, &y1);
+        break;
+      case 1:
+        in_cell(32, &x0, &x1), any(16, &y0, &y1);
+        break;
+      default:
+        any(32, &x0, &x1), in_cell(16, &y0, &y1);
+        break;
+    }
+    const auto got = sat.Integrate(x0, y0, x1, y1);
+    for (int c = 0; c < 4; ++c)
+      worst = std::max(worst, std::abs(got[c] - BruteIntegral(img, c, x0, y0, x1, y1)));
+  }
+  EXPECT_LT(worst, 1e-10);
+}
+
+}  // namespace
+}  // namespace aperture
