@@ -28,14 +28,23 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// A frame already written is kept when it opens as an EXR of the requested size.
-bool IsValidFrame(const std::string& path, uint32_t width, uint32_t height) {
+// A frame already written is kept (and passes --check) when it reads back completely as an
+// OpenEXR image of the requested size: header and every pixel, so a file cut short on a shared
+// file system (a node lost mid-write) is rendered again. Empty when valid, else why not.
+std::string InvalidFrame(const std::string& path, uint32_t width, uint32_t height) {
   std::error_code error;
-  if (!fs::is_regular_file(path, error)) return false;
+  if (!fs::exists(path, error)) return "missing";
+  if (!fs::is_regular_file(path, error)) return "not a regular file";
   auto input = OIIO::ImageInput::open(path);
-  if (!input) return false;
+  if (!input) return "does not open as an image";
+  if (std::string(input->format_name()) != "openexr") return "not an OpenEXR file";
   const OIIO::ImageSpec& spec = input->spec();
-  return spec.width == static_cast<int>(width) && spec.height == static_cast<int>(height);
+  if (spec.width != static_cast<int>(width) || spec.height != static_cast<int>(height))
+    return absl::StrFormat("%dx%d, expected %ux%u", spec.width, spec.height, width, height);
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    return "pixels do not read back (truncated or corrupt)";
+  return "";
 }
 
 // Written under a temporary name and renamed: an interrupted write never looks like a frame.
@@ -51,6 +60,40 @@ bool WriteFrame(const std::string& path, const std::string& bytes) {
   return !error;
 }
 
+// Frames keep their job-wide number whatever the shard.
+std::string FramePath(const std::string& out_dir, size_t frame) {
+  return (fs::path(out_dir) / absl::StrFormat("frame_%06zu.exr", frame)).string();
+}
+
+// --check: reads back the shard's frames, lists those missing or invalid; no server involved.
+int CheckFrames(const std::string& out_dir, const std::vector<size_t>& frames,
+                const std::string& what) {
+  uint32_t width = 0, height = 0;
+  if (auto s = ParseSize(absl::GetFlag(FLAGS_size), &width, &height); !s.ok()) {
+    std::fprintf(stderr, "aperture batch: error: %s\n", std::string(s.message()).c_str());
+    return 2;
+  }
+  std::vector<std::string> problems(frames.size());
+  std::atomic<size_t> next{0};
+  std::vector<std::thread> workers;
+  for (int w = 0; w < std::max(1, absl::GetFlag(FLAGS_concurrency)); ++w) {
+    workers.emplace_back([&] {
+      for (size_t k = next++; k < frames.size(); k = next++)
+        problems[k] = InvalidFrame(FramePath(out_dir, frames[k]), width, height);
+    });
+  }
+  for (std::thread& t : workers) t.join();
+  size_t missing = 0, invalid = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (problems[k].empty()) continue;
+    (problems[k] == "missing" ? missing : invalid)++;
+    std::printf("%s: %s\n", FramePath(out_dir, frames[k]).c_str(), problems[k].c_str());
+  }
+  std::printf("check: %s, %ux%u: %zu valid, %zu missing, %zu invalid\n", what.c_str(), width,
+              height, frames.size() - missing - invalid, missing, invalid);
+  return missing + invalid == 0 ? 0 : 1;
+}
+
 }  // namespace
 
 int RunBatch(const std::string& job_path) {
@@ -60,10 +103,23 @@ int RunBatch(const std::string& job_path) {
   };
   auto job = ReadBatchJob(job_path);
   if (!job.ok()) return fail(job.status());
+  auto shard = ParseShard(absl::GetFlag(FLAGS_shard));
+  if (!shard.ok()) return fail(shard.status());
   absl::SetFlag(&FLAGS_scene, job->scene);
   if (!job->size.empty()) absl::SetFlag(&FLAGS_size, job->size);
   if (!job->filter.empty()) absl::SetFlag(&FLAGS_filter, job->filter);
   const std::string out_dir = absl::GetFlag(FLAGS_o);
+
+  // This shard's frames, by their job-wide numbers.
+  std::vector<size_t> owned;
+  for (size_t f = 0; f < job->cameras.size(); ++f)
+    if (shard->Owns(f)) owned.push_back(f);
+  const std::string what = shard->count == 1
+                               ? absl::StrFormat("%zu frames", owned.size())
+                               : absl::StrFormat("shard %zu/%zu: %zu of %zu frames", shard->index,
+                                                 shard->count, owned.size(), job->cameras.size());
+  if (absl::GetFlag(FLAGS_check)) return CheckFrames(out_dir, owned, what);
+
   std::error_code error;
   fs::create_directories(out_dir, error);
   if (error) return fail(absl::InternalError(absl::StrCat("cannot create ", out_dir)));
@@ -96,7 +152,7 @@ int RunBatch(const std::string& job_path) {
   auto stub = v1::Render::NewStub(grpc::CreateCustomChannel(
       absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), ClientCredentials(), args));
 
-  const size_t frames = job->cameras.size();
+  const size_t frames = owned.size();
   const uint32_t width = base->options().width(), height = base->options().height();
   const int attempts = 3 * static_cast<int>(ready.size());
   std::atomic<size_t> next{0}, rendered{0}, skipped{0}, failed{0}, retries{0};
@@ -106,7 +162,7 @@ int RunBatch(const std::string& job_path) {
     const size_t done = rendered + skipped + failed;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     const double eta = rendered > 0 ? elapsed / rendered * (frames - done) : 0;
-    const int bar = static_cast<int>(30 * done / frames);
+    const int bar = frames == 0 ? 30 : static_cast<int>(30 * done / frames);
     std::lock_guard lock(print);
     std::fprintf(stderr, "\r[%s%s] %zu/%zu frames, ETA %.0f s ", std::string(bar, '#').c_str(),
                  std::string(30 - bar, ' ').c_str(), done, frames, eta);
@@ -115,10 +171,10 @@ int RunBatch(const std::string& job_path) {
   std::vector<std::thread> workers;
   for (int w = 0; w < std::max(1, absl::GetFlag(FLAGS_concurrency)); ++w) {
     workers.emplace_back([&] {
-      for (size_t i = next++; i < frames; i = next++) {
-        const std::string path =
-            (fs::path(out_dir) / absl::StrFormat("frame_%06d.exr", i)).string();
-        if (IsValidFrame(path, width, height)) {
+      for (size_t k = next++; k < frames; k = next++) {
+        const size_t i = owned[k];
+        const std::string path = FramePath(out_dir, i);
+        if (InvalidFrame(path, width, height).empty()) {
           ++skipped;
           progress();
           continue;
@@ -153,9 +209,9 @@ int RunBatch(const std::string& job_path) {
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::fprintf(stderr, "\n");
   std::printf(
-      "batch: %zu frames on %zu servers: %zu rendered, %zu skipped (already valid), "
+      "batch: %s on %zu servers: %zu rendered, %zu skipped (already valid), "
       "%zu failed, %zu retries in %.2f s\n",
-      frames, ready.size(), rendered.load(), skipped.load(), failed.load(), retries.load(),
+      what.c_str(), ready.size(), rendered.load(), skipped.load(), failed.load(), retries.load(),
       seconds);
   return failed == 0 ? 0 : 1;
 }

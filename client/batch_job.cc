@@ -86,4 +86,19 @@ absl::StatusOr<BatchJob> ReadBatchJob(const std::string& path) {
   return job;
 }
 
+absl::StatusOr<Shard> ParseShard(const std::string& text) {
+  Shard shard;
+  if (text.empty()) return shard;
+  std::vector<std::string> parts = absl::StrSplit(text, '/');
+  uint64_t index = 0, count = 0;
+  if (parts.size() != 2 || !absl::SimpleAtoi(parts[0], &index) ||
+      !absl::SimpleAtoi(parts[1], &count) || count < 1 || count > 1000000 || index >= count)
+    return absl::InvalidArgumentError(absl::StrCat(
+        "--shard '", text, "' must be I/N with 0 <= I < N <= 1000000, e.g. 0/4 (frame f is in ",
+        "shard f mod N)"));
+  shard.index = index;
+  shard.count = count;
+  return shard;
+}
+
 }  // namespace aperture

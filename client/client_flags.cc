@@ -29,6 +29,12 @@ ABSL_FLAG(bool, float_pixels, false, "32-bit float channels instead of half");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (batch: output directory)");
 ABSL_FLAG(double, deadline_s, 60, "deadline of each frame request, seconds");
 ABSL_FLAG(int, concurrency, 1, "load, batch: requests in flight at once");
+ABSL_FLAG(std::string, shard, "",
+          "batch: render only shard I/N of the job, the frames f with f mod N = I (for job arrays: "
+          "--shard $JOB_COMPLETION_INDEX/N, --shard $SLURM_ARRAY_TASK_ID/N); empty: every frame");
+ABSL_FLAG(bool, check, false,
+          "batch: render nothing, contact no server: read back every frame of the job (or of "
+          "--shard) and list those missing or invalid; exit 0 only when all are valid");
 ABSL_FLAG(int, requests, 0, "load: total requests (0: run for --duration)");
 ABSL_FLAG(double, duration, 10, "load: seconds to run when --requests is 0");
 ABSL_FLAG(bool, json, false, "load, sim: print the summary as JSON");

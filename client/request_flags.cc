@@ -10,7 +10,6 @@
 #include "client_flags.h"
 
 namespace aperture {
-namespace {
 
 absl::Status ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
   std::vector<std::string> parts = absl::StrSplit(text, 'x');
@@ -20,6 +19,8 @@ absl::Status ParseSize(const std::string& text, uint32_t* width, uint32_t* heigh
         absl::StrCat("--size '", text, "' must be WIDTHxHEIGHT, e.g. 1920x1080"));
   return absl::OkStatus();
 }
+
+namespace {
 
 absl::Status ParseRegion(const std::string& text, v1::PixelRegion* region) {
   std::vector<std::string> parts = absl::StrSplit(text, ',');

@@ -2,6 +2,7 @@
 // with the same defaults as aperture-render so both render the same frame.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -9,6 +10,9 @@
 #include "scene_upload.h"
 
 namespace aperture {
+
+// "WIDTHxHEIGHT" (--size).
+absl::Status ParseSize(const std::string& text, uint32_t* width, uint32_t* height);
 
 // "X,Y,Z,YAW,PITCH,ROLL" into `camera` (other fields kept).
 absl::Status ParseCameraInto(const std::string& spec, v1::Camera* camera);

@@ -1,6 +1,7 @@
 // The `aperture` client against real servers: the frame it receives has the same pixels as the
 // one aperture-render writes locally; textures already on the server are not sent again; health,
-// load and sim run end to end; a batch survives a killed server and resumes without rework.
+// load and sim run end to end; a batch survives a killed server and resumes without rework; a job
+// split with --shard I/N renders each frame in exactly one shard, and --check finds the gaps.
 #include <OpenImageIO/imagebuf.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -221,6 +222,98 @@ TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
       {APERTURE_CLIENT_BIN, "batch", job, "--servers=" + a->address(), "-o=" + out.string()}, 60);
   EXPECT_EQ(second.exit_code, 0) << second.err;
   EXPECT_THAT(second.out, HasSubstr("0 rendered, 200 skipped"));
+}
+
+std::string FrameName(int i) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06d.exr", i);
+  return name;
+}
+
+// --shard I/N: frame f is rendered by shard f mod N only, under its job-wide number; the shards
+// of one job fill one directory; --check reads every frame back and names the missing or corrupt
+// ones; a shard rerun renders only what its part lacks.
+TEST_F(ClientTest, BatchShardsSplitAJobAndCheckFindsGaps) {
+  constexpr int kFrames = 10, kShards = 3;
+  WriteGroundScene(dir_);
+  const std::string job = (dir_ / "job.json").string();
+  std::ofstream(job) << R"({"scene": "ground.json", "size": "64x48",
+      "path": {"from": "0,1.7,0,0,-10,0", "to": "0,1.7,-50,0,-10,0", "frames": )"
+                     << kFrames << "}}";
+  const std::filesystem::path out = dir_ / "frames";
+  auto batch = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {APERTURE_CLIENT_BIN, "batch", job,
+                                     "--servers=" + server_->address(), "-o=" + out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return RunCommand(args, 60);
+  };
+
+  // Shard 1 of 3 alone: frames 1, 4, 7 and nothing else.
+  const CommandResult one = batch({"--shard=1/3"});
+  ASSERT_EQ(one.exit_code, 0) << one.out << one.err;
+  EXPECT_THAT(one.out, HasSubstr("shard 1/3: 3 of 10 frames"));
+  EXPECT_THAT(one.out, HasSubstr("3 rendered, 0 skipped"));
+  for (int i = 0; i < kFrames; ++i)
+    EXPECT_EQ(std::filesystem::exists(out / FrameName(i)), i % kShards == 1) << FrameName(i);
+
+  // The whole job is not there yet: --check names the 7 missing frames and exits 1.
+  const CommandResult partial = batch({"--check"});
+  EXPECT_EQ(partial.exit_code, 1) << partial.out << partial.err;
+  EXPECT_THAT(partial.out, HasSubstr("frame_000000.exr: missing"));
+  EXPECT_THAT(partial.out, HasSubstr("3 valid, 7 missing, 0 invalid"));
+  // ... but shard 1's part is complete.
+  EXPECT_EQ(batch({"--check", "--shard=1/3"}).exit_code, 0);
+
+  // The other shards complete the job, each rendering only its own frames.
+  const CommandResult zero = batch({"--shard=0/3"});
+  ASSERT_EQ(zero.exit_code, 0) << zero.err;
+  EXPECT_THAT(zero.out, HasSubstr("shard 0/3: 4 of 10 frames"));
+  EXPECT_THAT(zero.out, HasSubstr("4 rendered, 0 skipped"));
+  const CommandResult two = batch({"--shard=2/3"});
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_THAT(two.out, HasSubstr("3 rendered, 0 skipped"));
+  EXPECT_EQ(CountFrames(out), static_cast<size_t>(kFrames));
+  const CommandResult full = batch({"--check"});
+  EXPECT_EQ(full.exit_code, 0) << full.out;
+  EXPECT_THAT(full.out, HasSubstr("10 valid, 0 missing, 0 invalid"));
+
+  // The whole job run as one batch now finds every frame rendered by the shards, pixel for pixel
+  // the frames it would have rendered itself.
+  const std::filesystem::path whole = dir_ / "whole";
+  const CommandResult reference =
+      RunCommand({APERTURE_CLIENT_BIN, "batch", job, "--servers=" + server_->address(),
+                  "-o=" + whole.string()},
+                 60);
+  ASSERT_EQ(reference.exit_code, 0) << reference.err;
+  for (int i = 0; i < kFrames; ++i) {
+    int w = 0, h = 0;
+    EXPECT_TRUE(Pixels((out / FrameName(i)).string(), &w, &h) ==
+                Pixels((whole / FrameName(i)).string(), &w, &h))
+        << FrameName(i);
+  }
+
+  // Frame 4 deleted, frame 7 cut short (its header still opens): --check names both; a rerun of
+  // shard 1 renders exactly those two; shard 0 finds its part complete.
+  std::filesystem::remove(out / FrameName(4));
+  std::filesystem::resize_file(out / FrameName(7),
+                               std::filesystem::file_size(out / FrameName(7)) / 2);
+  const CommandResult gaps = batch({"--check"});
+  EXPECT_EQ(gaps.exit_code, 1);
+  EXPECT_THAT(gaps.out, HasSubstr("frame_000004.exr: missing"));
+  EXPECT_THAT(gaps.out, HasSubstr("frame_000007.exr: pixels do not read back"));
+  EXPECT_THAT(gaps.out, HasSubstr("8 valid, 1 missing, 1 invalid"));
+  const CommandResult rerun = batch({"--shard=1/3"});
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  EXPECT_THAT(rerun.out, HasSubstr("2 rendered, 1 skipped"));
+  EXPECT_THAT(batch({"--shard=0/3"}).out, HasSubstr("0 rendered, 4 skipped"));
+  EXPECT_EQ(batch({"--check"}).exit_code, 0);
+
+  // A shard outside 0 <= I < N is bad input.
+  for (const char* bad : {"--shard=3/3", "--shard=1/0", "--shard=x", "--shard=-1/2"}) {
+    const CommandResult result = batch({bad});
+    EXPECT_EQ(result.exit_code, 2) << bad;
+    EXPECT_THAT(result.err, HasSubstr("must be I/N")) << bad;
+  }
 }
 
 }  // namespace
