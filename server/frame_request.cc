@@ -20,6 +20,9 @@ absl::StatusOr<FrameJob> ParseFrameRequest(const v1::RenderFrameRequest& request
   auto exr = ExrOptionsFromProto(request.options());
   if (!exr.ok()) return exr.status();
   job.exr = *exr;
+  auto mode = ModeOptionsFromProto(request.options());
+  if (!mode.ok()) return mode.status();
+  job.mode = *mode;
 
   const uint64_t pixels = uint64_t{request.options().width()} * request.options().height();
   if (pixels > max_pixels)

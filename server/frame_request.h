@@ -1,5 +1,6 @@
 // Validation of a RenderFrameRequest against the engine's rules and the server's limits: camera,
-// options, region and pixel count become the engine's types, or an error naming the field.
+// options (mode included), region and pixel count become the engine's types, or an error naming
+// the field.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
 #include "scene/camera.h"
+#include "trace/trace_options_proto.h"
 
 namespace aperture {
 
@@ -16,6 +18,7 @@ struct FrameJob {
   Camera camera;
   RenderSettings settings;  // threads = 0: the frame runs on the caller's (the server's) arena
   ExrOptions exr;
+  ModeOptions mode;  // raster, or seed 003's raytrace with its options
 };
 
 absl::StatusOr<FrameJob> ParseFrameRequest(const v1::RenderFrameRequest& request,

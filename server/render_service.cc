@@ -26,6 +26,10 @@ double MillisecondsSince(Clock::time_point start) {
 
 std::string Short(const std::string& id) { return id.substr(0, 12); }
 
+const char* ModeName(const v1::RenderOptions& options) {
+  return options.mode() == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster";
+}
+
 }  // namespace
 
 RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures,
@@ -137,15 +141,29 @@ absl::Status RenderService::RenderOne(grpc::ServerContext* context,
   timings.set_queue_ms(MillisecondsSince(start));
 
   absl::StatusOr<RenderedFrame> frame;
+  double traced_build_ms = 0;
   arena_.execute([&] {
     // Isolated: while this thread waits for its frame's tasks it takes none of another frame's,
     // so a small frame is not held up behind a big one's work.
     tbb::this_task_arena::isolate([&] {
-      frame = aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
+      if (!job->mode.raytrace) {
+        frame = aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
+        return;
+      }
+      // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays.
+      auto traced = traced_.Get(request.scene_id(), scene, &traced_build_ms);
+      if (!traced.ok()) {
+        frame = traced.status();
+        return;
+      }
+      frame = (*traced)->Render(job->camera, job->settings, job->mode.trace, nullptr,
+                                [&] { return stop(); });
     });
   });
   if (!frame.ok()) return frame.status();
-  timings.set_setup_ms(frame->stats.setup_ms);
+  // Raytrace: setup is the corner rays (plus building the scene's BVH and tables on its first
+  // raytraced frame), raster the pixels' fragments and subdivision.
+  timings.set_setup_ms(frame->stats.setup_ms + traced_build_ms);
   timings.set_raster_ms(frame->stats.raster_ms);
 
   const auto encode_start = Clock::now();
@@ -170,12 +188,13 @@ grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
   (status.ok() ? frames_rendered_ : frames_failed_)++;
   const v1::FrameTimings& t = response->timings();
   spdlog::info(
-      "req={} rpc=RenderFrame peer={} scene={} size={}x{} queue_ms={:.2f} "
+      "req={} rpc=RenderFrame peer={} scene={} size={}x{} mode={} queue_ms={:.2f} "
       "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
       "status={}{}",
       id, context->peer(), Short(request->scene_id()), request->options().width(),
-      request->options().height(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
-      MillisecondsSince(start), response->exr().size(), absl::StatusCodeToString(status.code()),
+      request->options().height(), ModeName(request->options()), t.queue_ms(), t.setup_ms(),
+      t.raster_ms(), t.encode_ms(), MillisecondsSince(start), response->exr().size(),
+      absl::StatusCodeToString(status.code()),
       status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
   if (!status.ok()) response->Clear();
   return ToGrpcStatus(status);
@@ -196,12 +215,13 @@ grpc::Status RenderService::RenderStream(
     ++frames;
     const v1::FrameTimings& t = response.timings();
     spdlog::info(
-        "req={}.{} rpc=RenderStream scene={} size={}x{} queue_ms={:.2f} "
+        "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} queue_ms={:.2f} "
         "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
         "status={}{}",
         id, request.frame_index(), Short(request.scene_id()), request.options().width(),
-        request.options().height(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
-        MillisecondsSince(start), response.exr().size(), absl::StatusCodeToString(status.code()),
+        request.options().height(), ModeName(request.options()), t.queue_ms(), t.setup_ms(),
+        t.raster_ms(), t.encode_ms(), MillisecondsSince(start), response.exr().size(),
+        absl::StatusCodeToString(status.code()),
         status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
     if (!status.ok()) {
       ++failed;

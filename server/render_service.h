@@ -12,6 +12,7 @@
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "scene_store.h"
 #include "texture_store.h"
+#include "traced_scene_cache.h"
 
 namespace aperture {
 
@@ -59,6 +60,9 @@ class RenderService final : public v1::Render::Service {
   const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   std::atomic<uint64_t> next_request_id_{1};
   std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0};
+  // Raytraced scenes' BVH and tables (about 100 MB per 1024² raster texture): the last few.
+  static constexpr size_t kTracedScenes = 4;
+  TracedSceneCache traced_{kTracedScenes};
 };
 
 }  // namespace aperture

@@ -135,8 +135,9 @@ absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& came
   if (!scene.curved.empty())
     return absl::InvalidArgumentError(absl::StrCat(
         "the scene has ", scene.curved.size(),
-        " sphere(s)/cylinder(s), which only the raytrace mode draws (--mode raytrace); the raster "
-        "mode renders planar polygons only"));
+        " sphere(s)/cylinder(s), which only the raytrace mode draws (aperture-render --mode "
+        "raytrace; options.mode RENDER_MODE_RAYTRACE in a request); the raster mode renders planar "
+        "polygons only"));
   if (settings.threads == 0) return RenderInArena(scene, camera, settings, stop);
   tbb::task_arena arena(settings.threads);
   return arena.execute([&] { return RenderInArena(scene, camera, settings, stop); });

@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -349,17 +350,27 @@ absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(const Scene& sce
 
 absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
                                                   const RenderSettings& settings,
-                                                  const TraceOptions& options,
-                                                  TraceStats* stats) const {
+                                                  const TraceOptions& options, TraceStats* stats,
+                                                  const StopRequested& stop) const {
   if (auto s = ValidateRenderSettings(settings); !s.ok()) return s;
   if (auto s = ValidateCamera(camera); !s.ok()) return s;
   if (auto s = ValidateTraceOptions(options); !s.ok()) return s;
-  const int w = settings.width, h = settings.height;
+  // The region's pixels, traced through the frame's own corners: a frame split into regions is
+  // pixel-identical to the whole one (shared corners are traced by both neighbours).
+  const PixelRect region = settings.region.pixels() > 0
+                               ? settings.region
+                               : PixelRect{0, 0, settings.width, settings.height};
+  const int w = region.width(), h = region.height(), x0 = region.x0, y0 = region.y0;
   const Frame frame(scene_, *rays_, integrals_, camera, settings, options);
   RenderedFrame out;
-  out.region = {0, 0, w, h};
+  out.region = region;
   out.image = Image::Uninitialized(w, h);
   std::vector<Hit> corners(static_cast<size_t>(w + 1) * (h + 1));
+  std::atomic<bool> stopped{false};
+  auto stopping = [&] {
+    if (!stopped.load(std::memory_order_relaxed) && stop && stop()) stopped = true;
+    return stopped.load(std::memory_order_relaxed);
+  };
   tbb::enumerable_thread_specific<Frame::Local> locals(options.fragments);
   TraceStats s;
 
@@ -369,15 +380,18 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
     auto start = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h + 1, 16, 0, w + 1, 64),
                       [&](const tbb::blocked_range2d<int>& r) {
+                        if (stopping()) return;
                         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
                           for (int x = r.cols().begin(); x < r.cols().end(); ++x)
-                            corners[static_cast<size_t>(y) * (w + 1) + x] = frame.Trace(x, y);
+                            corners[static_cast<size_t>(y) * (w + 1) + x] =
+                                frame.Trace(x0 + x, y0 + y);
                       });
     s.corner_ms = MillisecondsSince(start);
     // Pixels, on tiles: each reads its four shared corners.
     start = std::chrono::steady_clock::now();
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, h, 16, 0, w, 64), [&](const tbb::blocked_range2d<int>& r) {
+          if (stopping()) return;
           Frame::Local& local = locals.local();
           for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
@@ -387,7 +401,7 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
               const bool agree =
                   SameSurface(c[0], c[1]) && SameSurface(c[0], c[2]) && SameSurface(c[0], c[3]);
               if (!agree) ++local.subdivided;
-              out.image.at(x, y) = frame.ShadeSquare(x, y, 1.0, c, 0, &local);
+              out.image.at(x, y) = frame.ShadeSquare(x0 + x, y0 + y, 1.0, c, 0, &local);
             }
         });
     s.shade_ms = MillisecondsSince(start);
@@ -398,6 +412,7 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
   } else {
     run();
   }
+  if (stopped) return absl::CancelledError("the frame was stopped");
   s.corner_rays = corners.size();
   for (const Frame::Local& l : locals) {
     s.extra_rays += l.extra_rays;

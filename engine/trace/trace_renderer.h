@@ -43,13 +43,14 @@ class TracedScene {
  public:
   static absl::StatusOr<std::unique_ptr<TracedScene>> Build(const Scene& scene);
 
-  // Renders settings.width x settings.height (the region is ignored: the whole frame) on
-  // settings.threads threads (0: the caller's arena). Texture filters do not apply: every texture
+  // Renders settings.region of the settings.width x settings.height frame (empty: all of it) on
+  // settings.threads threads (0: the caller's arena). `stop` is asked between tiles; a frame
+  // stopped ends with CANCELLED. Texture filters do not apply: every texture
   // is integrated over the fragments (raster ones by their summed-area tables, packed vector ones
   // by the packed format's area integral).
   absl::StatusOr<RenderedFrame> Render(const Camera& camera, const RenderSettings& settings,
-                                       const TraceOptions& options,
-                                       TraceStats* stats = nullptr) const;
+                                       const TraceOptions& options, TraceStats* stats = nullptr,
+                                       const StopRequested& stop = {}) const;
 
   const Scene& scene() const { return scene_; }
   const RayScene& rays() const { return *rays_; }

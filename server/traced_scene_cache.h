@@ -1,0 +1,45 @@
+// Seed 003's ray-tracing state (Embree BVH, summed-area tables) of the scenes frames ask to
+// raytrace, built on a scene's first raytraced frame and kept for the next ones. Bounded: past
+// `capacity` scenes the one used longest ago is dropped (frames rendering it keep it alive).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "scene/scene.h"
+#include "trace/trace_renderer.h"
+
+namespace aperture {
+
+class TracedSceneCache {
+ public:
+  explicit TracedSceneCache(size_t capacity) : capacity_(capacity) {}
+
+  // The state of scene `id`, built from `scene` once even when frames ask at the same time;
+  // `*built_ms` (optional) is the time spent building it in this call (0 when it was cached).
+  absl::StatusOr<std::shared_ptr<const TracedScene>> Get(const std::string& id,
+                                                         std::shared_ptr<const Scene> scene,
+                                                         double* built_ms = nullptr);
+  size_t size() const;
+
+ private:
+  // One scene's slot: built under its own mutex, so other scenes are not held up.
+  struct Slot {
+    std::mutex mutex;
+    std::shared_ptr<const TracedScene> traced;  // keeps the scene alive through its holder
+  };
+  struct Entry {
+    std::shared_ptr<Slot> slot;
+    uint64_t last_use = 0;
+  };
+  size_t capacity_;
+  mutable std::mutex mutex_;
+  uint64_t clock_ = 0;
+  std::map<std::string, Entry> entries_;
+};
+
+}  // namespace aperture
