@@ -35,7 +35,12 @@ const char* ModeName(const v1::RenderOptions& options) {
 RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures,
                              SceneStore& scenes, AdmissionControl& admission,
                              tbb::task_arena& arena)
-    : limits_(limits), textures_(textures), scenes_(scenes), admission_(admission), arena_(arena) {}
+    : limits_(limits),
+      textures_(textures),
+      scenes_(scenes),
+      admission_(admission),
+      arena_(arena),
+      traced_(kTracedScenes, textures.shared()) {}
 
 grpc::Status RenderService::HasTexture(grpc::ServerContext*, const v1::HasTextureRequest* request,
                                        v1::HasTextureResponse* response) {

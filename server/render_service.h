@@ -62,7 +62,7 @@ class RenderService final : public v1::Render::Service {
   std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0};
   // Raytraced scenes' BVH and tables (about 100 MB per 1024² raster texture): the last few.
   static constexpr size_t kTracedScenes = 4;
-  TracedSceneCache traced_{kTracedScenes};
+  TracedSceneCache traced_;
 };
 
 }  // namespace aperture

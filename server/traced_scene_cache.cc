@@ -35,7 +35,7 @@ absl::StatusOr<std::shared_ptr<const TracedScene>> TracedSceneCache::Get(
   const auto start = std::chrono::steady_clock::now();
   auto holder = std::make_shared<Holder>();
   holder->scene = std::move(scene);
-  auto traced = TracedScene::Build(*holder->scene);
+  auto traced = TracedScene::Build(*holder->scene, store_);
   if (!traced.ok()) return traced.status();
   holder->traced = std::move(*traced);
   slot->traced = std::shared_ptr<const TracedScene>(holder, holder->traced.get());

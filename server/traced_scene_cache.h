@@ -1,5 +1,6 @@
 // Seed 003's ray-tracing state (Embree BVH, summed-area tables) of the scenes frames ask to
-// raytrace, built on a scene's first raytraced frame and kept for the next ones. Bounded: past
+// raytrace, built on a scene's first raytraced frame and kept for the next ones; with a shared
+// store the tables live there, built once per machine and mapped by every server. Bounded: past
 // `capacity` scenes the one used longest ago is dropped (frames rendering it keep it alive).
 #pragma once
 
@@ -17,7 +18,9 @@ namespace aperture {
 
 class TracedSceneCache {
  public:
-  explicit TracedSceneCache(size_t capacity) : capacity_(capacity) {}
+  // `store`: the machine's shared store, where the summed-area tables are kept (null: in memory).
+  TracedSceneCache(size_t capacity, std::shared_ptr<const SharedStore> store)
+      : capacity_(capacity), store_(std::move(store)) {}
 
   // The state of scene `id`, built from `scene` once even when frames ask at the same time;
   // `*built_ms` (optional) is the time spent building it in this call (0 when it was cached).
@@ -37,6 +40,7 @@ class TracedSceneCache {
     uint64_t last_use = 0;
   };
   size_t capacity_;
+  std::shared_ptr<const SharedStore> store_;
   mutable std::mutex mutex_;
   uint64_t clock_ = 0;
   std::map<std::string, Entry> entries_;

@@ -47,6 +47,8 @@ const char* EntryKindName(EntryKind kind) {
       return "prefiltered-table";
     case EntryKind::kPackedTexture:
       return "packed-texture";
+    case EntryKind::kSummedAreaTable:
+      return "summed-area-table";
   }
   return "unknown";
 }

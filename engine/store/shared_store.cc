@@ -177,8 +177,8 @@ std::vector<StoreEntryInfo> SharedStore::List() const {
       info.key = name.substr(0, name.size() - std::strlen(kEntrySuffix));
       // Any kind: read the header's kind by trying each.
       info.state = "unreadable";
-      for (EntryKind kind :
-           {EntryKind::kBlob, EntryKind::kPrefilteredTable, EntryKind::kPackedTexture}) {
+      for (EntryKind kind : {EntryKind::kBlob, EntryKind::kPrefilteredTable,
+                             EntryKind::kPackedTexture, EntryKind::kSummedAreaTable}) {
         auto file = MapEntryFile(info.file, info.key, kind);
         if (file.ok()) {
           info.state = absl::StrCat("complete ", EntryKindName(kind));

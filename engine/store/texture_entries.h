@@ -1,6 +1,6 @@
-// What the engine keeps in the shared store (shared_store.h): seed 000 tables and seed 001 packed
-// textures, each keyed by a hash of its source so that every process (and a restarted server)
-// finds the entry another built.
+// What the engine keeps in the shared store (shared_store.h): seed 000 tables, seed 001 packed
+// textures and seed 003's summed-area tables, each keyed by a hash of its source so that every
+// process (and a restarted server) finds the entry another built.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +16,8 @@ namespace aperture {
 
 // "table-v<table version>-<XXH3-128 of the power-of-two image's size and texels>".
 std::string PrefilteredTableKey(const Image& base);
+// "sat-v<block version>-c<channels>-<XXH3-128 of the image's size and texels>".
+std::string SummedAreaTableKey(const Image& base, int channels);
 // "packed-v<format version>-<XXH3-128 of the .apv bytes>".
 std::string PackedTextureKey(std::span<const uint8_t> apv_bytes);
 
@@ -23,6 +25,11 @@ std::string PackedTextureKey(std::span<const uint8_t> apv_bytes);
 // none; the payload is a block PrefilteredTable::View accepts.
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
     const SharedStore& store, const Image& base);
+
+// The summed-area tables of `base` (`channels` = 3 or 4), built when the store has none; the
+// payload is a block SummedAreaTable::View accepts.
+absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTable(
+    const SharedStore& store, const Image& base, int channels);
 
 // The in-memory packed texture decoded from .apv bytes; the payload is what
 // packed::PackedTextureView::FromBytes accepts.

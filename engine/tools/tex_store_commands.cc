@@ -11,6 +11,7 @@
 #include "scene/scene_file.h"
 #include "store/shared_store.h"
 #include "tools/tex_commands.h"
+#include "trace/trace_renderer.h"
 
 namespace aperture {
 namespace {
@@ -24,6 +25,7 @@ struct StoreArgs {
   std::vector<std::string> positional;
   std::string store = kDefaultStoreDirectory;
   bool help = false;
+  bool raytrace = false;  // bake: also seed 003's summed-area tables
 };
 
 absl::StatusOr<StoreArgs> ParseStoreArgs(int argc, char** argv) {
@@ -32,6 +34,8 @@ absl::StatusOr<StoreArgs> ParseStoreArgs(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
       args.help = true;
+    } else if (a == "--raytrace") {
+      args.raytrace = true;
     } else if (a == "--store") {
       if (i + 1 >= argc) return absl::InvalidArgumentError("--store needs a directory");
       args.store = argv[++i];
@@ -63,8 +67,11 @@ int RunBake(int argc, char** argv) {
   if (args->help || args->positional.empty()) {
     std::fprintf(args->help ? stdout : stderr,
                  "usage: aperture-tex bake SCENE.json|demo|triangles|skewed ... [--store DIR]\n"
+                 "         [--raytrace]\n"
                  "Fills the shared texture store (default %s) with every table and packed\n"
-                 "texture the scenes use, so servers map them at once instead of building them.\n"
+                 "texture the scenes use, so servers map them at once instead of building them;\n"
+                 "--raytrace: also the summed-area tables of the raytrace mode (32 bytes per\n"
+                 "texel and channel).\n"
                  "Entries already there are checked and kept; broken ones are rebuilt.\n",
                  kDefaultStoreDirectory);
     return args->help ? 0 : 2;
@@ -90,6 +97,15 @@ int RunBake(int argc, char** argv) {
       std::printf(
           "table ready in %.2f s\n",
           std::chrono::duration<double>(std::chrono::steady_clock::now() - texture_start).count());
+    }
+    if (args->raytrace) {
+      const auto sat_start = std::chrono::steady_clock::now();
+      auto traced = TracedScene::Build(*scene, *store);
+      if (!traced.ok())
+        return Fail("bake", absl::StrCat(argument, ": ", traced.status().message()));
+      std::printf(
+          "%s: summed-area tables ready in %.2f s\n", argument.c_str(),
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - sat_start).count());
     }
   }
   const StoreCounters counters = (*store)->counters();

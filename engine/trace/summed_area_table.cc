@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#include "absl/strings/str_cat.h"
 
 namespace aperture {
 namespace {
@@ -15,6 +18,17 @@ int Wrap(int i, int n) { return ((i % n) + n) % n; }
 struct Piece {
   double lo, hi, count;
 };
+
+// The block's header (ToBytes / View).
+constexpr char kMagic[8] = {'A', 'P', 'S', 'A', 'T', 'v', '1', 0};
+constexpr uint32_t kBlockVersion = 1;
+struct BlockHeader {
+  char magic[8];
+  uint32_t version;
+  int32_t width, height, channels;
+  uint32_t reserved[2];
+};
+static_assert(sizeof(BlockHeader) == 32);
 
 int SplitPeriods(double lo, double hi, double period, Piece out[3]) {
   if (!(hi > lo)) return 0;
@@ -67,6 +81,44 @@ SummedAreaTable::SummedAreaTable(const Image& image, int channels)
       double* q1 = at(kQQ, i + 1, j);
       for (int c = 0; c < channels_; ++c) q1[c] = q0[c] + 0.5 * (t0[c] + t1[c]);
     }
+  data_ = tables_.data();
+  size_ = tables_.size();
+}
+
+std::vector<std::byte> SummedAreaTable::ToBytes() const {
+  BlockHeader h{};
+  std::memcpy(h.magic, kMagic, sizeof(kMagic));
+  h.version = kBlockVersion;
+  h.width = width_, h.height = height_, h.channels = channels_;
+  std::vector<std::byte> block(sizeof(h) + size_ * sizeof(double));
+  std::memcpy(block.data(), &h, sizeof(h));
+  std::memcpy(block.data() + sizeof(h), data_, size_ * sizeof(double));
+  return block;
+}
+
+absl::StatusOr<std::unique_ptr<SummedAreaTable>> SummedAreaTable::View(
+    std::span<const std::byte> block) {
+  BlockHeader h;
+  if (block.size() < sizeof(h))
+    return absl::DataLossError("summed-area table block is shorter than its header");
+  std::memcpy(&h, block.data(), sizeof(h));
+  if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0 || h.version != kBlockVersion)
+    return absl::DataLossError("not a summed-area table block of this version");
+  if (h.width < 1 || h.height < 1 || h.width > 65536 || h.height > 65536 ||
+      (h.channels != 1 && h.channels != 3 && h.channels != 4))
+    return absl::DataLossError(absl::StrCat("summed-area table block has a bad size ", h.width, "x",
+                                            h.height, "x", h.channels));
+  const size_t doubles = size_t{4} * (h.width + 2) * (h.height + 2) * h.channels;
+  if (block.size() != sizeof(h) + doubles * sizeof(double))
+    return absl::DataLossError(absl::StrCat("summed-area table block has ", block.size(),
+                                            " bytes, not ", sizeof(h) + doubles * sizeof(double)));
+  if (reinterpret_cast<uintptr_t>(block.data()) % alignof(double) != 0)
+    return absl::InvalidArgumentError("summed-area table block is not 8-byte aligned");
+  std::unique_ptr<SummedAreaTable> t(new SummedAreaTable());
+  t->width_ = h.width, t->height_ = h.height, t->channels_ = h.channels;
+  t->data_ = reinterpret_cast<const double*>(block.data() + sizeof(h));
+  t->size_ = doubles;
+  return t;
 }
 
 void SummedAreaTable::Corner(double x, double y, double* out) const {

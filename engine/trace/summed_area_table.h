@@ -14,8 +14,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <memory>
+#include <span>
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "texture/image.h"
 
 namespace aperture {
@@ -24,11 +28,19 @@ class SummedAreaTable {
  public:
   // `channels` = 1 (red only), 3 (RGB) or 4 (RGBA) of `image` are tabulated.
   explicit SummedAreaTable(const Image& image, int channels = 4);
+  SummedAreaTable(const SummedAreaTable&) = delete;
+  SummedAreaTable& operator=(const SummedAreaTable&) = delete;
+
+  // The tables as one block (a 32-byte header: magic, version, width, height, channels; then the
+  // doubles), for the shared store: every process maps it and uses it in place.
+  std::vector<std::byte> ToBytes() const;
+  // A table over such a block (8-byte aligned), which must outlive it; checks the header and size.
+  static absl::StatusOr<std::unique_ptr<SummedAreaTable>> View(std::span<const std::byte> block);
 
   int width() const { return width_; }
   int height() const { return height_; }
   int channels() const { return channels_; }
-  size_t bytes() const { return tables_.size() * sizeof(double); }
+  size_t bytes() const { return size_ * sizeof(double); }
 
   // The integral of the continuous texture over [x0, x1] x [y0, y1] in texel units, within one
   // period: 0 <= x0 <= x1 <= width, 0 <= y0 <= y1 <= height (clamped to it). Channels past
@@ -45,15 +57,17 @@ class SummedAreaTable {
   void AlongY(int i, double y0, double y1, double* out) const;
   void AlongX(int j, double x0, double x1, double* out) const;
   const double* At(int table, int i, int j) const {
-    return &tables_[((static_cast<size_t>(j + 1) * (width_ + 2) + (i + 1)) * 4 + table) *
-                    channels_];
+    return &data_[((static_cast<size_t>(j + 1) * (width_ + 2) + (i + 1)) * 4 + table) * channels_];
   }
+  SummedAreaTable() = default;
 
   int width_ = 0, height_ = 0, channels_ = 0;
   // Four tables T, QT, TQ, QQ, each (width + 2) x (height + 2) entries for texel indices -1 ..
   // width (resp. height), the borders wrapped; interleaved per texel (the four tables, each
   // with its channels), so that one corner's nine reads touch few cache lines.
-  std::vector<double> tables_;
+  std::vector<double> tables_;    // owned (built here), or empty for a view
+  const double* data_ = nullptr;  // tables_.data() or the viewed block's
+  size_t size_ = 0;
 };
 
 }  // namespace aperture

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 
+#include "absl/strings/str_cat.h"
+#include "store/texture_entries.h"
 #include "texture/packed/packed_sampler.h"
 #include "trace/curved_intersect.h"
 #include "trace/texture_mapping.h"
@@ -313,7 +315,8 @@ absl::Status ValidateTraceOptions(const TraceOptions& options) {
   return absl::OkStatus();
 }
 
-absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(const Scene& scene) {
+absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
+    const Scene& scene, std::shared_ptr<const SharedStore> store) {
   std::unique_ptr<TracedScene> ts(new TracedScene(scene));
   auto rays = RayScene::Build(scene);
   if (!rays.ok()) return rays.status();
@@ -330,7 +333,18 @@ absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(const Scene& sce
     const Image& base = t.pyramid->level(0);
     bool alpha = false;
     for (const Rgba& texel : base.texels()) alpha = alpha || texel.a < 1.0f;
-    ts->tables_[i] = std::make_shared<SummedAreaTable>(base, alpha ? 4 : 3);
+    const int channels = alpha ? 4 : 3;
+    if (!store) {
+      ts->tables_[i] = std::make_shared<SummedAreaTable>(base, channels);
+      continue;
+    }
+    auto entry = GetOrBuildSummedAreaTable(*store, base, channels);
+    auto view = entry.ok() ? SummedAreaTable::View((*entry)->payload()) : entry.status();
+    if (!view.ok())
+      return absl::Status(view.status().code(), absl::StrCat("summed-area tables of texture '",
+                                                             t.id, "': ", view.status().message()));
+    ts->entries_.push_back(*std::move(entry));
+    ts->tables_[i] = std::move(*view);
   }
   // What the fragments integrate: the tables, and packed vector textures' runs in place.
   ts->integrals_.resize(scene.textures.size());

@@ -14,6 +14,7 @@
 #include "render/frame_renderer.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "store/shared_store.h"
 #include "trace/projection_integral.h"
 #include "trace/ray_scene.h"
 #include "trace/summed_area_table.h"
@@ -41,7 +42,10 @@ struct TraceStats {
 // table per raster texture and the integral of every texture (table or packed runs).
 class TracedScene {
  public:
-  static absl::StatusOr<std::unique_ptr<TracedScene>> Build(const Scene& scene);
+  // With a store, each raster texture's summed-area tables come from (or go to) the machine's
+  // shared store and are used in place, so every server process builds them once per machine.
+  static absl::StatusOr<std::unique_ptr<TracedScene>> Build(
+      const Scene& scene, std::shared_ptr<const SharedStore> store = nullptr);
 
   // Renders settings.region of the settings.width x settings.height frame (empty: all of it) on
   // settings.threads threads (0: the caller's arena). `stop` is asked between tiles; a frame
@@ -61,6 +65,7 @@ class TracedScene {
   std::unique_ptr<RayScene> rays_;
   std::vector<std::shared_ptr<const SummedAreaTable>> tables_;  // per scene texture, or null
   std::vector<std::unique_ptr<TextureIntegral>> integrals_;     // per scene texture, or null
+  std::vector<std::shared_ptr<const StoreEntry>> entries_;      // the tables' mapped blocks
 };
 
 }  // namespace aperture

@@ -17,6 +17,8 @@
 
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "integration/server_process.h"
+#include "scene/curved_scenes.h"
+#include "scene/scene_builder.h"
 #include "scene/scene_file.h"
 #include "texture/image.h"
 
@@ -82,11 +84,14 @@ class Connection {
     return response.store();
   }
 
-  std::string RenderExr(const std::string& scene_id) {
+  std::string RenderExr(const std::string& scene_id, const v1::Camera* camera = nullptr,
+                        v1::RenderMode mode = v1::RENDER_MODE_RASTER) {
     v1::RenderFrameRequest request;
     request.set_scene_id(scene_id);
+    request.mutable_options()->set_mode(mode);
     request.mutable_camera()->mutable_position()->set_y(1);
     request.mutable_camera()->set_pitch_deg(-5);
+    if (camera != nullptr) *request.mutable_camera() = *camera;
     request.mutable_options()->set_width(160);
     request.mutable_options()->set_height(120);
     grpc::ClientContext context;
@@ -162,6 +167,46 @@ TEST_F(SharedStoreServiceTest, ATableBuiltByOneServerIsMappedNotRebuiltByTheOthe
     const Rgba& q = image_b->texels()[i];
     ASSERT_TRUE(p.r == q.r && p.g == q.g && p.b == q.b && p.a == q.a) << "pixel " << i;
   }
+}
+
+// Seed 003's summed-area tables (issue 7) live in the store too: built by the first server's
+// first raytraced frame, mapped by the second.
+TEST_F(SharedStoreServiceTest, RaytraceTablesBuiltByOneServerAreMappedByTheOther) {
+  auto first = Start();
+  auto second = Start();
+  ASSERT_TRUE(first && second);
+  Connection a(*first), b(*second);
+  const CurvedTestScene test = MakeCurvedTestScene(CurvedSceneKind::kSphere, 128);
+  const v1::Camera camera = CameraToProto(test.camera);
+  std::string id_a, id_b;
+  ASSERT_TRUE(a.LoadScene(test.scene, &id_a).ok());
+  ASSERT_TRUE(b.LoadScene(test.scene, &id_b).ok());
+  EXPECT_EQ(a.Store().entries_built(), 0u) << "no table before a raytraced frame";
+
+  const std::string exr_a = a.RenderExr(id_a, &camera, v1::RENDER_MODE_RAYTRACE);
+  EXPECT_EQ(a.Store().entries_built(), 1u) << "the checkerboard's summed-area tables";
+  const std::string exr_b = b.RenderExr(id_b, &camera, v1::RENDER_MODE_RAYTRACE);
+  EXPECT_EQ(b.Store().entries_built(), 0u) << "the second server must not rebuild them";
+  EXPECT_EQ(b.Store().entries_attached(), 1u);
+  bool listed = false;
+  for (const auto& item : fs::directory_iterator(store_))
+    listed = listed || item.path().filename().string().rfind("sat-v1-c3-", 0) == 0;
+  EXPECT_TRUE(listed);
+
+  auto decode = [](const std::string& exr) {
+    return DecodeImage({reinterpret_cast<const uint8_t*>(exr.data()), exr.size()});
+  };
+  auto image_a = decode(exr_a), image_b = decode(exr_b);
+  ASSERT_TRUE(image_a.ok() && image_b.ok());
+  ASSERT_EQ(image_a->texels().size(), image_b->texels().size());
+  float sum = 0;
+  for (size_t i = 0; i < image_a->texels().size(); ++i) {
+    const Rgba& p = image_a->texels()[i];
+    const Rgba& q = image_b->texels()[i];
+    ASSERT_TRUE(p.r == q.r && p.g == q.g && p.b == q.b) << "pixel " << i;
+    sum += p.r;
+  }
+  EXPECT_GT(sum, 100.0f) << "the sphere is drawn";
 }
 
 TEST_F(SharedStoreServiceTest, ARestartedServerReattachesToWhatTheStoreHolds) {
