@@ -14,7 +14,7 @@
 //
 // Usage: raytrace_quality_bench [--textures checker,asphalt_torcs_1024] [--angles 5,20,60]
 //          [--delta 0.1] [--threads 2] [--data ../shared/data/raster] [--out out/raytrace-bench]
-//          [--ref-min 64] [--ref-max 128] [--curved-sizes 48,192]
+//          [--ref-min 64] [--ref-max 128] [--curved-sizes 48,192] [--max-depth 3]
 //          (--textures "" or --curved-sizes "": skip that table)
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -114,7 +114,8 @@ double Seconds(std::chrono::steady_clock::time_point start) {
 }
 
 // The curved scenes' table (see the file comment); 0 or 2 (error).
-int RunCurved(const std::vector<int>& sizes, double delta, const std::string& out_dir) {
+int RunCurved(const std::vector<int>& sizes, double delta, int max_depth,
+              const std::string& out_dir) {
   std::printf(
       "\n| scene | size | centre | 2x2 | 4x4 | 8x8 | raytrace | raytrace - best supersample | "
       "mean S_frag/S_quad - 1 | fragments / pixel | raytrace ms |\n"
@@ -157,6 +158,7 @@ int RunCurved(const std::vector<int>& sizes, double delta, const std::string& ou
       settings.width = settings.height = size;
       TraceOptions options;
       options.fragments.delta = delta;
+      options.max_depth = max_depth;
       TraceStats stats;
       auto frame = (*traced)->Render(test.camera, settings, options, &stats);
       if (!frame.ok()) {
@@ -283,7 +285,8 @@ int Run(int argc, char** argv) {
   for (absl::string_view a :
        absl::StrSplit(get("--curved-sizes", "48,192"), ',', absl::SkipEmpty()))
     curved_sizes.push_back(std::atoi(std::string(a).c_str()));
-  if (!curved_sizes.empty()) return RunCurved(curved_sizes, delta, out_dir);
+  if (!curved_sizes.empty())
+    return RunCurved(curved_sizes, delta, std::atoi(get("--max-depth", "3").c_str()), out_dir);
   return 0;
 }
 
