@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
       "  aperture load --server ADDR --concurrency N (--requests M | --duration S) --size WxH "
       "[--json]\n"
       "  aperture sim --server ADDR --rate HZ --frames N [--path FILE.csv]\n"
-      "  aperture batch JOB.json --servers IP:PORT,IP:PORT,... -o DIR [--concurrency N] "
+      "  aperture batch JOB.json --servers HOST:PORT,... -o DIR [--concurrency N] "
       "[--shard I/N]\n"
       "  aperture batch JOB.json --check -o DIR [--shard I/N]: every frame present and valid?\n"
       "  aperture health --server ADDR\n"

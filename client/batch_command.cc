@@ -1,3 +1,8 @@
+#include <arpa/inet.h>
+#include <netdb.h>
+#include <sys/socket.h>
+
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -65,6 +70,48 @@ std::string FramePath(const std::string& out_dir, size_t frame) {
   return (fs::path(out_dir) / absl::StrFormat("frame_%06zu.exr", frame)).string();
 }
 
+// --servers entries as IPv4 addresses: an IPv4 literal is kept, a host name is resolved to all
+// of its IPv4 addresses (a Kubernetes headless Service or a compose service name yields every
+// server behind it), so the scene is loaded on each and round_robin spreads the frames over them.
+std::vector<std::string> ResolveServers(const std::string& list) {
+  std::vector<std::string> out;
+  for (const std::string& entry :
+       std::vector<std::string>(absl::StrSplit(list, ',', absl::SkipEmpty()))) {
+    const size_t colon = entry.rfind(':');
+    const std::string host = colon == std::string::npos ? entry : entry.substr(0, colon);
+    const std::string port = colon == std::string::npos ? "50051" : entry.substr(colon + 1);
+    in_addr literal{};
+    if (inet_pton(AF_INET, host.c_str(), &literal) == 1) {
+      out.push_back(absl::StrCat(host, ":", port));
+      continue;
+    }
+    addrinfo hints{};
+    hints.ai_family = AF_INET;
+    hints.ai_socktype = SOCK_STREAM;
+    addrinfo* found = nullptr;
+    if (const int rc = getaddrinfo(host.c_str(), port.c_str(), &hints, &found); rc != 0) {
+      std::fprintf(stderr, "aperture batch: %s: %s; not used\n", entry.c_str(), gai_strerror(rc));
+      continue;
+    }
+    std::vector<std::string> addresses;
+    for (addrinfo* a = found; a != nullptr; a = a->ai_next) {
+      char text[INET_ADDRSTRLEN] = {};
+      const auto* sin = reinterpret_cast<const sockaddr_in*>(a->ai_addr);
+      if (inet_ntop(AF_INET, &sin->sin_addr, text, sizeof text) != nullptr)
+        addresses.push_back(absl::StrCat(text, ":", port));
+    }
+    freeaddrinfo(found);
+    std::sort(addresses.begin(), addresses.end());
+    addresses.erase(std::unique(addresses.begin(), addresses.end()), addresses.end());
+    out.insert(out.end(), addresses.begin(), addresses.end());
+  }
+  // The same server named twice (by name and address) is used once.
+  std::vector<std::string> unique;
+  for (const std::string& a : out)
+    if (std::find(unique.begin(), unique.end(), a) == unique.end()) unique.push_back(a);
+  return unique;
+}
+
 // --check: reads back the shard's frames, lists those missing or invalid; no server involved.
 int CheckFrames(const std::string& out_dir, const std::vector<size_t>& frames,
                 const std::string& what) {
@@ -125,8 +172,7 @@ int RunBatch(const std::string& job_path) {
   if (error) return fail(absl::InternalError(absl::StrCat("cannot create ", out_dir)));
 
   // Every server gets the scene (its textures uploaded when missing); the id is the same on all.
-  std::vector<std::string> servers =
-      absl::StrSplit(absl::GetFlag(FLAGS_servers), ',', absl::SkipEmpty());
+  const std::vector<std::string> servers = ResolveServers(absl::GetFlag(FLAGS_servers));
   std::vector<std::string> ready;
   SceneOnServer loaded;
   for (const std::string& server : servers) {

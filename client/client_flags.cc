@@ -7,7 +7,8 @@ ABSL_FLAG(std::string, tls_ca, "",
           "PEM file of the certificate authority (or the server's self-signed certificate) to "
           "trust; set: connect with TLS, else plaintext");
 ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
-          "batch: servers IPV4:PORT,IPV4:PORT,... (gRPC round_robin over them)");
+          "batch: servers HOST:PORT,... (gRPC round_robin over them); a host name stands for all "
+          "of its IPv4 addresses (a headless Service: every pod behind it)");
 ABSL_FLAG(int, split, 0,
           "render: cut the frame into this many regions of equal predicted cost (PlanRegions) "
           "and render them on --servers at once, then assemble one EXR (0: one server)");
