@@ -159,7 +159,8 @@ namespace aperture {
 namespace {
 
 // The fast paths: rectangles within one cell between texel centres, thin columns within one cell
-// column spanning many rows, thin rows likewise, including cells at the texture's borders.
+// column spanning many rows, thin rows likewise, including cells at the texture's borders; and
+// the general path next to them (columns and rows straddling one texel centre).
 TEST(SummedAreaTable, InCellColumnAndRowRectanglesMatchBruteForce) {
   const Image img = RandomTexture(32, 16, 11);
   const SummedAreaTable sat(img, 4);
@@ -175,21 +176,32 @@ TEST(SummedAreaTable, InCellColumnAndRowRectanglesMatchBruteForce) {
       if (a > b) std::swap(a, b);
       *lo = std::clamp(a, 0.0, double(n)), *hi = std::clamp(b, 0.0, double(n));
     };
+    auto two_cells = [&](int n, double* lo, double* hi) {  // straddling one texel centre
+      const double c = std::floor(u01(rng) * n) - 0.5;
+      *lo = std::clamp(c + u01(rng), 0.0, double(n));
+      *hi = std::clamp(c + 1 + u01(rng), *lo, double(n));
+    };
     auto any = [&](int n, double* lo, double* hi) {
       double a = u01(rng) * n, b = u01(rng) * n;
       if (a > b) std::swap(a, b);
       *lo = a, *hi = b;
     };
     double x0, x1, y0, y1;
-    switch (k % 3) {
+    switch (k % 5) {
       case 0:
         in_cell(32, &x0, &x1), in_cell(16, &y0, &y1);
         break;
       case 1:
         in_cell(32, &x0, &x1), any(16, &y0, &y1);
         break;
-      default:
+      case 2:
         any(32, &x0, &x1), in_cell(16, &y0, &y1);
+        break;
+      case 3:
+        two_cells(32, &x0, &x1), any(16, &y0, &y1);
+        break;
+      default:
+        any(32, &x0, &x1), two_cells(16, &y0, &y1);
         break;
     }
     const auto got = sat.Integrate(x0, y0, x1, y1);
