@@ -115,4 +115,38 @@ TEST_F(RenderCli, BadInputExitsNonZeroNamingTheProblem) {
   EXPECT_FALSE(std::filesystem::exists(Path("bad.exr")));
 }
 
+// Issue 7: spheres and cylinders are drawn by the raytrace mode; the raster mode stops naming it.
+TEST_F(RenderCli, SpheresRenderInRaytraceModeAndRasterNamesIt) {
+  const std::string scene = WriteScene("sphere.json", R"({"spheres": [{"center": {"z": -4},
+      "radius": 1}], "cylinders": [{"base": {"x": 2, "z": -6}, "top": {"x": 2, "y": 1, "z": -6},
+      "radius": 0.5, "capped": true}]})");
+  Result r = RunRender("--scene " + scene + " --camera 0,0,0,0,0,0 --size 40x30 --mode raytrace " +
+                       "--nopreview -o " + Path("rt.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("corner rays"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(Path("rt.exr")));
+  r = RunRender("--scene " + scene + " --camera 0,0,0,0,0,0 --size 40x30 --nopreview -o " +
+                Path("raster.exr"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("2 sphere(s)/cylinder(s)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--mode raytrace"), std::string::npos) << r.output;
+  r = RunRender("--scene " + WriteScene("bad.json", R"({"spheres": [{"radius": -1}]})") +
+                " --mode raytrace --nopreview -o " + Path("bad.exr"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("spheres[0].radius: must be > 0, is -1"), std::string::npos) << r.output;
+}
+
+// --mode both: the raster frame, then the raytraced one next to it, timed in one run.
+TEST_F(RenderCli, ModeBothRendersRasterThenRaytrace) {
+  const Result r = RunRender(
+      "--scene demo --size 64x36 --filter trilinear --mode both --threads 2 "
+      "--nopreview -o " +
+      Path("demo.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(Path("demo.exr")));
+  EXPECT_TRUE(std::filesystem::exists(Path("demo-raytrace.exr")));
+  EXPECT_NE(r.output.find("M rays/s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("raytrace takes"), std::string::npos) << r.output;
+}
+
 }  // namespace
