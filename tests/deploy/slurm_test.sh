@@ -41,10 +41,12 @@ skip_or_fail() {
 
 # --- 1. Slurm and munge -------------------------------------------------------------------------
 if [ -z "${APERTURE_SLURM_TEST_NS:-}" ]; then
-  tools=(sbatch squeue scontrol scancel sinfo slurmctld slurmd munged)
+  # Slurm and munge, plus ip (iproute2: the private namespace's loopback) and pgrep (procps),
+  # which minimal Debian images lack.
+  tools=(sbatch squeue scontrol scancel sinfo slurmctld slurmd munged ip pgrep)
   missing=()
   for t in "${tools[@]}"; do
-    command -v "$t" >/dev/null 2>&1 || [ -x "/usr/sbin/$t" ] || missing+=("$t")
+    command -v "$t" >/dev/null 2>&1 || [ -x "/usr/sbin/$t" ] || [ -x "/sbin/$t" ] || missing+=("$t")
   done
   if [ ${#missing[@]} -gt 0 ]; then
     sudo=""
@@ -54,10 +56,11 @@ if [ -z "${APERTURE_SLURM_TEST_NS:-}" ]; then
           "it (not root, no passwordless sudo): apt-get install slurm-wlm munge"
       fi
     fi
-    log "installing Debian's slurm-wlm and munge (missing: ${missing[*]})"
+    log "installing Debian's slurm-wlm, munge, iproute2, procps (missing: ${missing[*]})"
     export DEBIAN_FRONTEND=noninteractive
     if ! { timeout 300 $sudo apt-get update -q &&
-      timeout 300 $sudo apt-get install -y -q --no-install-recommends slurm-wlm munge; }; then
+      timeout 300 $sudo apt-get install -y -q --no-install-recommends slurm-wlm munge \
+        iproute2 procps; }; then
       skip_or_fail "apt-get could not install slurm-wlm and munge"
     fi
     log "installed: $(dpkg-query -W -f='${Package} ${Version}, ' slurm-wlm slurmd slurmctld munge)"
