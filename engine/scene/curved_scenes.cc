@@ -43,7 +43,7 @@ CurvedTestScene MakeCurvedTestScene(CurvedSceneKind kind, int checker_size) {
     out.camera.position = {0, 0, 0};
   } else {
     // A capped cylinder seen from above at 24 degrees, lit by a sun from the upper left: 64
-    // checks around the side, 8 up it, the caps' 64 x 8 (the texture transform applies to them too).
+    // checks around the side, 8 up it; the same transform gives the caps 64 x 8 across.
     s.set_name("curved-cylinder");
     Set(s.mutable_ambient(), 0.35f, 0.35f, 0.35f);
     Set(s.mutable_sun()->mutable_direction(), -0.5, 1, 0.6);
