@@ -232,8 +232,11 @@ std::string FrameName(int i) {
 
 // --shard I/N: frame f is rendered by shard f mod N only, under its job-wide number; the shards
 // of one job fill one directory; --check reads every frame back and names the missing or corrupt
-// ones; a shard rerun renders only what its part lacks.
-TEST_F(ClientTest, BatchShardsSplitAJobAndCheckFindsGaps) {
+// ones; a shard rerun renders only what its part lacks. A suite (and ctest entry) of its own, with
+// its own server, so ClientTest's time limit is not shared.
+class BatchShardTest : public ClientTest {};
+
+TEST_F(BatchShardTest, ShardsSplitAJobAndCheckFindsGaps) {
   constexpr int kFrames = 10, kShards = 3;
   WriteGroundScene(dir_);
   const std::string job = (dir_ / "job.json").string();
