@@ -291,7 +291,8 @@ def check_dockerfile(repo, bins):
     stages = dockerfile_stages(path)
     check(len(stages) >= 2, "deploy/Dockerfile is not multi-stage")
     names = [s[0] for s in stages]
-    check("build" in names and "runtime" in names, f"Dockerfile stages {names}: want build, runtime")
+    check("build" in names and "runtime" in names,
+          f"Dockerfile stages {names}: want build, runtime")
     result = {}
     for name, base, steps in stages:
         check(base.startswith("debian:bookworm"), f"Dockerfile stage {name} is FROM {base}, not "
@@ -627,7 +628,8 @@ def check_k8s(repo, runner, docker):
                 spec = c.get(probe, {})
                 if check("grpc" in spec, f"{cw}: {probe} is not a native gRPC probe"):
                     p = spec["grpc"]["port"]
-                    check(ports.get(p, p) == port, f"{cw}: {probe} port {p} is not --listen's {port}")
+                    check(ports.get(p, p) == port,
+                          f"{cw}: {probe} port {p} is not --listen's {port}")
             cpu = str(c["resources"]["requests"].get("cpu", ""))
             check(cpu.isdigit() and int(flag_value(full, "threads") or 0) == int(cpu),
                   f"{cw}: --threads {flag_value(full, 'threads')} is not the CPU request {cpu}")
@@ -657,7 +659,8 @@ def check_k8s(repo, runner, docker):
             ref = doc["spec"]["scaleTargetRef"]
             check(ref["kind"] == "Deployment" and ref["name"] in deployments,
                   f"HPA {name}: scales {ref}, no such Deployment")
-            check(doc["spec"]["minReplicas"] <= doc["spec"]["maxReplicas"], f"HPA {name}: min > max")
+            check(doc["spec"]["minReplicas"] <= doc["spec"]["maxReplicas"],
+                  f"HPA {name}: min > max")
 
     # Jobs: the Indexed batch first (every shard, over the local servers), then the check.
     jobs = sorted(((n, d) for (k, n), (_, d) in docs.items() if k == "Job"),

@@ -59,8 +59,8 @@ if [ -z "${APERTURE_SLURM_TEST_NS:-}" ]; then
     log "installing Debian's slurm-wlm, munge, iproute2, procps (missing: ${missing[*]})"
     export DEBIAN_FRONTEND=noninteractive
     if ! { timeout 300 $sudo apt-get update -q &&
-      timeout 300 $sudo apt-get install -y -q --no-install-recommends slurm-wlm munge \
-        iproute2 procps; }; then
+      timeout 300 $sudo apt-get install -o DPkg::Lock::Timeout=120 -y -q \
+        --no-install-recommends slurm-wlm munge iproute2 procps; }; then
       skip_or_fail "apt-get could not install slurm-wlm and munge"
     fi
     log "installed: $(dpkg-query -W -f='${Package} ${Version}, ' slurm-wlm slurmd slurmctld munge)"
@@ -147,7 +147,10 @@ munged --foreground --socket="$work/munge/munge.socket" --key-file="$work/munge/
   --seed-file="$work/munge/munged.seed" --origin=127.0.0.1 >"$work/log/munged.out" 2>&1 &
 munged_pid=$!
 for ((i = 0; i < 100; i++)); do [ -S "$work/munge/munge.socket" ] && break; sleep 0.1; done
-[ -S "$work/munge/munge.socket" ] || { cat "$work/log/munged.out" >&2; fail "munged did not start"; }
+if [ ! -S "$work/munge/munge.socket" ]; then
+  cat "$work/log/munged.out" >&2
+  fail "munged did not start"
+fi
 
 cpus=$(nproc)
 node=aperture-test
@@ -338,7 +341,8 @@ for ((f = 2; f < frames; f += shards)); do
   fi
 done
 # Frames the rerun had no reason to touch are untouched.
-[ "$(snapshot | grep -F -x -f <(echo "$kept_before") | wc -l)" -eq "$(echo "$kept_before" | wc -l)" ] ||
+unchanged=$(snapshot | grep -F -x -f <(echo "$kept_before") | wc -l)
+[ "$unchanged" -eq "$(echo "$kept_before" | wc -l)" ] ||
   fail "run 2 rewrote frames that were valid"
 log "run 2: task 2 killed after $written of its 6 frames; tasks 0, 1 re-rendered only frames" \
   "4 and 9; the check names the $missing missing frames and fails ($((SECONDS - start)) s)"

@@ -25,7 +25,8 @@ if ! command -v systemd-analyze >/dev/null 2>&1; then
   echo "systemd-analyze missing: installing Debian's systemd package"
   export DEBIAN_FRONTEND=noninteractive
   if ! { $sudo true 2>/dev/null && timeout 300 $sudo apt-get update -q &&
-    timeout 300 $sudo apt-get install -y -q --no-install-recommends systemd; }; then
+    timeout 300 $sudo apt-get install -o DPkg::Lock::Timeout=120 -y -q \
+      --no-install-recommends systemd; }; then
     [ "${CI:-}" = "true" ] && fail "systemd-analyze missing and the systemd package not installable"
     echo "SKIP: systemd-analyze missing and not installable here (apt-get install systemd)"
     exit 77
@@ -134,7 +135,8 @@ for want in DynamicUser=no User=aperture ProtectSystem=strict ProtectHome=yes Pr
   grep -qx "$want" "$unit_src" || fail "the unit lacks $want"
 done
 unit_cmd=$(exec_start "$unit_src")
-[ "$(flag_value "$unit_cmd" store)" = /dev/shm/aperture ] || fail "the unit's --store is not /dev/shm/aperture"
+[ "$(flag_value "$unit_cmd" store)" = /dev/shm/aperture ] ||
+  fail "the unit's --store is not /dev/shm/aperture"
 check_timeouts "$unit_cmd" "$(key "$unit_src" TimeoutStopSec)" "unit"
 
 # systemd's own exposure score (0 best .. 10 worst); --threshold is in tenths.
