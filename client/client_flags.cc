@@ -25,6 +25,14 @@ ABSL_FLAG(std::string, filter, "",
           "texture filter for every material: nearest, bilinear, "
           "trilinear, aniso, oiio, reference (default: each material's own)");
 ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1 or 2)");
+ABSL_FLAG(std::string, mode, "raster",
+          "raster (Warnock windows, seed 002 edges) or raytrace (seed 003: corner rays, texture "
+          "integrals over each pixel's projection; the only mode that draws spheres and "
+          "cylinders)");
+ABSL_FLAG(double, delta, 0.1,
+          "raytrace: allowed relative area error of the pixel-projection fragments (seed 003, "
+          "eq. 9)");
+ABSL_FLAG(int, max_depth, 3, "raytrace: subdivisions of a pixel whose corner rays disagree (0..8)");
 ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
 ABSL_FLAG(bool, float_pixels, false, "32-bit float channels instead of half");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (batch: output directory)");

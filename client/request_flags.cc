@@ -109,6 +109,18 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const SceneOnServer
     options.set_filter(*filter);
   }
   options.set_texture_aperture(absl::GetFlag(FLAGS_aperture));
+  auto mode = Lookup<v1::RenderMode>(
+      "mode", absl::GetFlag(FLAGS_mode),
+      {{"raster", v1::RENDER_MODE_RASTER}, {"raytrace", v1::RENDER_MODE_RAYTRACE}});
+  if (!mode.ok()) return mode.status();
+  options.set_mode(*mode);
+  if (*mode == v1::RENDER_MODE_RAYTRACE) {
+    // The server checks the ranges and names the field; here only what it cannot see.
+    options.set_raytrace_delta(absl::GetFlag(FLAGS_delta));
+    const int depth = absl::GetFlag(FLAGS_max_depth);
+    if (depth < 0) return absl::InvalidArgumentError("--max_depth must be 0..8");
+    options.set_raytrace_max_depth(static_cast<uint32_t>(depth));
+  }
   auto compression = Lookup<v1::ExrCompression>("compression", absl::GetFlag(FLAGS_compression),
                                                 {{"none", v1::EXR_COMPRESSION_NONE},
                                                  {"rle", v1::EXR_COMPRESSION_RLE},

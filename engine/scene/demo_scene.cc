@@ -62,8 +62,9 @@ v1::Material* AddMaterial(v1::Scene& scene, const char* id, float r, float g, fl
   if (texture != nullptr) {
     m->set_texture_id(texture);
     m->mutable_texture_transform()->set_repeat_u(repeat);
-    // Trilinear until seed 000's table builds in about a second (`--filter aniso` selects it).
-    m->set_filter(v1::TEXTURE_FILTER_TRILINEAR);
+    // seed 000's prefiltered table: sharp at grazing angles (built once per texture, kept in the
+    // shared store by the server).
+    m->set_filter(v1::TEXTURE_FILTER_ANISO);
   }
   return m;
 }

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <future>
 #include <thread>
 #include <vector>
@@ -124,6 +125,55 @@ TEST_F(ClientTest, ASceneFilesTexturesAreUploadedOnceThenFoundOnTheServer) {
   const CommandResult second = Client(render);
   ASSERT_EQ(second.exit_code, 0) << second.err;
   EXPECT_THAT(second.out, HasSubstr("textures uploaded 0, already on the server 1"));
+}
+
+// The ground scene with a textured sphere on it: only the raytrace mode draws it.
+std::string WriteSphereScene(const std::filesystem::path& dir) {
+  const std::string ground = WriteGroundScene(dir);
+  std::string text;
+  {
+    std::ifstream in(ground);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  text.insert(text.rfind('}'), R"(, "spheres": [{"center": {"x": 0, "y": 1, "z": -6},
+    "radius": 1, "materialId": "g"}])");
+  const std::string path = (dir / "sphere.json").string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST_F(ClientTest, RaytraceModeFrameEqualsWhatApertureRenderWrites) {
+  const std::string scene = WriteSphereScene(dir_);
+  const std::vector<std::string> frame_flags = {"--scene=" + scene, "--size=80x60",
+                                                "--camera=0,1.7,0,0,-10,0", "--mode=raytrace",
+                                                "--delta=0.05", "--max_depth=2"};
+  std::vector<std::string> local = {APERTURE_RENDER_BIN, "--nopreview", "--threads=2", "-o",
+                                    (dir_ / "local.exr").string()};
+  local.insert(local.end(), frame_flags.begin(), frame_flags.end());
+  const CommandResult rendered = RunCommand(local, 60);
+  ASSERT_EQ(rendered.exit_code, 0) << rendered.err;
+
+  std::vector<std::string> remote = {"render", "-o=" + (dir_ / "remote.exr").string()};
+  remote.insert(remote.end(), frame_flags.begin(), frame_flags.end());
+  const CommandResult traced = Client(remote);
+  ASSERT_EQ(traced.exit_code, 0) << traced.err;
+
+  int lw = 0, lh = 0, rw = 0, rh = 0;
+  const std::vector<float> a = Pixels((dir_ / "local.exr").string(), &lw, &lh);
+  const std::vector<float> b = Pixels((dir_ / "remote.exr").string(), &rw, &rh);
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(rw, 80);
+  EXPECT_EQ(rh, 60);
+  EXPECT_TRUE(a == b) << "the service's raytraced pixels differ from aperture-render's";
+
+  // The same request in raster mode is refused: the sphere needs the raytrace mode.
+  remote[remote.size() - 3] = "--mode=raster";
+  const CommandResult raster = Client(remote);
+  EXPECT_EQ(raster.exit_code, 2);
+  EXPECT_THAT(raster.err, HasSubstr("RENDER_MODE_RAYTRACE"));
+  const CommandResult unknown = Client({"render", "--mode=pathtrace", "--size=8x8"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("--mode 'pathtrace' is not one of"));
 }
 
 TEST_F(ClientTest, RenderReportsBadInputWithExitStatus2) {
