@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <future>
+#include <iterator>
 #include <thread>
 #include <vector>
 
@@ -144,9 +144,9 @@ std::string WriteSphereScene(const std::filesystem::path& dir) {
 
 TEST_F(ClientTest, RaytraceModeFrameEqualsWhatApertureRenderWrites) {
   const std::string scene = WriteSphereScene(dir_);
-  const std::vector<std::string> frame_flags = {"--scene=" + scene, "--size=80x60",
-                                                "--camera=0,1.7,0,0,-10,0", "--mode=raytrace",
-                                                "--delta=0.05", "--max_depth=2"};
+  const std::vector<std::string> frame_flags = {
+      "--scene=" + scene, "--size=80x60", "--camera=0,1.7,0,0,-10,0",
+      "--mode=raytrace",  "--delta=0.05", "--max_depth=2"};
   std::vector<std::string> local = {APERTURE_RENDER_BIN, "--nopreview", "--threads=2", "-o",
                                     (dir_ / "local.exr").string()};
   local.insert(local.end(), frame_flags.begin(), frame_flags.end());
