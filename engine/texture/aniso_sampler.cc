@@ -1,6 +1,7 @@
 #include "texture/aniso_sampler.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -79,6 +80,18 @@ V4 CopySample(const uint8_t* texels, const CopyEntry& e, float u, float v, float
              Mix(at(a + 1, b2), at(a + 1, b2 + 1), m2 - m2f), fM);
 }
 
+// x = 2^e (1 + m) with 0 <= m < 1, for finite x >= 1 (std::frexp without the library call).
+struct PowerOfTwoSplit {
+  int e;
+  double m;
+};
+inline PowerOfTwoSplit SplitPowerOfTwo(double x) {
+  const uint64_t bits = std::bit_cast<uint64_t>(x);
+  const uint64_t one_exponent = uint64_t{1023} << 52;
+  const double mantissa = std::bit_cast<double>((bits & ((uint64_t{1} << 52) - 1)) | one_exponent);
+  return {static_cast<int>(bits >> 52) - 1023, mantissa - 1.0};
+}
+
 }  // namespace
 
 ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size) {
@@ -133,21 +146,23 @@ CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape
     return blend;
   }
   const int n = table.log2_size();
-  // L between 1 (the thinnest copy) and H; raised to H / 2^(n-1) where lambda is frozen.
-  const double H = std::min(shape.H, std::ldexp(1.0, 3 * n));
-  const double L = std::clamp(shape.L, std::max(1.0, std::ldexp(H, 1 - n)), H);
+  // L between 1 (the thinnest copy) and H; raised to H / 2^(n-1) where lambda is frozen. Powers
+  // of two by multiplication (exact), not ldexp: this runs once per sample.
+  const double H = std::min(shape.H, static_cast<double>(uint64_t{1} << (3 * n)));
+  const double L = std::clamp(shape.L, std::max(1.0, 2.0 * H / static_cast<double>(1u << n)), H);
   // seed 000, eq. 5: H = 2^eH (1 + M_H), L = 2^eL (1 + M_L).
-  int eH = 0, eL = 0;
-  const double mH = 2.0 * std::frexp(H, &eH) - 1.0, mL0 = 2.0 * std::frexp(L, &eL) - 1.0;
-  --eH, --eL;
+  const auto [eH, mH] = SplitPowerOfTwo(H);
+  const auto [eL, mL0] = SplitPowerOfTwo(L);
+  // Nearest tilt: tg_k = (2k + 1) / half - 1 has the bin [2k / half - 1, 2(k+1) / half - 1).
+  const double tilt_position = (shape.tg + 1.0) * 0.5;
+  const uint32_t v_offset = shape.axis == TiltAxis::kV ? 1 : 0;
   auto copy_of = [&](int j, int i) {
     const PrefilteredTable::Cell& c = table.cell(j, i);
     if (c.lambda == 1) return c.first;
     const uint32_t half = c.lambda / 2;
-    // Nearest tilt: tg_k = (2k + 1) / half - 1 has the bin [2k / half - 1, 2(k+1) / half - 1).
-    const int k = std::clamp(static_cast<int>(std::floor((shape.tg + 1.0) * 0.5 * half)), 0,
+    const int k = std::clamp(static_cast<int>(std::floor(tilt_position * half)), 0,
                              static_cast<int>(half) - 1);
-    return c.first + (shape.axis == TiltAxis::kV ? half : 0) + static_cast<uint32_t>(k);
+    return c.first + v_offset * half + static_cast<uint32_t>(k);
   };
   if (eL >= n) {  // L >= 2^n: the aperture covers whole periods both ways
     blend.count = 1;
