@@ -37,6 +37,7 @@ start_server() {
   shift
   local log="$logs/server.$(date +%H%M%S).$RANDOM"
   log_of_last_server="$log"
+  : >"$log.out"  # exists before the loop below reads it
   "$server_bin" --listen 127.0.0.1:0 --threads 2 --store "$store" "$@" >"$log.out" 2>"$log.err" &
   pid=$!
   pids+=("$pid")

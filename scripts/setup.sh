@@ -11,6 +11,7 @@ build/engine/aperture-render --scene demo -o out/demo.exr
 # The service: a server on a free loopback port with a store of its own under out/, the client
 # renders the same frame through it; the server is stopped (SIGTERM) whatever happens.
 store="out/store"
+: >out/server.stdout  # exists before the loop below reads it (the server opens it when it runs)
 build/server/aperture-server --listen 127.0.0.1:0 --store "$store" >out/server.stdout \
   2>out/server.log &
 server_pid=$!
