@@ -1,5 +1,7 @@
 #include "render/leaf_renderer.h"
 
+#include <algorithm>
+
 namespace aperture {
 
 void LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
@@ -11,8 +13,7 @@ void LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
       return;
     case LeafWindow::Kind::kCovered:
       for (int y = r.y0; y < r.y1; ++y)
-        for (int x = r.x0; x < r.x1; ++x)
-          Pixel(image, x, y) = shader_.Shade(leaf.cover, x + 0.5, y + 0.5);
+        shader_.ShadeRow(leaf.cover, r.x0 + 0.5, y + 0.5, r.width(), &Pixel(image, r.x0, y));
       return;
     case LeafWindow::Kind::kMixed:
       RenderMixed(leaf, image);
@@ -36,29 +37,58 @@ void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   }
   cell_begin_.back() = pieces_.size();
 
+  // Each pixel's polygons and weights, in the order the colours are summed.
+  entries_.clear();
+  pixel_begin_.clear();
   for (int py = 0; py < r.height(); ++py) {
     for (int px = 0; px < r.width(); ++px) {
-      weights_.clear();
+      pixel_begin_.push_back(entries_.size());
+      const size_t first = entries_.size();
       for (int cy = 0; cy <= span; ++cy) {
         for (int cx = 0; cx <= span; ++cx) {
           const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
           for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
             const double w = CellWeight(aa_, pieces_[k].moments, cx, cy);
             bool merged = false;
-            for (Weighted& e : weights_)
-              if (e.polygon == pieces_[k].polygon) e.weight += w, merged = true;
-            if (!merged) weights_.push_back({pieces_[k].polygon, w});
+            for (size_t e = first; e < entries_.size(); ++e)
+              if (entries_[e].polygon == pieces_[k].polygon) entries_[e].weight += w, merged = true;
+            if (!merged)
+              entries_.push_back({pieces_[k].polygon, w, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
           }
         }
       }
-      const double x = r.x0 + px + 0.5, y = r.y0 + py + 0.5;
+    }
+  }
+  pixel_begin_.push_back(entries_.size());
+
+  // Shade every polygon's points in one batch (the texture filters sample batches faster).
+  order_.resize(entries_.size());
+  for (size_t i = 0; i < order_.size(); ++i) order_[i] = i;
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&](size_t a, size_t b) { return entries_[a].polygon < entries_[b].polygon; });
+  colours_.resize(entries_.size());
+  for (size_t begin = 0; begin < order_.size();) {
+    const int polygon = entries_[order_[begin]].polygon;
+    size_t end = begin;
+    points_.clear();
+    for (; end < order_.size() && entries_[order_[end]].polygon == polygon; ++end)
+      points_.push_back(entries_[order_[end]].point);
+    batch_.resize(points_.size());
+    shader_.ShadeMany(polygon, points_.data(), static_cast<int>(points_.size()), batch_.data());
+    for (size_t i = begin; i < end; ++i) colours_[order_[i]] = batch_[i - begin];
+    begin = end;
+  }
+
+  for (int py = 0; py < r.height(); ++py) {
+    for (int px = 0; px < r.width(); ++px) {
+      const size_t pixel = static_cast<size_t>(py) * r.width() + px;
       float r_sum = 0, g_sum = 0, b_sum = 0;
       double total = 0;
-      for (const Weighted& e : weights_) {
-        const Rgba c = shader_.Shade(e.polygon, x, y);
-        const float w = static_cast<float>(e.weight);
+      for (size_t e = pixel_begin_[pixel]; e < pixel_begin_[pixel + 1]; ++e) {
+        const Rgba& c = colours_[e];
+        const float w = static_cast<float>(entries_[e].weight);
         r_sum += c.r * w, g_sum += c.g * w, b_sum += c.b * w;
-        total += e.weight;
+        total += entries_[e].weight;
       }
       const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
       Pixel(image, r.x0 + px, r.y0 + py) = {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w,

@@ -37,8 +37,13 @@ class LeafRenderer {
   struct Weighted {
     int polygon;
     double weight;
+    Vec2 point;  // the pixel centre
   };
-  std::vector<Weighted> weights_;
+  std::vector<Weighted> entries_;    // of every pixel of the leaf, row by row
+  std::vector<size_t> pixel_begin_;  // pixel i's entries: [pixel_begin_[i], pixel_begin_[i + 1])
+  std::vector<size_t> order_;        // entries by polygon
+  std::vector<Vec2> points_;
+  std::vector<Rgba> batch_, colours_;
 };
 
 }  // namespace aperture

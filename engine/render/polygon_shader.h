@@ -24,8 +24,20 @@ class PolygonShader {
   // polygon: then its plane is extrapolated, as seed 002 takes each colour constant over the
   // aperture.
   Rgba Shade(int index, double x, double y) const;
+  // out[i] = Shade(index, x0 + i, y) for i < count (a run of pixel centres of one row), with the
+  // texture sampled in batches (TextureSampler::SampleMany).
+  void ShadeRow(int index, double x0, double y, int count, Rgba* out) const;
+  // out[i] = Shade(index, points[i].x, points[i].y) for i < count, likewise batched.
+  void ShadeMany(int index, const Vec2* points, int count, Rgba* out) const;
 
  private:
+  double InvDepth(int index, double x, double y) const;
+  TextureFootprint Footprint(const ScreenPolygon& p, double w, double x, double y) const;
+  // Light and fog on the (textured) surface colour.
+  Rgba Finish(const ScreenPolygon& p, Rgba colour, double w, double x, double y) const;
+  template <typename PointAt>
+  void ShadeBatched(int index, int count, PointAt point_at, Rgba* out) const;
+
   struct MaterialState {
     Rgba base;
     const TextureSampler* sampler;  // null: untextured

@@ -36,12 +36,18 @@ class AnisoSampler final : public TextureSampler {
   // The table must outlive the sampler.
   explicit AnisoSampler(PrefilteredTable table) : table_(std::move(table)) {}
   Rgba Sample(const TextureFootprint& f) const override;
+  // The same results as Sample, in two phases over groups of samples (the apertures and copy
+  // selections of the group, then its texel reads), so that independent samples overlap in the
+  // processor instead of waiting one after the other on their chains of dependent loads.
+  void SampleMany(const TextureFootprint* in, Rgba* out, int count) const override;
 
   // seed 000, eq. 6-9: skewed bilinear inside one copy along slope `tg` (plain bilinear for
   // untilted copies); u, v in repeats.
   Rgba SampleCopy(const CopyEntry& e, double u, double v, double tg) const;
 
  private:
+  Rgba Blend(const TextureFootprint& f, const ApertureShape& shape, const CopyBlend& blend) const;
+
   PrefilteredTable table_;
 };
 

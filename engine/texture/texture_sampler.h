@@ -23,6 +23,10 @@ class TextureSampler {
  public:
   virtual ~TextureSampler() = default;
   virtual Rgba Sample(const TextureFootprint& footprint) const = 0;
+  // out[i] = Sample(in[i]) for i < count; a mode overrides it where a batch is faster.
+  virtual void SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
+    for (int i = 0; i < count; ++i) out[i] = Sample(in[i]);
+  }
 };
 
 }  // namespace aperture

@@ -243,5 +243,33 @@ TEST_F(AnisoSamplerTest, NarrowFootprintsInEveryDirectionStayCloseToTheReference
   EXPECT_LT(worst, 0.015);
 }
 
+TEST_F(AnisoSamplerTest, SampleManyEqualsSampleBitForBit) {
+  // Random texels; footprints of every class (magnification, degenerate, three copies, both
+  // tilt axes, the frozen region), anywhere in the plane (wrap), in a batch of 1001 (not a
+  // multiple of the sampler's groups).
+  Image image(kN, kN);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0, 1);
+  for (int y = 0; y < kN; ++y)
+    for (int x = 0; x < kN; ++x) image.at(x, y) = {unit(rng), unit(rng), unit(rng), unit(rng)};
+  Build(image);
+  AnisoSampler sampler(*table_);
+  std::uniform_real_distribution<double> pos(-3, 3), logd(-8, 8);
+  std::uniform_int_distribution<int> sign(0, 1), zero(0, 15);
+  auto d = [&] {
+    return zero(rng) == 0 ? 0.0f : float((sign(rng) ? 1 : -1) * std::exp2(logd(rng)) / kN);
+  };
+  std::vector<TextureFootprint> in(1001);
+  for (TextureFootprint& f : in) f = {pos(rng), pos(rng), d(), d(), d(), d()};
+  std::vector<Rgba> out(in.size());
+  sampler.SampleMany(in.data(), out.data(), static_cast<int>(in.size()));
+  int differing = 0;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Rgba a = sampler.Sample(in[i]);
+    if (a.r != out[i].r || a.g != out[i].g || a.b != out[i].b || a.a != out[i].a) ++differing;
+  }
+  EXPECT_EQ(differing, 0);
+}
+
 }  // namespace
 }  // namespace aperture
