@@ -82,12 +82,19 @@ double NanosecondsPerSample(const GrazingPlaneView& view, const TextureSampler& 
       if (GroundFootprint(view, i, j, &f)) footprints.push_back(f);
   }
   if (footprints.empty()) return 0;
-  // The fastest of three passes: the machine may be shared.
+  // Through SampleMany, in batches of about a row, as the renderer calls the samplers. The
+  // fastest of three passes: the machine may be shared.
+  constexpr size_t kBatch = 256;
+  std::vector<Rgba> out(kBatch);
   double best = INFINITY;
   for (int pass = 0; pass < 3; ++pass) {
     float sink = 0;
     const auto start = std::chrono::steady_clock::now();
-    for (const TextureFootprint& f : footprints) sink += sampler.Sample(f).g;
+    for (size_t first = 0; first < footprints.size(); first += kBatch) {
+      const int n = static_cast<int>(std::min(kBatch, footprints.size() - first));
+      sampler.SampleMany(&footprints[first], out.data(), n);
+      for (int i = 0; i < n; ++i) sink += out[i].g;
+    }
     const double ns =
         std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
     volatile float keep = sink;
