@@ -14,10 +14,7 @@
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
-
-#if defined(__SSE4_1__)
-#include <smmintrin.h>
-#endif
+#include "texture/table_column_kernels.h"
 
 namespace aperture {
 namespace {
@@ -66,11 +63,17 @@ const Rgba& SourceTexel(const Image& src, bool transposed, int major, int minor)
   return transposed ? src.at(minor, major) : src.at(major, minor);
 }
 
-// First pass, the minor axis: g[k * N + c] = average of line c (constant major index) over the
-// minor interval [k - L, k + L), by a running window down blocks of lines; stored as 16-bit
-// fixed point (1 = 65535) row-major in k, so that the second pass streams through half the bytes
-// of floats. Piecewise linear in k between integers.
-using Packed = std::array<uint16_t, 4>;
+// First pass, the minor axis: the average of line c (constant major index) over the minor
+// interval [k - L, k + L), by a running window down blocks of lines; piecewise linear in k between
+// integers. Stored as 16-bit fixed point (1 = 65535), so that the second pass streams through
+// half the bytes of floats, at g[MinorIndex(N, L, c, k)]: line by line, and within a line by the
+// residue of k mod L, then k / L. The sheared lines of the second pass, L apart in k, then read
+// consecutive entries.
+using Packed = PackedTexel;
+
+inline size_t MinorIndex(int N, int L, int c, int k) {
+  return static_cast<size_t>(c) * N + static_cast<size_t>(k % L) * (N / L) + k / L;
+}
 
 void MinorBoxAverage(const Image& src, bool transposed, int L, std::vector<Packed>& g) {
   const int N = src.width();
@@ -89,79 +92,15 @@ void MinorBoxAverage(const Image& src, bool transposed, int L, std::vector<Packe
       for (int m = -L; m < L; ++m)
         window[c - c0].Add(SourceTexel(src, transposed, c, m & (N - 1)), 1.0);
     for (int k = 0; k < N; ++k) {
-      Packed* out = &g[static_cast<size_t>(k) * N];
       for (int c = c0; c < c1; ++c) {
         Sum4& w = window[c - c0];
-        out[c] = {pack(w.r * scale), pack(w.g * scale), pack(w.b * scale), pack(w.a * scale)};
+        g[MinorIndex(N, L, c, k)] = {pack(w.r * scale), pack(w.g * scale), pack(w.b * scale),
+                                     pack(w.a * scale)};
         w.Add(SourceTexel(src, transposed, c, (k + L) & (N - 1)), 1.0);
         w.Sub(SourceTexel(src, transposed, c, (k - L) & (N - 1)));
       }
     }
   });
-}
-
-// Running sums in units of 1 / 65535: acc += (1 - w) a + w b for two packed texels.
-#if defined(__SSE4_1__)
-struct Accumulator {
-  __m128 sum = _mm_setzero_ps();
-  void AddLerp(const Packed& a, const Packed& b, float w) {
-    const __m128 fa = _mm_cvtepi32_ps(
-        _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(a.data()))));
-    const __m128 fb = _mm_cvtepi32_ps(
-        _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(b.data()))));
-    sum = _mm_add_ps(sum, _mm_add_ps(fa, _mm_mul_ps(_mm_sub_ps(fb, fa), _mm_set1_ps(w))));
-  }
-  Rgba Get() const {
-    Rgba out;
-    _mm_storeu_ps(&out.r, sum);
-    return out;
-  }
-};
-#else
-struct Accumulator {
-  float v[4] = {0, 0, 0, 0};
-  void AddLerp(const Packed& a, const Packed& b, float w) {
-    for (int i = 0; i < 4; ++i) v[i] += a[i] + (float(b[i]) - float(a[i])) * w;
-  }
-  Rgba Get() const { return {v[0], v[1], v[2], v[3]}; }
-};
-#endif
-
-// Running sums of kLanes sheared lines (line r + l passes column c at minor row
-// k_base[c] + (r + l) L, weight[c] towards the next row) over the columns [c0, c1): the lanes'
-// accumulators stay in registers and their dependency chains interleave. Each line's sum is
-// formed in the same order as one line at a time, so the result does not depend on kLanes.
-struct LineSweep {
-  int N = 0, L = 1, step = 1, stride = 0;
-  const int* k_base = nullptr;
-  const float* weight = nullptr;
-  const Packed* g = nullptr;
-  Rgba* prefix = nullptr;
-};
-
-template <int kLanes>
-void SweepLines(const LineSweep& s, int r, int c0, int c1, Accumulator* acc) {
-  const int mask = s.N - 1;
-  Accumulator a[kLanes];
-  Rgba* P[kLanes];
-  int offset[kLanes];
-  for (int l = 0; l < kLanes; ++l) {
-    a[l] = acc[l];
-    P[l] = s.prefix + static_cast<size_t>(r + l) * s.stride;
-    offset[l] = (r + l) * s.L;
-  }
-  for (int c = c0; c < c1; ++c) {
-    const int kb = s.k_base[c];
-    const float w = s.weight[c];
-    for (int l = 0; l < kLanes; ++l) {
-      const int k0 = (kb + offset[l]) & mask, k1 = (k0 + 1) & mask;
-      a[l].AddLerp(s.g[static_cast<size_t>(k0) * s.N + c], s.g[static_cast<size_t>(k1) * s.N + c],
-                   w);
-    }
-    if (((c + 1) & (s.step - 1)) == 0)
-      for (int l = 0; l < kLanes; ++l) P[l][(c + 1) / s.step] = a[l].Get();
-  }
-  for (int l = 0; l < kLanes; ++l) acc[l] = a[l];
 }
 
 struct CopyJob {
@@ -187,9 +126,10 @@ void BuildShearedCopy(const CopyJob& job, const std::vector<Packed>& g, std::vec
   const int step = job.H < 2 ? 1 : std::max(1, std::min(static_cast<int>(job.H) / 2, N / 4));
   const int stride = N / step + 1;
   const long wrap = std::lround(job.tg * N / L);
-  prefix.resize(static_cast<size_t>(rows) * stride);
+  prefix.resize(static_cast<size_t>(stride) * rows);
   // Line r passes column c at minor = (r + 0.5) L + tg (c + 0.5): lines differ by whole multiples
-  // of L, so the interpolation weights along c are the same for every line.
+  // of L, so the interpolation weights along c are the same for every line, and lines r, r + 1,
+  // ... read consecutive entries of g (MinorIndex) from row k_base[c] + r L on.
   std::vector<int> k_base(N);
   std::vector<float> weight(N);
   for (int c = 0; c < N; ++c) {
@@ -197,18 +137,31 @@ void BuildShearedCopy(const CopyJob& job, const std::vector<Packed>& g, std::vec
     k_base[c] = static_cast<int>(fy);
     weight[c] = static_cast<float>(y - fy);
   }
-  // Tiles of kRows lines x kCols columns keep the sheared strip of g they read in cache.
-  constexpr int kRows = 32, kCols = 64, kLanes = 4;
-  const LineSweep sweep{N, L, step, stride, k_base.data(), weight.data(), g.data(), prefix.data()};
-  tbb::parallel_for(0, (rows + kRows - 1) / kRows, [&](int tile) {
-    const int r0 = tile * kRows, r1 = std::min(rows, r0 + kRows);
-    Accumulator acc[kRows];
-    for (int r = r0; r < r1; ++r) prefix[static_cast<size_t>(r) * stride] = {};
-    for (int c0 = 0; c0 < N; c0 += kCols) {
-      const int c1 = std::min(N, c0 + kCols);
-      int r = r0;
-      for (; r + kLanes <= r1; r += kLanes) SweepLines<kLanes>(sweep, r, c0, c1, &acc[r - r0]);
-      for (; r < r1; ++r) SweepLines<1>(sweep, r, c0, c1, &acc[r - r0]);
+  // Running sums of a band of lines over all columns, kept at every `step` columns: prefix[s *
+  // rows + r] is line r's sum over the columns [0, s step).
+  const AddColumnFn add_column = BestAddColumn();
+  constexpr int kBand = 256;  // lines per task: their sums (4 KB) stay in L1
+  tbb::parallel_for(0, (rows + kBand - 1) / kBand, [&](int band) {
+    const int r0 = band * kBand, r1 = std::min(rows, r0 + kBand);
+    std::vector<float> acc(4 * static_cast<size_t>(r1 - r0), 0.0f);
+    std::fill(prefix.begin() + r0, prefix.begin() + r1, Rgba{});  // s = 0: the empty sums
+    for (int c = 0; c < N; ++c) {
+      // Line r reads rows k_base + r L (residue rho_a, quotient qa0 + r) and the next one.
+      const int kb = ((k_base[c] % N) + N) % N;
+      const int rho_a = kb % L, qa0 = kb / L;
+      const bool next_in_residue = rho_a + 1 < L;
+      const int rho_b = next_in_residue ? rho_a + 1 : 0, qb0 = next_in_residue ? qa0 : qa0 + 1;
+      const Packed* a = &g[MinorIndex(N, L, c, rho_a)];
+      const Packed* b = &g[MinorIndex(N, L, c, rho_b)];
+      for (int r = r0; r < r1;) {  // in runs that end where a quotient wraps past rows
+        const int ia = (qa0 + r) % rows, ib = (qb0 + r) % rows;
+        const int n = std::min({r1 - r, rows - ia, rows - ib});
+        add_column(&acc[4 * static_cast<size_t>(r - r0)], a + ia, b + ib, n, weight[c]);
+        r += n;
+      }
+      if (((c + 1) & (step - 1)) == 0)
+        std::memcpy(static_cast<void*>(&prefix[static_cast<size_t>((c + 1) / step) * rows + r0]),
+                    acc.data(), sizeof(float) * acc.size());
     }
   });
   // N, rows = N / L and step are powers of two: wrap and divide by masks and shifts.
@@ -221,11 +174,9 @@ void BuildShearedCopy(const CopyJob& job, const std::vector<Packed>& g, std::vec
     const long k = c >= 0 ? c >> log2_n : -((-c + N - 1) >> log2_n);
     const long cc = c - k * N;
     const size_t last = static_cast<size_t>(N / step);
-    for (long kk = 0; kk < k; ++kk)
-      acc.Add(prefix[row_of(r + kk * wrap) * size_t(stride) + last], sign);
-    for (long kk = k; kk < 0; ++kk)
-      acc.Add(prefix[row_of(r + kk * wrap) * size_t(stride) + last], -sign);
-    acc.Add(prefix[row_of(r + k * wrap) * size_t(stride) + (cc >> log2_step)], sign);
+    for (long kk = 0; kk < k; ++kk) acc.Add(prefix[last * rows + row_of(r + kk * wrap)], sign);
+    for (long kk = k; kk < 0; ++kk) acc.Add(prefix[last * rows + row_of(r + kk * wrap)], -sign);
+    acc.Add(prefix[static_cast<size_t>(cc >> log2_step) * rows + row_of(r + k * wrap)], sign);
   };
   const double inv = 1.0 / (2.0 * job.H * 65535.0);  // sums are in units of 1 / 65535
   tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), [&](const tbb::blocked_range<int>& rr) {
