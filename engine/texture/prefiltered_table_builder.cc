@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <span>
 
 #include "absl/strings/str_cat.h"
 #include "texture/table_column_kernels.h"
@@ -120,50 +121,84 @@ struct CopyJob {
 // The windows [centre - H, centre + H] start and end on multiples of `step` columns, so only
 // those running sums are kept. A line leaving the period at major = N re-enters at major = 0
 // as line r + tg N / L.
-void BuildShearedCopy(const CopyJob& job, const std::vector<Packed>& g, std::vector<Rgba>& prefix) {
-  const int N = job.N, L = job.L, rows = N / L;
-  const int sx = N / job.major;
-  const int step = job.H < 2 ? 1 : std::max(1, std::min(static_cast<int>(job.H) / 2, N / 4));
-  const int stride = N / step + 1;
-  const long wrap = std::lround(job.tg * N / L);
-  prefix.resize(static_cast<size_t>(stride) * rows);
+struct CopySweep {
+  CopyJob job;
+  int step = 1;
+  std::vector<int> k_base;    // line r passes column c between minor rows k_base[c] + r L
+  std::vector<float> weight;  // and the next one, with this weight towards the next
+  std::vector<Rgba> prefix;   // prefix[s * rows + r]: line r's sum over the columns [0, s step)
+};
+
+CopySweep PrepareSweep(const CopyJob& job) {
+  const int N = job.N, L = job.L;
+  CopySweep s;
+  s.job = job;
+  s.step = job.H < 2 ? 1 : std::max(1, std::min(static_cast<int>(job.H) / 2, N / 4));
+  s.prefix.resize(static_cast<size_t>(N / s.step + 1) * (N / L));
   // Line r passes column c at minor = (r + 0.5) L + tg (c + 0.5): lines differ by whole multiples
   // of L, so the interpolation weights along c are the same for every line, and lines r, r + 1,
   // ... read consecutive entries of g (MinorIndex) from row k_base[c] + r L on.
-  std::vector<int> k_base(N);
-  std::vector<float> weight(N);
+  s.k_base.resize(N);
+  s.weight.resize(N);
   for (int c = 0; c < N; ++c) {
     const double y = 0.5 * L + job.tg * (c + 0.5), fy = std::floor(y);
-    k_base[c] = static_cast<int>(fy);
-    weight[c] = static_cast<float>(y - fy);
+    s.k_base[c] = static_cast<int>(fy);
+    s.weight[c] = static_cast<float>(y - fy);
   }
-  // Running sums of a band of lines over all columns, kept at every `step` columns: prefix[s *
-  // rows + r] is line r's sum over the columns [0, s step).
+  return s;
+}
+
+// The running sums of several copies with the same L (and axis, so the same g) at once: each
+// column of g is read from memory once for all of them, not once per copy.
+void SweepCopies(std::span<CopySweep> copies, const std::vector<Packed>& g, int N, int L) {
+  const int rows = N / L;
+  // N, L and rows are powers of two: residues and quotients by masks and shifts.
+  int log2_l = 0;
+  while ((1 << log2_l) < L) ++log2_l;
+  const int n_mask = N - 1, l_mask = L - 1, rows_mask = rows - 1;
   const AddColumnFn add_column = BestAddColumn();
-  constexpr int kBand = 256;  // lines per task: their sums (4 KB) stay in L1
-  tbb::parallel_for(0, (rows + kBand - 1) / kBand, [&](int band) {
-    const int r0 = band * kBand, r1 = std::min(rows, r0 + kBand);
-    std::vector<float> acc(4 * static_cast<size_t>(r1 - r0), 0.0f);
-    std::fill(prefix.begin() + r0, prefix.begin() + r1, Rgba{});  // s = 0: the empty sums
+  // Lines per task: at most 256 (their sums, 4 KB per copy, stay in cache), and bands thin
+  // enough for 8 tasks when there are few lines (large L).
+  const int band_lines = std::max(16, std::min(256, rows / 8));
+  tbb::parallel_for(0, (rows + band_lines - 1) / band_lines, [&](int band) {
+    const int r0 = band * band_lines, r1 = std::min(rows, r0 + band_lines);
+    const size_t width = 4 * static_cast<size_t>(r1 - r0);
+    std::vector<float> acc(width * copies.size(), 0.0f);
+    for (CopySweep& s : copies)  // s = 0: the empty sums
+      std::fill(s.prefix.begin() + r0, s.prefix.begin() + r1, Rgba{});
     for (int c = 0; c < N; ++c) {
-      // Line r reads rows k_base + r L (residue rho_a, quotient qa0 + r) and the next one.
-      const int kb = ((k_base[c] % N) + N) % N;
-      const int rho_a = kb % L, qa0 = kb / L;
-      const bool next_in_residue = rho_a + 1 < L;
-      const int rho_b = next_in_residue ? rho_a + 1 : 0, qb0 = next_in_residue ? qa0 : qa0 + 1;
-      const Packed* a = &g[MinorIndex(N, L, c, rho_a)];
-      const Packed* b = &g[MinorIndex(N, L, c, rho_b)];
-      for (int r = r0; r < r1;) {  // in runs that end where a quotient wraps past rows
-        const int ia = (qa0 + r) % rows, ib = (qb0 + r) % rows;
-        const int n = std::min({r1 - r, rows - ia, rows - ib});
-        add_column(&acc[4 * static_cast<size_t>(r - r0)], a + ia, b + ib, n, weight[c]);
-        r += n;
+      for (size_t q = 0; q < copies.size(); ++q) {
+        CopySweep& s = copies[q];
+        float* sums = &acc[q * width];
+        // Line r reads rows k_base + r L (residue rho_a, quotient qa0 + r) and the next one.
+        const int kb = s.k_base[c] & n_mask;
+        const int rho_a = kb & l_mask, qa0 = kb >> log2_l;
+        const bool next_in_residue = rho_a + 1 < L;
+        const int rho_b = next_in_residue ? rho_a + 1 : 0, qb0 = next_in_residue ? qa0 : qa0 + 1;
+        const Packed* a = &g[MinorIndex(N, L, c, rho_a)];
+        const Packed* b = &g[MinorIndex(N, L, c, rho_b)];
+        for (int r = r0; r < r1;) {  // in runs that end where a quotient wraps past rows
+          const int ia = (qa0 + r) & rows_mask, ib = (qb0 + r) & rows_mask;
+          const int n = std::min({r1 - r, rows - ia, rows - ib});
+          add_column(sums + 4 * static_cast<size_t>(r - r0), a + ia, b + ib, n, s.weight[c]);
+          r += n;
+        }
+        if (((c + 1) & (s.step - 1)) == 0)
+          std::memcpy(
+              static_cast<void*>(&s.prefix[static_cast<size_t>((c + 1) / s.step) * rows + r0]),
+              sums, sizeof(float) * width);
       }
-      if (((c + 1) & (step - 1)) == 0)
-        std::memcpy(static_cast<void*>(&prefix[static_cast<size_t>((c + 1) / step) * rows + r0]),
-                    acc.data(), sizeof(float) * acc.size());
     }
   });
+}
+
+// The copy's texels from its running sums: each a window of 2H columns along its line.
+void WriteCopy(const CopySweep& s) {
+  const CopyJob& job = s.job;
+  const int N = job.N, L = job.L, rows = N / L, step = s.step;
+  const int sx = N / job.major;
+  const long wrap = std::lround(job.tg * N / L);
+  const std::vector<Rgba>& prefix = s.prefix;
   // N, rows = N / L and step are powers of two: wrap and divide by masks and shifts.
   int log2_n = 0, log2_step = 0;
   while ((1 << log2_n) < N) ++log2_n;
@@ -271,25 +306,37 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     std::vector<Packed> g_u, g_v;
-    std::vector<Rgba> prefix;
     int filtered_j = -1;
-    for (size_t d = 1; d < dir.size(); ++d) {  // the directory is ordered by j, then i
-      const CopyEntry& e = dir[d];
-      const int j = e.log2_l, i = e.log2_ratio;
+    // Groups of up to kGroup consecutive copies of one cell and axis (the directory is ordered
+    // by j, then i, then axis), swept together. A 4096 x 4096 build took 42, 38, 34 and 35 s
+    // with groups of 16, 32, 64 and 128 copies (2 threads).
+    constexpr size_t kGroup = 64;
+    std::vector<CopySweep> group;
+    for (size_t d = 1; d < dir.size();) {
+      const CopyEntry& first = dir[d];
+      const int j = first.log2_l, i = first.log2_ratio;
       if (j != filtered_j) {
         MinorBoxAverage(src, false, 1 << j, g_u);
         MinorBoxAverage(src, true, 1 << j, g_v);
         filtered_j = j;
       }
-      CopyJob job;
-      job.N = N;
-      job.L = 1 << j;
-      job.H = std::ldexp(1.0, i + j);
-      job.tg = e.tg;
-      job.transposed = e.axis == TiltAxis::kV;
-      job.major = static_cast<int>(job.transposed ? e.height : e.width);
-      job.out = texels + e.offset;
-      BuildShearedCopy(job, job.transposed ? g_v : g_u, prefix);
+      group.clear();
+      for (; d < dir.size() && group.size() < kGroup; ++d) {
+        const CopyEntry& e = dir[d];
+        if (e.log2_l != first.log2_l || e.log2_ratio != first.log2_ratio || e.axis != first.axis)
+          break;
+        CopyJob job;
+        job.N = N;
+        job.L = 1 << j;
+        job.H = std::ldexp(1.0, i + j);
+        job.tg = e.tg;
+        job.transposed = e.axis == TiltAxis::kV;
+        job.major = static_cast<int>(job.transposed ? e.height : e.width);
+        job.out = texels + e.offset;
+        group.push_back(PrepareSweep(job));
+      }
+      SweepCopies(group, first.axis == TiltAxis::kV ? g_v : g_u, N, 1 << j);
+      for (const CopySweep& s : group) WriteCopy(s);
     }
   });
   const double seconds =

@@ -2,7 +2,9 @@
 // Each copy is the periodic texture (piecewise-constant texels) averaged over its box
 // parallelogram: first a running-sum box of 2L along the minor axis, then running sums along
 // the sheared lines of slope tg over 2H along the major axis: O(N^2 / L) per copy, independent
-// of H, never a loop over the aperture.
+// of H, never a loop over the aperture. The sums of bands of lines advance column by column
+// (table_column_kernels.h, AVX2 when the processor has it), for up to 64 copies of a cell at
+// once, so that each column of the minor pass is read from memory once for all of them.
 #pragma once
 
 #include "absl/status/statusor.h"
