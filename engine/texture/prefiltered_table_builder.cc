@@ -312,6 +312,10 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
     // with groups of 16, 32, 64 and 128 copies (2 threads).
     constexpr size_t kGroup = 64;
     std::vector<CopySweep> group;
+    // Work of a copy: its lines times the N columns, N^2 / L.
+    auto work_of = [&](const CopyEntry& e) { return static_cast<double>(N >> e.log2_l); };
+    double total_work = 0, work_done = 0;
+    for (size_t d = 1; d < dir.size(); ++d) total_work += work_of(dir[d]);
     for (size_t d = 1; d < dir.size();) {
       const CopyEntry& first = dir[d];
       const int j = first.log2_l, i = first.log2_ratio;
@@ -337,6 +341,10 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
       }
       SweepCopies(group, first.axis == TiltAxis::kV ? g_v : g_u, N, 1 << j);
       for (const CopySweep& s : group) WriteCopy(s);
+      if (options.progress) {
+        for (const CopySweep& s : group) work_done += static_cast<double>(N / s.job.L);
+        options.progress(d == dir.size() ? 1.0 : work_done / total_work);
+      }
     }
   });
   const double seconds =

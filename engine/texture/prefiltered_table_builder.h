@@ -7,6 +7,8 @@
 // once, so that each column of the minor pass is read from memory once for all of them.
 #pragma once
 
+#include <functional>
+
 #include "absl/status/statusor.h"
 #include "texture/image.h"
 #include "texture/prefiltered_table.h"
@@ -15,6 +17,8 @@ namespace aperture {
 
 struct TableBuildOptions {
   int threads = 0;  // 0: all cores (the caller's task arena otherwise)
+  // Called from the building thread with the fraction of the work done, increasing, last 1.
+  std::function<void(double)> progress;
 };
 
 // Images that are not square powers of two are resampled to the next power of two of their

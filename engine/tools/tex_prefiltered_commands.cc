@@ -1,6 +1,7 @@
 // aperture-tex subcommands for prefiltered anisotropic tables (seed 000): prefilter, info,
 // bench-filter.
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -98,7 +99,17 @@ int RunPrefilter(int argc, char** argv) {
     return Fail("prefilter", "--threads must be a whole number >= 0");
   auto image = LoadImageFile(args->positional[0]);
   if (!image.ok()) return Fail("prefilter", std::string(image.status().message()));
-  auto block = BuildPrefilteredTable(*image, {threads});
+  TableBuildOptions options{threads, {}};
+  if (isatty(STDERR_FILENO)) {  // a terminal: the build of a 4096^2 table takes half a minute
+    options.progress = [last = -1](double done) mutable {
+      const int percent = static_cast<int>(done * 100);
+      if (percent == last) return;
+      last = percent;
+      std::fprintf(stderr, "\rprefilter: building the table %3d%%%s", percent,
+                   percent == 100 ? "\n" : "");
+    };
+  }
+  auto block = BuildPrefilteredTable(*image, options);
   if (!block.ok()) return Fail("prefilter", std::string(block.status().message()));
   auto table = block->View();
   if (!table.ok()) return Fail("prefilter", std::string(table.status().message()));

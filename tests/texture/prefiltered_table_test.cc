@@ -11,6 +11,7 @@
 #include <random>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "texture/prefiltered_table_builder.h"
 
@@ -237,6 +238,25 @@ TEST(PrefilteredTableBuilder, OneAndTwoThreadsBuildTheSameBytes) {
   ASSERT_EQ(a->bytes.size(), b->bytes.size());
   const size_t data = a->View()->header().data_offset;
   EXPECT_EQ(std::memcmp(a->bytes.data() + data, b->bytes.data() + data, a->bytes.size() - data), 0);
+}
+
+// Progress is reported as an increasing fraction of the work that ends at 1, and does not
+// change the table.
+TEST(PrefilteredTableBuilder, ReportsIncreasingProgressEndingAtOne) {
+  const Image img = RandomImage(64, 3);
+  std::vector<double> seen;
+  TableBuildOptions options;
+  options.progress = [&](double done) { seen.push_back(done); };
+  auto with = BuildPrefilteredTable(img, options), without = BuildPrefilteredTable(img);
+  ASSERT_TRUE(with.ok() && without.ok());
+  ASSERT_GT(seen.size(), 6u);  // at least one report per L
+  for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]);
+  EXPECT_GT(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  const size_t data = with->View()->header().data_offset;
+  EXPECT_EQ(std::memcmp(with->bytes.data() + data, without->bytes.data() + data,
+                        with->bytes.size() - data),
+            0);
 }
 
 TEST(PrefilteredTableBuilder, ResamplesNonPowerOfTwoImages) {
