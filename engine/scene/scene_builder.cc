@@ -13,7 +13,7 @@
 namespace aperture {
 namespace {
 
-constexpr int kMaxCheckerboardSize = 16384;
+constexpr int kMaxCheckerboardSize = 8192;  // as kMaxImageTexels
 
 absl::Status Invalid(const std::string& where, const std::string& what) {
   return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));

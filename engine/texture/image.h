@@ -60,8 +60,13 @@ class Image {
   std::vector<Rgba, UninitializedAllocator<Rgba>> texels_;
 };
 
+// The largest raster texture: 8192 x 8192 texels (1 GiB as float RGBA; its seed 000 table is
+// 4.6 GB). Larger palette maps go in as packed vector textures (.apv, up to 65536 x 65536).
+inline constexpr int64_t kMaxImageTexels = int64_t{8192} * 8192;
+
 // Reads an image file through OpenImageIO. 8-bit values are taken as linear (value / 255).
-// Greyscale becomes grey RGB, missing alpha becomes 1.
+// Greyscale becomes grey RGB, missing alpha becomes 1. Images of more than kMaxImageTexels
+// texels are refused before their pixels are read.
 absl::StatusOr<Image> LoadImageFile(const std::string& path);
 // The same for an encoded image held in memory (PNG, JPEG, EXR, TIFF, ...).
 absl::StatusOr<Image> DecodeImage(std::span<const uint8_t> bytes);

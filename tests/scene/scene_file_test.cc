@@ -93,7 +93,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "scale"},
         BadScene{"negative fog", R"({"fog": {"density": -1}})", "fog.density"},
         BadScene{"huge checkerboard",
-                 R"({"textures": [{"id": "t", "checkerboard": {"size": 100000}}]})", "above 16384"},
+                 R"({"textures": [{"id": "t", "checkerboard": {"size": 100000}}]})", "above 8192"},
         BadScene{"uv count", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
                    {"x": 0}, {"x": 1}, {"y": 1}], "uvs": [{"u": 0}]}]}]})",
                  "1 uvs for 3 vertices"},
