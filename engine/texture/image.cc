@@ -31,8 +31,8 @@ absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
     return absl::InvalidArgumentError(absl::StrCat(what, ": image has no pixels"));
   if (int64_t{spec.width} * spec.height > kMaxImageTexels)
     return absl::InvalidArgumentError(absl::StrCat(
-        what, ": image is ", spec.width, "x", spec.height, ", above the limit of ",
-        kMaxImageTexels, " texels (8192 x 8192) for a raster texture; pack palette maps as .apv"));
+        what, ": image is ", spec.width, "x", spec.height, ", above the limit of ", kMaxImageTexels,
+        " texels (8192 x 8192) for a raster texture; pack palette maps as .apv"));
   const int channels = spec.nchannels;
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))

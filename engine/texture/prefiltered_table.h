@@ -27,7 +27,7 @@ namespace aperture {
 
 inline constexpr char kTableMagic[8] = {'A', 'P', 'T', 'A', 'B', 'L', 'E', '0'};
 inline constexpr uint32_t kTableVersion = 1;
-inline constexpr uint32_t kTexelRgba8 = 1;  // 4 bytes per texel: linear RGBA, unorm 8-bit
+inline constexpr uint32_t kTexelRgba8 = 1;    // 4 bytes per texel: linear RGBA, unorm 8-bit
 inline constexpr int kTableMaxLog2Size = 13;  // 8192 x 8192: 4.6 GB
 
 // Plain old data at offset 0. All offsets are bytes from the start of the block.

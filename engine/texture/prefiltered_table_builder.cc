@@ -250,10 +250,10 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
   if (image.empty()) return absl::InvalidArgumentError("prefiltered table: empty image");
   // Checked before resampling: a 1 x 65536 image would otherwise become 65536 x 65536 first.
   if (std::max(image.width(), image.height()) > (1 << kTableMaxLog2Size))
-    return absl::InvalidArgumentError(absl::StrCat(
-        "prefiltered table: a ", image.width(), "x", image.height(),
-        " image needs a larger table than the limit of ", 1 << kTableMaxLog2Size, "x",
-        1 << kTableMaxLog2Size));
+    return absl::InvalidArgumentError(
+        absl::StrCat("prefiltered table: a ", image.width(), "x", image.height(),
+                     " image needs a larger table than the limit of ", 1 << kTableMaxLog2Size, "x",
+                     1 << kTableMaxLog2Size));
   const auto start = std::chrono::steady_clock::now();
   const Image src = SquarePowerOfTwo(image);
   const int N = src.width();
