@@ -126,7 +126,8 @@ struct CopySweep {
   int step = 1;
   std::vector<int> k_base;    // line r passes column c between minor rows k_base[c] + r L
   std::vector<float> weight;  // and the next one, with this weight towards the next
-  std::vector<Rgba> prefix;   // prefix[s * rows + r]: line r's sum over the columns [0, s step)
+  // prefix[s * rows + r]: line r's sum over the columns [0, s step), in the group's buffer.
+  Rgba* prefix = nullptr;
 };
 
 CopySweep PrepareSweep(const CopyJob& job) {
@@ -134,7 +135,6 @@ CopySweep PrepareSweep(const CopyJob& job) {
   CopySweep s;
   s.job = job;
   s.step = job.H < 2 ? 1 : std::max(1, std::min(static_cast<int>(job.H) / 2, N / 4));
-  s.prefix.resize(static_cast<size_t>(N / s.step + 1) * (N / L));
   // Line r passes column c at minor = (r + 0.5) L + tg (c + 0.5): lines differ by whole multiples
   // of L, so the interpolation weights along c are the same for every line, and lines r, r + 1,
   // ... read consecutive entries of g (MinorIndex) from row k_base[c] + r L on.
@@ -146,6 +146,10 @@ CopySweep PrepareSweep(const CopyJob& job) {
     s.weight[c] = static_cast<float>(y - fy);
   }
   return s;
+}
+
+size_t PrefixSize(const CopySweep& s) {
+  return static_cast<size_t>(s.job.N / s.step + 1) * (s.job.N / s.job.L);
 }
 
 // The running sums of several copies with the same L (and axis, so the same g) at once: each
@@ -167,28 +171,33 @@ void SweepCopies(std::span<CopySweep> copies, const std::vector<Packed>& g, int 
     const size_t width = 4 * static_cast<size_t>(r1 - r0);
     std::vector<float> acc(width * copies.size(), 0.0f);
     for (CopySweep& s : copies)  // s = 0: the empty sums
-      std::fill(s.prefix.begin() + r0, s.prefix.begin() + r1, Rgba{});
-    for (int c = 0; c < N; ++c) {
+      std::fill(s.prefix + r0, s.prefix + r1, Rgba{});
+    // Chunks of kChunk columns, copy after copy: a copy's sums stay in cache over the chunk and
+    // the chunk of g over the copies (each line's sum still grows column by column).
+    constexpr int kChunk = 16;
+    for (int c0 = 0; c0 < N; c0 += kChunk) {
       for (size_t q = 0; q < copies.size(); ++q) {
         CopySweep& s = copies[q];
         float* sums = &acc[q * width];
-        // Line r reads rows k_base + r L (residue rho_a, quotient qa0 + r) and the next one.
-        const int kb = s.k_base[c] & n_mask;
-        const int rho_a = kb & l_mask, qa0 = kb >> log2_l;
-        const bool next_in_residue = rho_a + 1 < L;
-        const int rho_b = next_in_residue ? rho_a + 1 : 0, qb0 = next_in_residue ? qa0 : qa0 + 1;
-        const Packed* a = &g[MinorIndex(N, L, c, rho_a)];
-        const Packed* b = &g[MinorIndex(N, L, c, rho_b)];
-        for (int r = r0; r < r1;) {  // in runs that end where a quotient wraps past rows
-          const int ia = (qa0 + r) & rows_mask, ib = (qb0 + r) & rows_mask;
-          const int n = std::min({r1 - r, rows - ia, rows - ib});
-          add_column(sums + 4 * static_cast<size_t>(r - r0), a + ia, b + ib, n, s.weight[c]);
-          r += n;
+        for (int c = c0; c < std::min(N, c0 + kChunk); ++c) {
+          // Line r reads rows k_base + r L (residue rho_a, quotient qa0 + r) and the next one.
+          const int kb = s.k_base[c] & n_mask;
+          const int rho_a = kb & l_mask, qa0 = kb >> log2_l;
+          const bool next_in_residue = rho_a + 1 < L;
+          const int rho_b = next_in_residue ? rho_a + 1 : 0, qb0 = next_in_residue ? qa0 : qa0 + 1;
+          const Packed* a = &g[MinorIndex(N, L, c, rho_a)];
+          const Packed* b = &g[MinorIndex(N, L, c, rho_b)];
+          for (int r = r0; r < r1;) {  // in runs that end where a quotient wraps past rows
+            const int ia = (qa0 + r) & rows_mask, ib = (qb0 + r) & rows_mask;
+            const int n = std::min({r1 - r, rows - ia, rows - ib});
+            add_column(sums + 4 * static_cast<size_t>(r - r0), a + ia, b + ib, n, s.weight[c]);
+            r += n;
+          }
+          if (((c + 1) & (s.step - 1)) == 0)
+            std::memcpy(
+                static_cast<void*>(&s.prefix[static_cast<size_t>((c + 1) / s.step) * rows + r0]),
+                sums, sizeof(float) * width);
         }
-        if (((c + 1) & (s.step - 1)) == 0)
-          std::memcpy(
-              static_cast<void*>(&s.prefix[static_cast<size_t>((c + 1) / s.step) * rows + r0]),
-              sums, sizeof(float) * width);
       }
     }
   });
@@ -200,7 +209,7 @@ void WriteCopy(const CopySweep& s) {
   const int N = job.N, L = job.L, rows = N / L, step = s.step;
   const int sx = N / job.major;
   const long wrap = std::lround(job.tg * N / L);
-  const std::vector<Rgba>& prefix = s.prefix;
+  const Rgba* prefix = s.prefix;
   // N, rows = N / L and step are powers of two: wrap and divide by masks and shifts.
   int log2_n = 0, log2_step = 0;
   while ((1 << log2_n) < N) ++log2_n;
@@ -317,6 +326,7 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
     // with groups of 16, 32, 64 and 128 copies (2 threads).
     constexpr size_t kGroup = 64;
     std::vector<CopySweep> group;
+    std::vector<Rgba> prefixes;
     // Work of a copy: its lines times the N columns, N^2 / L.
     auto work_of = [&](const CopyEntry& e) { return static_cast<double>(N >> e.log2_l); };
     double total_work = 0, work_done = 0;
@@ -348,6 +358,20 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
       group.resize(jobs.size());
       tbb::parallel_for(size_t{0}, jobs.size(),
                         [&](size_t q) { group[q] = PrepareSweep(jobs[q]); });
+      // One buffer for the groups' sums, grown when needed and reused: every entry is written
+      // before it is read, and fresh pages for each group cost more than the sums (page faults).
+      size_t entries = 0;
+      for (const CopySweep& c : group) entries += PrefixSize(c);
+      if (entries > prefixes.size()) {
+        prefixes.clear();
+        prefixes.shrink_to_fit();
+        prefixes.resize(entries);
+      }
+      entries = 0;
+      for (CopySweep& c : group) {
+        c.prefix = prefixes.data() + entries;
+        entries += PrefixSize(c);
+      }
       SweepCopies(group, first.axis == TiltAxis::kV ? g_v : g_u, N, 1 << j);
       for (const CopySweep& s : group) WriteCopy(s);
       if (options.progress) {
