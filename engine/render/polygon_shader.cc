@@ -79,17 +79,19 @@ void PolygonShader::ShadeBatched(int index, int count, PointAt point_at, Rgba* o
   }
   constexpr int kBatch = 64;
   TextureFootprint footprints[kBatch];
+  double inv_depths[kBatch];
   Rgba texels[kBatch];
   for (int first = 0; first < count; first += kBatch) {
     const int n = std::min(kBatch, count - first);
     for (int i = 0; i < n; ++i) {
       const Vec2 q = point_at(first + i);
-      footprints[i] = Footprint(p, InvDepth(index, q.x, q.y), q.x, q.y);
+      inv_depths[i] = InvDepth(index, q.x, q.y);
+      footprints[i] = Footprint(p, inv_depths[i], q.x, q.y);
     }
     mat.sampler->SampleMany(footprints, texels, n);
     for (int i = 0; i < n; ++i) {
       const Vec2 q = point_at(first + i);
-      out[first + i] = Finish(p, mat.base * texels[i], InvDepth(index, q.x, q.y), q.x, q.y);
+      out[first + i] = Finish(p, mat.base * texels[i], inv_depths[i], q.x, q.y);
     }
   }
 }

@@ -51,18 +51,13 @@ inline V4 AddScaled(V4 acc, V4 a, float w) {
 inline Rgba ToRgba(V4 v) { return {v.c[0], v.c[1], v.c[2], v.c[3]}; }
 #endif
 
-inline const uint8_t* TexelAt(const uint8_t* texels, const CopyEntry& e, int x, int y) {
-  return texels + 4 * (static_cast<size_t>(y & (e.height - 1)) * e.width + (x & (e.width - 1)));
+inline V4 Fetch(const uint8_t* texels, const CopyEntry& e, int x, int y) {
+  return LoadTexel(texels +
+                   4 * (static_cast<size_t>(y & (e.height - 1)) * e.width + (x & (e.width - 1))));
 }
 
-// seed 000, eq. 6-9 inside one copy: the four texels read and the three interpolation weights.
-struct CopyTaps {
-  const uint8_t* texel[4];  // (a, b1), (a, b1 + 1), (a + 1, b2), (a + 1, b2 + 1)
-  float minor1, minor2, major;
-};
-
-[[gnu::always_inline]] inline CopyTaps TapsOf(const uint8_t* texels, const CopyEntry& e, float u,
-                                              float v, float tg) {
+// seed 000, eq. 6-9 inside one copy, in texel units (0..255); plain bilinear when untilted.
+V4 CopySample(const uint8_t* texels, const CopyEntry& e, float u, float v, float tg) {
   // Texel centres at +0.5 (DESIGN.md).
   const float X = u * static_cast<float>(e.width) - 0.5f;
   const float Y = v * static_cast<float>(e.height) - 0.5f;
@@ -78,20 +73,11 @@ struct CopyTaps {
   const float m1f = std::floor(m1), m2f = std::floor(m2);
   const int a = static_cast<int>(M0), b1 = static_cast<int>(m1f), b2 = static_cast<int>(m2f);
   auto at = [&](int major, int minor) {
-    return tilt_v ? TexelAt(texels, e, minor, major) : TexelAt(texels, e, major, minor);
+    return tilt_v ? Fetch(texels, e, minor, major) : Fetch(texels, e, major, minor);
   };
-  return {{at(a, b1), at(a, b1 + 1), at(a + 1, b2), at(a + 1, b2 + 1)}, m1 - m1f, m2 - m2f, fM};
-}
-
-// seed 000, eq. 8 / 9, in texel units (0..255).
-[[gnu::always_inline]] inline V4 Interpolate(const CopyTaps& t) {
-  return Mix(Mix(LoadTexel(t.texel[0]), LoadTexel(t.texel[1]), t.minor1),
-             Mix(LoadTexel(t.texel[2]), LoadTexel(t.texel[3]), t.minor2), t.major);
-}
-
-// Skewed bilinear inside one copy (plain bilinear when untilted).
-V4 CopySample(const uint8_t* texels, const CopyEntry& e, float u, float v, float tg) {
-  return Interpolate(TapsOf(texels, e, u, v, tg));
+  // seed 000, eq. 8 / 9.
+  return Mix(Mix(at(a, b1), at(a, b1 + 1), m1 - m1f),
+             Mix(at(a + 1, b2), at(a + 1, b2 + 1), m2 - m2f), fM);
 }
 
 // x = 2^e (1 + m) with 0 <= m < 1, for finite x >= 1 (std::frexp without the library call).

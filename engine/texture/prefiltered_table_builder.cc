@@ -353,6 +353,7 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         job.major = static_cast<int>(job.transposed ? e.height : e.width);
         job.out = texels + e.offset;
         jobs.push_back(job);
+        work_done += work_of(e);
       }
       group.clear();  // frees the last group's sums first
       group.resize(jobs.size());
@@ -374,10 +375,7 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
       }
       SweepCopies(group, first.axis == TiltAxis::kV ? g_v : g_u, N, 1 << j);
       for (const CopySweep& s : group) WriteCopy(s);
-      if (options.progress) {
-        for (const CopySweep& s : group) work_done += static_cast<double>(N / s.job.L);
-        options.progress(d == dir.size() ? 1.0 : work_done / total_work);
-      }
+      if (options.progress) options.progress(d == dir.size() ? 1.0 : work_done / total_work);
     }
   });
   const double seconds =

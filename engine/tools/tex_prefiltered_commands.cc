@@ -24,6 +24,7 @@
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table.h"
 #include "texture/prefiltered_table_builder.h"
+#include "texture/table_column_kernels.h"
 #include "tools/tex_commands.h"
 
 namespace aperture {
@@ -115,9 +116,9 @@ int RunPrefilter(int argc, char** argv) {
   if (!table.ok()) return Fail("prefilter", std::string(table.status().message()));
   if (auto s = WriteTableFile(out, *block); !s.ok())
     return Fail("prefilter", std::string(s.message()));
-  std::printf("%s: %dx%d, %zu copies, %zu bytes, built in %.3f s\n", out.c_str(), table->size(),
-              table->size(), table->directory().size(), block->bytes.size(),
-              table->header().build_milliseconds / 1000.0);
+  std::printf("%s: %dx%d, %zu copies, %zu bytes, built in %.3f s (%s column kernel)\n", out.c_str(),
+              table->size(), table->size(), table->directory().size(), block->bytes.size(),
+              table->header().build_milliseconds / 1000.0, BestAddColumnName());
   return 0;
 }
 
