@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <span>
+#include <vector>
 
 #include "texture/packed/apv_file.h"
 #include "texture/packed/area_integral.h"
@@ -20,9 +21,18 @@ void Exercise(const PackedTexture& texture) {
   const uint64_t texels = uint64_t{v.width()} * v.height();
   // Every texel of small textures, a diagonal of large ones.
   const uint32_t stride = texels <= 65536 ? 1 : 1 + v.width() / 64;
-  for (uint32_t y = 0; y < v.height(); y += stride)
-    for (uint32_t x = 0; x < v.width(); x += stride)
+  std::vector<uint32_t> xs, ys;
+  for (uint32_t y = 0; y < v.height(); y += stride) {
+    for (uint32_t x = 0; x < v.width(); x += stride) {
       if (index.ColorAt(x, y) != v.ColorAt(x, y)) std::abort();
+      xs.push_back(x);
+      ys.push_back(y);
+    }
+  }
+  std::vector<uint32_t> batch(xs.size());
+  index.ColorsAt(xs, ys, batch);
+  for (size_t i = 0; i < xs.size(); ++i)
+    if (batch[i] != v.ColorAt(xs[i], ys[i])) std::abort();
   if (texels <= 65536) {
     const IndexedImage image = UnpackTexture(v);
     const AreaIntegrator area(v);

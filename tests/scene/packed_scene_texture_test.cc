@@ -61,6 +61,27 @@ TEST_F(PackedSceneTexture, NearestAndAreaSamplingWithoutUnpacking) {
   EXPECT_NEAR(texture.Sampler(FilterMode::kAniso).Sample(f).b, 0.5f, 1e-6);
 }
 
+TEST_F(PackedSceneTexture, BatchedNearestEqualsOneTexelAtATime) {
+  auto scene = Load("checker.apv");
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  const TextureSampler& nearest = scene->textures[0]->Sampler(FilterMode::kNearest);
+  // 1000 points (several batches of 256) over a few periods, negative coordinates included.
+  std::vector<TextureFootprint> in;
+  for (int i = 0; i < 1000; ++i)
+    in.push_back({-1.5 + 0.00731 * i, 2.25 - 0.00517 * i, 0.001f, 0, 0, 0.001f});
+  std::vector<Rgba> batch(in.size());
+  nearest.SampleMany(in.data(), batch.data(), static_cast<int>(in.size()));
+  int white = 0;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Rgba one = nearest.Sample(in[i]);
+    ASSERT_EQ(batch[i].r, one.r) << i;
+    ASSERT_EQ(batch[i].a, one.a) << i;
+    white += one.r == 1.0f;
+  }
+  EXPECT_GT(white, 300);  // both colours are met
+  EXPECT_LT(white, 700);
+}
+
 TEST_F(PackedSceneTexture, RendersInAScene) {
   auto proto_scene = [&] {
     v1::Scene proto;

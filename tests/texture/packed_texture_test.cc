@@ -62,14 +62,19 @@ void ExpectLosslessRoundTrip(const IndexedImage& image, Curve curve) {
   }
   index.ColorsAt(xs, ys, batch);
   for (size_t i = 0; i < batch.size(); ++i) ASSERT_EQ(batch[i], image.palette[image.indices[i]]);
-  // Other cell sizes, and without the single-run shortcut (the path of huge textures).
-  for (int bits : {0, 1, 3, 30}) {
+  // Other cell sizes (below 4 x 4 and above 64 x 64 texels without detail records, between with
+  // them), and without the single-run shortcut (the path of huge textures).
+  for (int bits : {0, 1, 2, 3, 5, 6, 30}) {
     for (bool shortcut : {true, false}) {
       const RunIndex other(v, {.cell_bits = bits, .single_run_shortcut = shortcut});
       for (size_t i = 0; i < xs.size(); ++i) {
         ASSERT_EQ(other.PaletteIndexAt(xs[i], ys[i]), image.indices[i]) << bits << shortcut;
         ASSERT_EQ(other.RunAt(xs[i], ys[i]), v.RunOfStep(v.StepOf(xs[i], ys[i])));
       }
+      std::fill(batch.begin(), batch.end(), 0);
+      other.ColorsAt(xs, ys, batch);
+      for (size_t i = 0; i < batch.size(); ++i)
+        ASSERT_EQ(batch[i], image.palette[image.indices[i]]) << bits << shortcut;
     }
   }
 }

@@ -1,6 +1,7 @@
 // The measurements behind `aperture-tex bench-packed` (seed 001, section 2.6, table 4): stored
 // sizes and mean time per random texel access of the raw bitmap, the paper's binary search, the
-// indexed search (run_index.h) and the incomplete quadtree, all on the same random points.
+// indexed search (run_index.h), one texel at a time and in batches, and the incomplete quadtree
+// (one at a time and in lockstep batches), all on the same random points.
 #pragma once
 
 #include <cstdint>

@@ -47,4 +47,20 @@ Rgba PackedTextureSampler::Sample(const TextureFootprint& f) const {
   return AreaMean(f.u - half_u, f.v - half_v, f.u + half_u, f.v + half_v);
 }
 
+void PackedTextureSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
+  if (mode_ != PackedSampling::kNearest) return TextureSampler::SampleMany(in, out, count);
+  constexpr int kChunk = 256;
+  uint32_t xs[kChunk], ys[kChunk], colours[kChunk];
+  for (int begin = 0; begin < count; begin += kChunk) {
+    const int n = std::min(kChunk, count - begin);
+    for (int i = 0; i < n; ++i) {
+      xs[i] = Wrap(in[begin + i].u, texture_.width());
+      ys[i] = Wrap(in[begin + i].v, texture_.height());
+    }
+    const size_t size = static_cast<size_t>(n);
+    index_.ColorsAt({xs, size}, {ys, size}, {colours, size});
+    for (int i = 0; i < n; ++i) out[begin + i] = ToRgba(colours[i]);
+  }
+}
+
 }  // namespace aperture::packed

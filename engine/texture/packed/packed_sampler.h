@@ -28,6 +28,8 @@ class PackedTextureSampler : public TextureSampler {
   // kNearest: Nearest(u, v). kArea: AreaMean over the bounding rectangle of the footprint's
   // parallelogram (centre (u, v), edge vectors (dudx, dvdx) and (dudy, dvdy)).
   Rgba Sample(const TextureFootprint& footprint) const override;
+  // kNearest reads the batch through RunIndex::ColorsAt; the same colours as Sample.
+  void SampleMany(const TextureFootprint* in, Rgba* out, int count) const override;
 
   const PackedTextureView& texture() const { return texture_; }
   // The exact area integral (seed 003's fragments integrate through it in the raytrace mode).

@@ -1,5 +1,7 @@
 #include "texture/packed/quadtree_texture.h"
 
+#include <algorithm>
+
 #include "texture/packed/space_filling_curve.h"
 
 namespace aperture::packed {
@@ -41,6 +43,34 @@ QuadtreeTexture QuadtreeTexture::Build(const IndexedImage& image) {
   tree.root_ = root.word;
   if (root.word & kLeaf) tree.leaves_ = 1;
   return tree;
+}
+
+void QuadtreeTexture::ColorsAt(std::span<const uint32_t> xs, std::span<const uint32_t> ys,
+                               std::span<uint32_t> colours) const {
+  if (root_ & kLeaf) {  // one colour, no nodes
+    std::fill(colours.begin(), colours.end(), palette_[root_ & 0xFFu]);
+    return;
+  }
+  constexpr size_t kLanes = 16;
+  for (size_t begin = 0; begin < xs.size(); begin += kLanes) {
+    const size_t lanes = std::min(kLanes, xs.size() - begin);
+    uint32_t word[kLanes];
+    for (size_t l = 0; l < kLanes; ++l) word[l] = root_;
+    for (int level = order_ - 1; level >= 0; --level) {
+      uint32_t inner = 0;
+      for (size_t l = 0; l < lanes; ++l) {
+        const uint32_t x = xs[begin + l], y = ys[begin + l];
+        const bool leaf = word[l] & kLeaf;
+        // A leaf reads word 0 (always there) and keeps its word.
+        const uint32_t child =
+            nodes_[leaf ? 0 : word[l] + (((x >> level) & 1u) | (((y >> level) & 1u) << 1))];
+        word[l] = leaf ? word[l] : child;
+        inner |= ~word[l] & kLeaf;
+      }
+      if (!inner) break;
+    }
+    for (size_t l = 0; l < lanes; ++l) colours[begin + l] = palette_[word[l] & 0xFFu];
+  }
 }
 
 }  // namespace aperture::packed

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "texture/packed/palette.h"
@@ -32,6 +33,10 @@ class QuadtreeTexture {
     return static_cast<uint8_t>(word);
   }
   uint32_t ColorAt(uint32_t x, uint32_t y) const { return palette_[PaletteIndexAt(x, y)]; }
+  // colours[i] = ColorAt(xs[i], ys[i]), descending 16 texels in lockstep (a level of all of them
+  // at a time, no data-dependent branch), the same treatment as RunIndex::ColorsAt.
+  void ColorsAt(std::span<const uint32_t> xs, std::span<const uint32_t> ys,
+                std::span<uint32_t> colours) const;
 
   size_t node_count() const { return nodes_.size() / 4; }
   size_t leaf_count() const { return leaves_; }

@@ -7,6 +7,7 @@ namespace aperture::packed {
 RunIndex::RunIndex(const PackedTextureView& texture, const Options& options)
     : curve_(texture.curve()),
       order_(texture.order()),
+      run_count_(texture.run_count()),
       steps_(texture.steps().data()),
       indices_(texture.indices().data()),
       palette_(texture.palette().data()) {
@@ -17,7 +18,7 @@ RunIndex::RunIndex(const PackedTextureView& texture, const Options& options)
   int bits = options.cell_bits;
   if (bits < 0) {
     bits = 0;
-    while (bits < order_ && 2 * cell_count(bits) > texture.run_count()) ++bits;
+    while (bits < order_ && 3 * cell_count(bits) > texture.run_count()) ++bits;
   }
   cell_bits_ = std::min(bits, order_);
   shortcut_ = options.single_run_shortcut && texture.run_count() < (size_t{1} << 24);
@@ -26,6 +27,7 @@ RunIndex::RunIndex(const PackedTextureView& texture, const Options& options)
   cells_.resize(columns_ * rows);
   const uint32_t last_step = texture.steps().back();
   const uint64_t cell_steps = uint64_t{1} << (2 * cell_bits_);
+  const bool details = shortcut_ && cell_bits_ >= kMinDetailBits && cell_bits_ <= kMaxDetailBits;
   for (size_t cy = 0; cy < rows; ++cy) {
     for (size_t cx = 0; cx < columns_; ++cx) {
       // The cell's steps: the aligned block's contiguous range (its top-left texel lies inside
@@ -40,19 +42,97 @@ RunIndex::RunIndex(const PackedTextureView& texture, const Options& options)
       cell.first = shortcut_ ? static_cast<uint32_t>((first << 8) | indices_[first])
                              : static_cast<uint32_t>(first);
       cell.last = static_cast<uint32_t>(last);
+      if (details && first != last)
+        AddDetail(texture, cell, static_cast<uint32_t>(cx << cell_bits_),
+                  static_cast<uint32_t>(cy << cell_bits_), first_step, first);
     }
+  }
+  if (details_.empty()) return;
+  // A block of 2^c x 2^c texels is the order-c curve in one of four orientations.
+  const uint32_t side = 1u << cell_bits_, block = side * side;
+  local_steps_.resize(4 * size_t{block});
+  for (uint32_t state = 0; state < 4; ++state) {
+    for (uint32_t local = 0; local < block; ++local) {
+      uint32_t s = state, x = 0, y = 0;
+      for (int level = cell_bits_ - 1; level >= 0; --level) {
+        const HilbertChild c = ChildQuadrant(curve_, s, (local >> (2 * level)) & 3u);
+        x |= c.xb << level;
+        y |= c.yb << level;
+        s = c.state;
+      }
+      local_steps_[state * block + y * side + x] = static_cast<uint16_t>(local);
+    }
+  }
+}
+
+void RunIndex::AddDetail(const PackedTextureView& texture, Cell& cell, uint32_t x0, uint32_t y0,
+                         uint64_t start, size_t first) {
+  cell.last = kHasDetail | static_cast<uint32_t>(details_.size());
+  // The orientation of the block: the curve's descent along the digits of its start.
+  uint32_t state = 0;
+  for (int level = order_ - 1; level >= cell_bits_; --level)
+    state = ChildQuadrant(curve_, state, static_cast<uint32_t>(start >> (2 * level)) & 3u).state;
+  details_.push_back(static_cast<uint32_t>(start) | state);
+  const int sub_bits = cell_bits_ - 2;
+  const uint64_t sub_steps = uint64_t{1} << (2 * sub_bits);
+  const uint32_t last_step = texture.steps().back();
+  for (uint32_t k = 0; k < 16; ++k) {
+    const uint32_t x = x0 + ((k & 3u) << sub_bits), y = y0 + ((k >> 2) << sub_bits);
+    if (x >= texture.width() || y >= texture.height()) {
+      details_.push_back(indices_[first]);  // no texel of the texture: never read
+      continue;
+    }
+    // As for the cells: the subcell's block is one contiguous range of steps.
+    const uint64_t sub_start = StepOf(x, y) & ~(sub_steps - 1);
+    const uint64_t end = std::min<uint64_t>(sub_start + sub_steps - 1, last_step);
+    const size_t lo = texture.RunOfStep(static_cast<uint32_t>(sub_start));
+    const size_t hi = texture.RunOfStep(static_cast<uint32_t>(end));
+    details_.push_back(
+        static_cast<uint32_t>((lo - first) << 20 | (hi - first) << 8 | indices_[lo]));
   }
 }
 
 void RunIndex::ColorsAt(std::span<const uint32_t> xs, std::span<const uint32_t> ys,
                         std::span<uint32_t> colours) const {
-  constexpr size_t kGroup = 16;
+  // Three passes over a group, each without data-dependent branches, each queueing only what it
+  // could not answer: cells of one run, then subcells of one run, then the searches.
+  constexpr size_t kGroup = 256;
+  uint32_t queue[kGroup], lo[kGroup], hi[kGroup], start[kGroup];
   for (size_t begin = 0; begin < xs.size(); begin += kGroup) {
-    const size_t n = std::min(kGroup, xs.size() - begin);
-    // Grid cells of the whole group first, so that their cache misses overlap.
-    for (size_t i = begin; i < begin + n; ++i)
-      __builtin_prefetch(&cells_[size_t{ys[i] >> cell_bits_} * columns_ + (xs[i] >> cell_bits_)]);
-    for (size_t i = begin; i < begin + n; ++i) colours[i] = ColorAt(xs[i], ys[i]);
+    const size_t end = begin + std::min(kGroup, xs.size() - begin);
+    size_t queued = 0;
+    for (size_t i = begin; i < end; ++i) {
+      const Cell& cell = CellOf(xs[i], ys[i]);
+      const uint32_t first = shortcut_ ? cell.first >> 8 : cell.first;
+      // (Without the shortcut `first` holds no palette index; every texel is queued.)
+      colours[i] = shortcut_ ? palette_[static_cast<uint8_t>(cell.first)] : 0;
+      queue[queued] = static_cast<uint32_t>(i);
+      lo[queued] = first;
+      hi[queued] = cell.last;
+      queued += !shortcut_ || first != cell.last;
+    }
+    // When there are detail records, every cell of several runs has one.
+    if (!details_.empty()) {
+      size_t searched = 0;
+      for (size_t k = 0; k < queued; ++k) {
+        const uint32_t i = queue[k], run = lo[k];
+        const uint32_t* detail = &details_[hi[k] & ~kHasDetail];
+        const uint32_t sub = detail[1 + SubcellOf(xs[i], ys[i])];
+        colours[i] = palette_[static_cast<uint8_t>(sub)];
+        queue[searched] = i;
+        start[searched] = detail[0];
+        lo[searched] = run + (sub >> 20);
+        hi[searched] = run + ((sub >> 8) & 0xFFFu);
+        searched += lo[searched] != hi[searched];
+      }
+      queued = searched;
+    }
+    for (size_t k = 0; k < queued; ++k) {
+      const uint32_t i = queue[k];
+      const uint32_t step =
+          details_.empty() ? StepOf(xs[i], ys[i]) : LocalStep(start[k], xs[i], ys[i]);
+      colours[i] = palette_[indices_[SearchRuns(lo[k], hi[k], step)]];
+    }
   }
 }
 
