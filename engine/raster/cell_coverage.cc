@@ -79,9 +79,12 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
   }
 
   // A full piece in front of every other at the cell's corners hides them all (depth
-  // differences are linear, so the corners bound them).
-  for (const Piece& p : pieces_) {
-    if (!p.full) continue;
+  // differences are linear, so the corners bound them). Only the piece nearest at the centre can
+  // be that piece: a linear depth's value there is the mean of the corners'.
+  size_t centre_front = 0;
+  for (size_t i = 1; i < pieces_.size(); ++i)
+    if (pieces_[i].depth.c > pieces_[centre_front].depth.c) centre_front = i;
+  if (const Piece& p = pieces_[centre_front]; p.full) {
     bool front = true;
     for (const Piece& q : pieces_) {
       if (&q == &p) continue;
@@ -140,13 +143,42 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
 }
 
 // Pieces that overlap must not interpenetrate: their depth difference, linear, keeps one sign
-// at the vertices of both (hence over their convex hull, hence where they overlap). Then a
-// topological sort of "in front of" gives the painter's order, unless the order is cyclic.
+// at the vertices of both (hence over their convex hull, hence where they overlap). A pair whose
+// depth ranges (each over its own vertices, depth being linear) do not meet needs no test at all:
+// the nearer one is in front wherever they overlap. Then a topological sort of "in front of"
+// (Kahn's, by counting the pieces still in front of each) gives the painter's order, unless the
+// order is cyclic.
 bool CellCoverage::FrontToBackOrder() {
   const size_t n = pieces_.size();
+  nearest_.resize(n);
+  farthest_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Piece& p = pieces_[i];
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t k = p.begin; k < p.end; ++k) {
+      const double w = p.depth.At(verts_[k].x, verts_[k].y);
+      lo = std::min(lo, w);
+      hi = std::max(hi, w);
+    }
+    farthest_[i] = lo;  // inverse depth: larger is nearer
+    nearest_[i] = hi;
+  }
   in_front_.assign(n * n, 0);  // in_front_[i * n + j]: i is in front of j
+  blockers_.assign(n, 0);      // how many pieces are in front of each
+  auto mark = [&](size_t front, size_t back) {
+    in_front_[front * n + back] = 1;
+    ++blockers_[back];
+  };
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = i + 1; j < n; ++j) {
+      if (farthest_[i] > nearest_[j]) {
+        mark(i, j);
+        continue;
+      }
+      if (farthest_[j] > nearest_[i]) {
+        mark(j, i);
+        continue;
+      }
       if (Separated(pieces_[i], pieces_[j])) continue;
       bool i_front = true, j_front = true;
       for (const Piece* piece : {&pieces_[i], &pieces_[j]}) {
@@ -159,25 +191,21 @@ bool CellCoverage::FrontToBackOrder() {
         }
       }
       if (i_front == j_front) return false;  // interpenetrating (or coplanar): decompose
-      in_front_[i_front ? i * n + j : j * n + i] = 1;
+      if (i_front)
+        mark(i, j);
+      else
+        mark(j, i);
     }
   }
   order_.clear();
-  placed_.assign(n, 0);
-  while (order_.size() < n) {
-    bool progress = false;
-    for (size_t i = 0; i < n; ++i) {
-      if (placed_[i]) continue;
-      bool free = true;  // nothing unplaced is in front of i
-      for (size_t j = 0; j < n && free; ++j) free = placed_[j] || !in_front_[j * n + i];
-      if (!free) continue;
-      placed_[i] = 1;
-      order_.push_back(i);
-      progress = true;
-    }
-    if (!progress) return false;  // cyclic overlap
+  for (size_t i = 0; i < n; ++i)
+    if (blockers_[i] == 0) order_.push_back(i);
+  for (size_t next = 0; next < order_.size(); ++next) {
+    const size_t front = order_[next];
+    for (size_t j = 0; j < n; ++j)
+      if (in_front_[front * n + j] && --blockers_[j] == 0) order_.push_back(j);
   }
-  return true;
+  return order_.size() == n;  // otherwise the overlap is cyclic
 }
 
 // Painter's algorithm front to back with exact convex clipping: each piece sees what the pieces

@@ -55,7 +55,9 @@ class CellCoverage {
   std::vector<Piece> pieces_;
   std::vector<Vec2> verts_, clip_, scratch_;
   std::vector<ScreenLinear> crossing_;
-  std::vector<uint8_t> in_front_, placed_;
+  std::vector<uint8_t> in_front_;
+  std::vector<size_t> blockers_;
+  std::vector<double> nearest_, farthest_;  // each piece's inverse-depth range over itself
   std::vector<size_t> order_;
   std::vector<Vec2> pool_a_, pool_b_, outside_;  // painter's remaining regions, flat
   std::vector<std::pair<size_t, size_t>> regions_a_,

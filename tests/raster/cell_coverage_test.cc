@@ -66,9 +66,13 @@ TEST(CellCoverage, HalfPlaneMomentsAreAnalytic) {
 // Random overlapping, interpenetrating triangles: exact areas against dense sampling.
 // `snap` > 0 puts vertices on a grid of that step, so that edges run along the cell's sides and
 // through its corners (clipping then repeats vertices: a regression of the separating-axis test).
-void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false) {
+// `max_triangles` and `depth_spread` (depths in [1, 1 + spread]) make crowded cells of pieces at
+// many depths, most of whose depth ranges do not meet (a far city block).
+void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false, int max_triangles = 5,
+                          double depth_spread = 1) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> pos(-1.5, 1.5), slope(-0.3, 0.3), depth(1, 2);
+  std::uniform_real_distribution<double> pos(-1.5, 1.5), slope(-0.3, 0.3),
+      depth(1, 1 + depth_spread);
   auto p = [&] {
     Vec2 v{pos(rng), pos(rng)};
     if (snap > 0) v = {std::round(v.x / snap) * snap, std::round(v.y / snap) * snap};
@@ -77,7 +81,7 @@ void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false) {
   CellCoverage coverage;
   for (int trial = 0; trial < 300; ++trial) {
     std::vector<ScreenPolygon> polys;
-    const int count = 2 + trial % 4;
+    const int count = 2 + trial % (max_triangles - 1);
     for (int k = 0; k < count; ++k) {
       const Vec2 a = p(), b = p(), c = p();
       if (std::abs(SignedArea({a, b, c})) < 1e-9) continue;
@@ -101,6 +105,11 @@ void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false) {
 TEST(CellCoverage, RandomInterpenetratingTrianglesMatchSampling) { CheckRandomTriangles(1234, 0); }
 
 TEST(CellCoverage, LayeredTrianglesMatchSampling) { CheckRandomTriangles(77, 0, true); }
+
+TEST(CellCoverage, CrowdedCellsOfTrianglesAtManyDepthsMatchSampling) {
+  CheckRandomTriangles(4321, 0, false, 30, 6);
+  CheckRandomTriangles(4322, 0, true, 30, 6);
+}
 
 TEST(CellCoverage, TrianglesOnCellSidesAndCornersMatchSampling) {
   CheckRandomTriangles(98, 0.25, true);
