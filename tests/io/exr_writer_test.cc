@@ -4,7 +4,10 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <iterator>
 
 namespace aperture {
 namespace {
@@ -85,6 +88,31 @@ TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
       EXPECT_LE(worst, tolerance) << ExrCompressionName(c);
     }
   }
+}
+
+// The writer converts to half itself; OpenImageIO's own float-to-half conversion, asked to write
+// the same floats into a half file, must give the same values, special ones included.
+TEST_F(ExrWriterTest, HalfPixelsEqualOpenImageIOsOwnConversion) {
+  Image img = Gradient(37, 29);
+  const float specials[] = {1.0f / 3, 65519.0f, 65520.0f, 7e4f,     -7e4f, 1e-6f, 6e-8f,
+                            2.9e-8f,  -0.0f,    1e-30f,   INFINITY, NAN,   -NAN,  0.1f};
+  for (size_t i = 0; i < std::size(specials); ++i)
+    img.texels()[i * 3] = {specials[i], -1.5f, 2.0f, 0.5f};
+  const std::string ours = (dir_ / "ours.exr").string(), theirs = (dir_ / "theirs.exr").string();
+  ASSERT_TRUE(WriteExrFile(img, ExrOptions{}, ours).ok());
+  {
+    auto out = OIIO::ImageOutput::create(theirs);
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(37, 29, 4, OIIO::TypeDesc::HALF);
+    ASSERT_TRUE(out->open(theirs, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, img.texels().data()));
+    ASSERT_TRUE(out->close());
+  }
+  const ReadBack a = ReadExr(ours), b = ReadExr(theirs);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  ASSERT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0);
+  EXPECT_TRUE(std::isinf(a.pixels[4 * 3 * 3]));  // 7e4 is beyond half's range
+  EXPECT_TRUE(std::isnan(a.pixels[4 * 3 * 11]));
 }
 
 TEST_F(ExrWriterTest, InMemoryBytesEqualTheFile) {
