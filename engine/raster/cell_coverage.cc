@@ -135,7 +135,11 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     }
     return;
   }
-  if (FrontToBackOrder()) {
+  // The depth-range shortcut also orders pieces that never overlap, which can close a cycle that
+  // the pieces do not really have: then the order is sought again with every pair tested.
+  Order order = FrontToBackOrder(/*order_by_ranges=*/true);
+  if (order == Order::kCyclic) order = FrontToBackOrder(/*order_by_ranges=*/false);
+  if (order == Order::kFound) {
     PaintFrontToBack(with_moments, out);
     return;
   }
@@ -148,7 +152,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
 // the nearer one is in front wherever they overlap. Then a topological sort of "in front of"
 // (Kahn's, by counting the pieces still in front of each) gives the painter's order, unless the
 // order is cyclic.
-bool CellCoverage::FrontToBackOrder() {
+CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
   const size_t n = pieces_.size();
   nearest_.resize(n);
   farthest_.resize(n);
@@ -171,11 +175,11 @@ bool CellCoverage::FrontToBackOrder() {
   };
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = i + 1; j < n; ++j) {
-      if (farthest_[i] > nearest_[j]) {
+      if (order_by_ranges && farthest_[i] > nearest_[j]) {
         mark(i, j);
         continue;
       }
-      if (farthest_[j] > nearest_[i]) {
+      if (order_by_ranges && farthest_[j] > nearest_[i]) {
         mark(j, i);
         continue;
       }
@@ -190,7 +194,7 @@ bool CellCoverage::FrontToBackOrder() {
           j_front = j_front && wj >= wi - tol;
         }
       }
-      if (i_front == j_front) return false;  // interpenetrating (or coplanar): decompose
+      if (i_front == j_front) return Order::kInterpenetrating;  // (or coplanar): decompose
       if (i_front)
         mark(i, j);
       else
@@ -205,7 +209,7 @@ bool CellCoverage::FrontToBackOrder() {
     for (size_t j = 0; j < n; ++j)
       if (in_front_[front * n + j] && --blockers_[j] == 0) order_.push_back(j);
   }
-  return order_.size() == n;  // otherwise the overlap is cyclic
+  return order_.size() == n ? Order::kFound : Order::kCyclic;
 }
 
 // Painter's algorithm front to back with exact convex clipping: each piece sees what the pieces

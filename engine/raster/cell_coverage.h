@@ -48,7 +48,10 @@ class CellCoverage {
   // Every pair of pieces (but piece `skip`) has disjoint interiors.
   bool PairwiseDisjoint(size_t skip) const;
   void AddDepthEqualityLine(const Piece& a, const Piece& b);
-  bool FrontToBackOrder();
+  enum class Order { kFound, kInterpenetrating, kCyclic };
+  // The painter's order into order_; `order_by_ranges`: pairs whose depth ranges do not meet are
+  // ordered without a test.
+  Order FrontToBackOrder(bool order_by_ranges);
   void PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out);
   void Decompose(bool with_moments, std::vector<CellPiece>& out);
 

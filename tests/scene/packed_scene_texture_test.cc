@@ -75,6 +75,8 @@ TEST_F(PackedSceneTexture, BatchedNearestEqualsOneTexelAtATime) {
   for (size_t i = 0; i < in.size(); ++i) {
     const Rgba one = nearest.Sample(in[i]);
     ASSERT_EQ(batch[i].r, one.r) << i;
+    ASSERT_EQ(batch[i].g, one.g) << i;
+    ASSERT_EQ(batch[i].b, one.b) << i;
     ASSERT_EQ(batch[i].a, one.a) << i;
     white += one.r == 1.0f;
   }

@@ -34,7 +34,7 @@ class QuadtreeTexture {
   }
   uint32_t ColorAt(uint32_t x, uint32_t y) const { return palette_[PaletteIndexAt(x, y)]; }
   // colours[i] = ColorAt(xs[i], ys[i]), descending 16 texels in lockstep (a level of all of them
-  // at a time, no data-dependent branch), the same treatment as RunIndex::ColorsAt.
+  // at a time, without a branch per texel), the same treatment as RunIndex::ColorsAt.
   void ColorsAt(std::span<const uint32_t> xs, std::span<const uint32_t> ys,
                 std::span<uint32_t> colours) const;
 

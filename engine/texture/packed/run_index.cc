@@ -94,31 +94,34 @@ void RunIndex::AddDetail(const PackedTextureView& texture, Cell& cell, uint32_t 
 
 void RunIndex::ColorsAt(std::span<const uint32_t> xs, std::span<const uint32_t> ys,
                         std::span<uint32_t> colours) const {
-  // Three passes over a group, each without data-dependent branches, each queueing only what it
-  // could not answer: cells of one run, then subcells of one run, then the searches.
-  constexpr size_t kGroup = 256;
+  // Three passes over a group, each queueing only what it could not answer: cells of one run,
+  // then subcells of one run, then the searches. The first two have no branch per texel.
+  constexpr uint32_t kGroup = 256;
   uint32_t queue[kGroup], lo[kGroup], hi[kGroup], start[kGroup];
   for (size_t begin = 0; begin < xs.size(); begin += kGroup) {
-    const size_t end = begin + std::min(kGroup, xs.size() - begin);
-    size_t queued = 0;
-    for (size_t i = begin; i < end; ++i) {
-      const Cell& cell = CellOf(xs[i], ys[i]);
+    const uint32_t n = static_cast<uint32_t>(std::min<size_t>(kGroup, xs.size() - begin));
+    const uint32_t* x = xs.data() + begin;
+    const uint32_t* y = ys.data() + begin;
+    uint32_t* out = colours.data() + begin;
+    uint32_t queued = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      const Cell& cell = CellOf(x[i], y[i]);
       const uint32_t first = shortcut_ ? cell.first >> 8 : cell.first;
       // (Without the shortcut `first` holds no palette index; every texel is queued.)
-      colours[i] = shortcut_ ? palette_[static_cast<uint8_t>(cell.first)] : 0;
-      queue[queued] = static_cast<uint32_t>(i);
+      out[i] = shortcut_ ? palette_[static_cast<uint8_t>(cell.first)] : 0;
+      queue[queued] = i;
       lo[queued] = first;
       hi[queued] = cell.last;
       queued += !shortcut_ || first != cell.last;
     }
     // When there are detail records, every cell of several runs has one.
     if (!details_.empty()) {
-      size_t searched = 0;
-      for (size_t k = 0; k < queued; ++k) {
+      uint32_t searched = 0;
+      for (uint32_t k = 0; k < queued; ++k) {
         const uint32_t i = queue[k], run = lo[k];
         const uint32_t* detail = &details_[hi[k] & ~kHasDetail];
-        const uint32_t sub = detail[1 + SubcellOf(xs[i], ys[i])];
-        colours[i] = palette_[static_cast<uint8_t>(sub)];
+        const uint32_t sub = detail[1 + SubcellOf(x[i], y[i])];
+        out[i] = palette_[static_cast<uint8_t>(sub)];
         queue[searched] = i;
         start[searched] = detail[0];
         lo[searched] = run + (sub >> 20);
@@ -127,11 +130,10 @@ void RunIndex::ColorsAt(std::span<const uint32_t> xs, std::span<const uint32_t> 
       }
       queued = searched;
     }
-    for (size_t k = 0; k < queued; ++k) {
+    for (uint32_t k = 0; k < queued; ++k) {
       const uint32_t i = queue[k];
-      const uint32_t step =
-          details_.empty() ? StepOf(xs[i], ys[i]) : LocalStep(start[k], xs[i], ys[i]);
-      colours[i] = palette_[indices_[SearchRuns(lo[k], hi[k], step)]];
+      const uint32_t step = details_.empty() ? StepOf(x[i], y[i]) : LocalStep(start[k], x[i], y[i]);
+      out[i] = palette_[indices_[SearchRuns(lo[k], hi[k], step)]];
     }
   }
 }

@@ -9,8 +9,8 @@
 // orientation there, so the step of a texel is that start plus one lookup in a small table of the
 // block's own curve instead of a descent over every level. What is left is a search over a short
 // run range: one SIMD pass for up to 16 runs, else a branch-free lower bound. Batched lookups
-// answer a batch in passes (cells, subcells, searches) with no data-dependent branches. Built from
-// a view in O(cells x log runs); derived data, not part of the packed format.
+// answer a batch in passes (cells, subcells, searches), the first two without a branch per texel.
+// Built from a view in O(cells x log runs); derived data, not part of the packed format.
 #pragma once
 
 #if defined(__SSE2__)
@@ -30,7 +30,7 @@ class RunIndex {
   struct Options {
     // Cells of 2^cell_bits texels per side; -1 picks the smallest with at least three runs per
     // cell on average (a cell of several runs brings a 68-byte detail record, so cells are not
-    // made as small as the runs). On the 8192 maps: 32 x 32 cells, a 512 KiB grid.
+    // made as small as the runs). On the 8192 maps: cells of 32 x 32 texels, a 512 KiB grid.
     int cell_bits = -1;
     // Answer single-run cells from the grid alone. Always off at 2^24 runs or more, where a run
     // number no longer fits beside the palette index in 32 bits.
