@@ -64,9 +64,14 @@ void ExpectLosslessRoundTrip(const IndexedImage& image, Curve curve) {
   for (size_t i = 0; i < batch.size(); ++i) ASSERT_EQ(batch[i], image.palette[image.indices[i]]);
   // Other cell sizes (below 4 x 4 and above 64 x 64 texels without detail records, between with
   // them), and without the single-run shortcut (the path of huge textures).
+  using Details = RunIndex::Options::Details;
   for (int bits : {0, 1, 2, 3, 5, 6, 30}) {
-    for (bool shortcut : {true, false}) {
-      const RunIndex other(v, {.cell_bits = bits, .single_run_shortcut = shortcut});
+    for (auto [shortcut, details] : {std::pair{true, Details::kAuto},
+                                     {true, Details::kAlways},
+                                     {true, Details::kNever},
+                                     {false, Details::kAuto}}) {
+      const RunIndex other(
+          v, {.cell_bits = bits, .single_run_shortcut = shortcut, .details = details});
       for (size_t i = 0; i < xs.size(); ++i) {
         ASSERT_EQ(other.PaletteIndexAt(xs[i], ys[i]), image.indices[i]) << bits << shortcut;
         ASSERT_EQ(other.RunAt(xs[i], ys[i]), v.RunOfStep(v.StepOf(xs[i], ys[i])));
@@ -212,6 +217,28 @@ TEST(PackedPalette, ExactPaletteAndQuantization) {
   EXPECT_EQ(ExpandPalette(*exact).texels, rgba.texels);
 }
 
+TEST(PackedTexture, IndexOfANoisyTextureStaysSmall) {
+  // 4 x 4 blocks of random colours: every 8 x 8-texel cell holds several runs, so detail records
+  // for all of them would cost more than the runs themselves; the default leaves them out.
+  IndexedImage image = RandomIndexedImage(512, 512, 256, 5);
+  for (uint32_t y = 0; y < 512; ++y)
+    for (uint32_t x = 0; x < 512; ++x)
+      image.indices[y * 512 + x] = image.indices[(y & ~3u) * 512 + (x & ~3u)];
+  auto packed = PackTexture(image, Curve::kHilbert);
+  ASSERT_TRUE(packed.ok());
+  const PackedTextureView& v = packed->view();
+  const RunIndex index(v);
+  const RunIndex forced(v, {.details = RunIndex::Options::Details::kAlways});
+  EXPECT_LE(index.byte_size(), 12 * v.run_count());
+  EXPECT_GT(forced.byte_size(), 12 * v.run_count());
+  for (uint32_t y = 0; y < 512; y += 3) {
+    for (uint32_t x = 0; x < 512; x += 5) {
+      ASSERT_EQ(index.PaletteIndexAt(x, y), image.at(x, y));
+      ASSERT_EQ(forced.PaletteIndexAt(x, y), image.at(x, y));
+    }
+  }
+}
+
 TEST(PackedTexture, MapTexturesRoundTrip) {
   for (const char* name : {"osm_eham_schiphol_2048.png", "osm_helsinki_centre_2048.png"}) {
     auto rgba = LoadRgba8Image(std::string(APERTURE_SHARED_DATA) + "/vector/" + name);
@@ -223,6 +250,11 @@ TEST(PackedTexture, MapTexturesRoundTrip) {
       ASSERT_TRUE(packed.ok());
       EXPECT_EQ(ExpandPalette(UnpackTexture(packed->view())).texels, rgba->texels) << name;
       const RunIndex index(packed->view());
+      // Maps get detail records: the index is more than its grid of 8-byte cells.
+      const size_t side = size_t{1} << index.cell_bits();
+      const size_t grid =
+          8 * ((image->width + side - 1) / side) * ((image->height + side - 1) / side);
+      EXPECT_GT(index.byte_size(), grid + 1024) << name;
       for (uint32_t y = 0; y < image->height; y += 7)
         for (uint32_t x = 0; x < image->width; x += 5)
           ASSERT_EQ(index.ColorAt(x, y), rgba->at(x, y));

@@ -27,14 +27,12 @@ RunIndex::RunIndex(const PackedTextureView& texture, const Options& options)
   cells_.resize(columns_ * rows);
   const uint32_t last_step = texture.steps().back();
   const uint64_t cell_steps = uint64_t{1} << (2 * cell_bits_);
-  const bool details = shortcut_ && cell_bits_ >= kMinDetailBits && cell_bits_ <= kMaxDetailBits;
+  size_t several = 0;  // cells of several runs
   for (size_t cy = 0; cy < rows; ++cy) {
     for (size_t cx = 0; cx < columns_; ++cx) {
       // The cell's steps: the aligned block's contiguous range (its top-left texel lies inside
       // the texture, so the range holds texture texels and its start is <= the last step).
-      const uint32_t corner =
-          StepOf(static_cast<uint32_t>(cx << cell_bits_), static_cast<uint32_t>(cy << cell_bits_));
-      const uint64_t first_step = corner & ~(cell_steps - 1);
+      const uint64_t first_step = CellStart(cx, cy);
       const uint64_t end_step = std::min<uint64_t>(first_step + cell_steps - 1, last_step);
       const size_t first = texture.RunOfStep(static_cast<uint32_t>(first_step));
       const size_t last = texture.RunOfStep(static_cast<uint32_t>(end_step));
@@ -42,9 +40,24 @@ RunIndex::RunIndex(const PackedTextureView& texture, const Options& options)
       cell.first = shortcut_ ? static_cast<uint32_t>((first << 8) | indices_[first])
                              : static_cast<uint32_t>(first);
       cell.last = static_cast<uint32_t>(last);
-      if (details && first != last)
+      several += first != last;
+    }
+  }
+  // Detail records where they fit (12-bit offsets, the shortcut's cell layout) and, unless asked
+  // for, only when they are few: at most one per 8 runs keeps the index under about 11 bytes per
+  // run (a noisy texture would otherwise get a 68-byte record for nearly every cell).
+  const bool fit = shortcut_ && cell_bits_ >= kMinDetailBits && cell_bits_ <= kMaxDetailBits;
+  const bool wanted =
+      options.details == Options::Details::kAlways ||
+      (options.details == Options::Details::kAuto && 8 * several <= texture.run_count());
+  if (fit && wanted) {
+    for (size_t cy = 0; cy < rows; ++cy) {
+      for (size_t cx = 0; cx < columns_; ++cx) {
+        Cell& cell = cells_[cy * columns_ + cx];
+        if ((cell.first >> 8) == cell.last) continue;
         AddDetail(texture, cell, static_cast<uint32_t>(cx << cell_bits_),
-                  static_cast<uint32_t>(cy << cell_bits_), first_step, first);
+                  static_cast<uint32_t>(cy << cell_bits_), CellStart(cx, cy), cell.first >> 8);
+      }
     }
   }
   if (details_.empty()) return;

@@ -4,11 +4,12 @@
 // grid of such blocks ("cells", row-major, indexed by the high bits of x and y) can hold for each
 // cell the range of runs that cover it. A cell inside a single run (most cells of a map: big flat
 // areas) is answered by the grid alone, without computing the curve step. A cell of several runs
-// has a detail record: 4 x 4 subcells with their own run ranges, so most of its texels are
-// answered without a search too, and where its block starts on the curve with the curve's
-// orientation there, so the step of a texel is that start plus one lookup in a small table of the
-// block's own curve instead of a descent over every level. What is left is a search over a short
-// run range: one SIMD pass for up to 16 runs, else a branch-free lower bound. Batched lookups
+// has a detail record (when such cells are few, as on maps): 4 x 4 subcells with their own run
+// ranges, so most of its texels are answered without a search too, and where its block starts on
+// the curve with the curve's orientation there, so the step of a texel is that start plus one
+// lookup in a small table of the block's own curve instead of a descent over every level. What is
+// left is a search over a short run range: one SIMD pass for up to 16 runs, else a branch-free
+// lower bound. Batched lookups
 // answer a batch in passes (cells, subcells, searches), the first two without a branch per texel.
 // Built from a view in O(cells x log runs); derived data, not part of the packed format.
 #pragma once
@@ -35,6 +36,10 @@ class RunIndex {
     // Answer single-run cells from the grid alone. Always off at 2^24 runs or more, where a run
     // number no longer fits beside the palette index in 32 bits.
     bool single_run_shortcut = true;
+    // Detail records for cells of several runs (cells of 4 x 4 to 64 x 64 texels, with the
+    // shortcut): kAuto builds them when there is at most one such cell per 8 runs.
+    enum class Details { kAuto, kAlways, kNever };
+    Details details = Details::kAuto;
   };
   explicit RunIndex(const PackedTextureView& texture) : RunIndex(texture, Options{}) {}
   RunIndex(const PackedTextureView& texture, const Options& options);
@@ -93,6 +98,12 @@ class RunIndex {
 
   void AddDetail(const PackedTextureView& texture, Cell& cell, uint32_t x0, uint32_t y0,
                  uint64_t start, size_t first);
+  // The first curve step of cell (cx, cy)'s block.
+  uint64_t CellStart(size_t cx, size_t cy) const {
+    const uint32_t corner =
+        StepOf(static_cast<uint32_t>(cx << cell_bits_), static_cast<uint32_t>(cy << cell_bits_));
+    return corner & ~((uint64_t{1} << (2 * cell_bits_)) - 1);
+  }
   const Cell& CellOf(uint32_t x, uint32_t y) const {
     return cells_[size_t{y >> cell_bits_} * columns_ + (x >> cell_bits_)];
   }
