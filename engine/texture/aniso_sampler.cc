@@ -51,21 +51,24 @@ inline V4 AddScaled(V4 acc, V4 a, float w) {
 inline Rgba ToRgba(V4 v) { return {v.c[0], v.c[1], v.c[2], v.c[3]}; }
 #endif
 
-inline V4 Fetch(const uint8_t* texels, const CopyEntry& e, int x, int y) {
-  return LoadTexel(texels +
-                   4 * (static_cast<size_t>(y & (e.height - 1)) * e.width + (x & (e.width - 1))));
+template <typename Layout>
+inline V4 Fetch(const Layout& c, int x, int y) {
+  return LoadTexel(c.texels + 4 * (static_cast<size_t>(static_cast<uint32_t>(y) & c.height_mask) *
+                                       (c.width_mask + 1) +
+                                   (static_cast<uint32_t>(x) & c.width_mask)));
 }
 
 // seed 000, eq. 6-9 inside one copy, in texel units (0..255); plain bilinear when untilted.
-V4 CopySample(const uint8_t* texels, const CopyEntry& e, float u, float v, float tg) {
+// Inlined into the blend of three copies so that their texel reads overlap.
+template <typename Layout>
+[[gnu::always_inline]] inline V4 CopySample(const Layout& c, float u, float v, float tg) {
   // Texel centres at +0.5 (DESIGN.md).
-  const float X = u * static_cast<float>(e.width) - 0.5f;
-  const float Y = v * static_cast<float>(e.height) - 0.5f;
-  const bool tilt_v = e.axis == TiltAxis::kV;
+  const float X = u * c.width - 0.5f;
+  const float Y = v * c.height - 0.5f;
   // Major coordinate M (along the tilt axis) and minor coordinate m, in copy texels; the shift
   // is lambda tg minor texels per major texel along the long side (0 when untilted).
-  const float M = tilt_v ? Y : X, m = tilt_v ? X : Y;
-  const float shift = e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda) * tg;
+  const float M = c.tilt_v ? Y : X, m = c.tilt_v ? X : Y;
+  const float shift = c.lambda * tg;
   const float M0 = std::floor(M), fM = M - M0;
   // seed 000, eq. 6 (tilt to U) / eq. 7 (tilt to V): the minor coordinate on both neighbouring
   // major lines, moved along the long side.
@@ -73,7 +76,7 @@ V4 CopySample(const uint8_t* texels, const CopyEntry& e, float u, float v, float
   const float m1f = std::floor(m1), m2f = std::floor(m2);
   const int a = static_cast<int>(M0), b1 = static_cast<int>(m1f), b2 = static_cast<int>(m2f);
   auto at = [&](int major, int minor) {
-    return tilt_v ? Fetch(texels, e, minor, major) : Fetch(texels, e, major, minor);
+    return c.tilt_v ? Fetch(c, minor, major) : Fetch(c, major, minor);
   };
   // seed 000, eq. 8 / 9.
   return Mix(Mix(at(a, b1), at(a, b1 + 1), m1 - m1f),
@@ -162,8 +165,8 @@ CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape
   auto copy_of = [&](int j, int i) {
     const PrefilteredTable::Cell& c = cells[j * n + i];
     const int half = static_cast<int>(c.lambda / 2);  // 0 for the one untilted copy (lambda 1)
-    const int k =
-        std::clamp(static_cast<int>(std::floor(tilt_position * half)), 0, std::max(half - 1, 0));
+    // |tg| <= 1 (the major component is the larger), so tilt_position >= 0: truncation is floor.
+    const int k = std::min(static_cast<int>(tilt_position * half), std::max(half - 1, 0));
     return c.first + v_offset * static_cast<uint32_t>(half) + static_cast<uint32_t>(k);
   };
   if (eL >= n) {  // L >= 2^n: the aperture covers whole periods both ways
@@ -191,9 +194,23 @@ CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape
   return blend;
 }
 
+AnisoSampler::AnisoSampler(PrefilteredTable table) : table_(std::move(table)) {
+  layouts_.reserve(table_.directory().size());
+  for (const CopyEntry& e : table_.directory())
+    layouts_.push_back({table_.texels(e), static_cast<float>(e.width), static_cast<float>(e.height),
+                        e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda),
+                        e.width - 1, e.height - 1, e.axis == TiltAxis::kV});
+}
+
 Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg) const {
-  const V4 r = CopySample(table_.texels(e), e, static_cast<float>(u), static_cast<float>(v),
-                          static_cast<float>(tg));
+  const CopyLayout c{table_.texels(e),
+                     static_cast<float>(e.width),
+                     static_cast<float>(e.height),
+                     e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda),
+                     e.width - 1,
+                     e.height - 1,
+                     e.axis == TiltAxis::kV};
+  const V4 r = CopySample(c, static_cast<float>(u), static_cast<float>(v), static_cast<float>(tg));
   return ToRgba(AddScaled(Zero(), r, 1.0f / 255.0f));
 }
 
@@ -221,14 +238,16 @@ void AnisoSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) 
 Rgba AnisoSampler::Blend(const TextureFootprint& f, const ApertureShape& shape,
                          const CopyBlend& blend) const {
   const float u = static_cast<float>(f.u), v = static_cast<float>(f.v);
-  if (blend.magnify) return SampleCopy(table_.base(), u, v, 0.0);
+  if (blend.magnify) {
+    const V4 r = CopySample(layouts_[0], u, v, 0.0f);
+    return ToRgba(AddScaled(Zero(), r, 1.0f / 255.0f));
+  }
   V4 sum = Zero();
   const float tg = static_cast<float>(shape.tg);
   for (int c = 0; c < blend.count; ++c) {
     if (blend.weight[c] == 0.0f) continue;
     // The sample's own tangent: the skew interpolates between tilts (seed 000, eq. 6-9).
-    const CopyEntry& e = table_.copy(blend.copy[c]);
-    sum = AddScaled(sum, CopySample(table_.texels(e), e, u, v, tg), blend.weight[c] / 255.0f);
+    sum = AddScaled(sum, CopySample(layouts_[blend.copy[c]], u, v, tg), blend.weight[c] / 255.0f);
   }
   return ToRgba(sum);
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "texture/prefiltered_table.h"
 #include "texture/texture_sampler.h"
@@ -34,7 +35,7 @@ CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape
 class AnisoSampler final : public TextureSampler {
  public:
   // The table must outlive the sampler.
-  explicit AnisoSampler(PrefilteredTable table) : table_(std::move(table)) {}
+  explicit AnisoSampler(PrefilteredTable table);
   Rgba Sample(const TextureFootprint& f) const override;
   // The same results as Sample, in two phases over groups of samples (the apertures and copy
   // selections of the group, then its texel reads), so that independent samples overlap in the
@@ -46,9 +47,19 @@ class AnisoSampler final : public TextureSampler {
   Rgba SampleCopy(const CopyEntry& e, double u, double v, double tg) const;
 
  private:
+  // What the skewed bilinear read of a copy needs, precomputed per copy (directory order): the
+  // reads of a sample chain through it, so it is kept small and conversion-free.
+  struct CopyLayout {
+    const uint8_t* texels;
+    float width, height;  // texels along U and V, as floats
+    float lambda;         // the cell's lambda; 0 when untilted (no skew)
+    uint32_t width_mask, height_mask;
+    bool tilt_v;
+  };
   Rgba Blend(const TextureFootprint& f, const ApertureShape& shape, const CopyBlend& blend) const;
 
   PrefilteredTable table_;
+  std::vector<CopyLayout> layouts_;
 };
 
 }  // namespace aperture
