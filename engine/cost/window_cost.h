@@ -22,9 +22,9 @@ struct WindowFeatures {
 
 // cost (microseconds) = per_pixel pixels + per_area area + per_boundary boundary.
 struct CostModel {
-  double per_pixel = 0.0013;
-  double per_area = 0.063;
-  double per_boundary = 0.26;
+  double per_pixel = 0.0007;
+  double per_area = 0.047;
+  double per_boundary = 0.137;
 
   double Predict(const WindowFeatures& f) const {
     return per_pixel * f.pixels + per_area * f.area + per_boundary * f.boundary;
