@@ -194,23 +194,24 @@ CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape
   return blend;
 }
 
+AnisoSampler::CopyLayout AnisoSampler::LayoutOf(const CopyEntry& e) const {
+  return {table_.texels(e),
+          static_cast<float>(e.width),
+          static_cast<float>(e.height),
+          e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda),
+          e.width - 1,
+          e.height - 1,
+          e.axis == TiltAxis::kV};
+}
+
 AnisoSampler::AnisoSampler(PrefilteredTable table) : table_(std::move(table)) {
   layouts_.reserve(table_.directory().size());
-  for (const CopyEntry& e : table_.directory())
-    layouts_.push_back({table_.texels(e), static_cast<float>(e.width), static_cast<float>(e.height),
-                        e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda),
-                        e.width - 1, e.height - 1, e.axis == TiltAxis::kV});
+  for (const CopyEntry& e : table_.directory()) layouts_.push_back(LayoutOf(e));
 }
 
 Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg) const {
-  const CopyLayout c{table_.texels(e),
-                     static_cast<float>(e.width),
-                     static_cast<float>(e.height),
-                     e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda),
-                     e.width - 1,
-                     e.height - 1,
-                     e.axis == TiltAxis::kV};
-  const V4 r = CopySample(c, static_cast<float>(u), static_cast<float>(v), static_cast<float>(tg));
+  const V4 r =
+      CopySample(LayoutOf(e), static_cast<float>(u), static_cast<float>(v), static_cast<float>(tg));
   return ToRgba(AddScaled(Zero(), r, 1.0f / 255.0f));
 }
 
@@ -238,10 +239,8 @@ void AnisoSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) 
 Rgba AnisoSampler::Blend(const TextureFootprint& f, const ApertureShape& shape,
                          const CopyBlend& blend) const {
   const float u = static_cast<float>(f.u), v = static_cast<float>(f.v);
-  if (blend.magnify) {
-    const V4 r = CopySample(layouts_[0], u, v, 0.0f);
-    return ToRgba(AddScaled(Zero(), r, 1.0f / 255.0f));
-  }
+  if (blend.magnify)
+    return ToRgba(AddScaled(Zero(), CopySample(layouts_[0], u, v, 0.0f), 1.0f / 255.0f));
   V4 sum = Zero();
   const float tg = static_cast<float>(shape.tg);
   for (int c = 0; c < blend.count; ++c) {

@@ -56,6 +56,7 @@ class AnisoSampler final : public TextureSampler {
     uint32_t width_mask, height_mask;
     bool tilt_v;
   };
+  CopyLayout LayoutOf(const CopyEntry& e) const;
   Rgba Blend(const TextureFootprint& f, const ApertureShape& shape, const CopyBlend& blend) const;
 
   PrefilteredTable table_;
