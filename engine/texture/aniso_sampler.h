@@ -29,8 +29,17 @@ struct CopyBlend {
   int count = 0;
   uint32_t copy[3] = {};  // directory indices: R1, then R3 or R4, then R2
   float weight[3] = {};
+  // L < 1, thinner than the table's thinnest copy: also this many bilinear reads of the base
+  // along the long side, `probe_step` texels apart along the major axis and centred on the
+  // sample, each of weight `probe_weight` (see SelectCopies).
+  int probes = 0;
+  float probe_step = 0, probe_weight = 0;
 };
+// seed 000, eq. 5, and below L = 1 the base probes (a deviation: the paper's table ends at
+// L = 1; docs/BENCHMARKS.md, issue 3, measures it).
 CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
+// The paper's selection alone, without the base probes for L < 1.
+CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape);
 
 class AnisoSampler final : public TextureSampler {
  public:

@@ -120,7 +120,7 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   EXPECT_EQ(cell(b.copy[2]), std::pair(1, 3));
   // Magnification and the frozen region (H / L above 2^(n-1): L raised).
   EXPECT_TRUE(SelectCopies(*table_, {TiltAxis::kNone, 0, 0, 0}).magnify);
-  b = SelectCopies(*table_, {TiltAxis::kU, 0.75, 0.5, 0.3});  // base to the first copy, by H^2
+  b = SelectTableCopies(*table_, {TiltAxis::kU, 0.75, 0.5, 0.3});  // base to first copy, by H^2
   ASSERT_FALSE(b.magnify);
   ASSERT_EQ(b.count, 2);
   EXPECT_EQ(b.copy[0], 0u);
@@ -133,6 +133,87 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   // Beyond two periods both ways: the single mean texel.
   b = SelectCopies(*table_, {TiltAxis::kU, 1e9, 1e8, 0});
   EXPECT_EQ(table_->copy(b.copy[0]).width * table_->copy(b.copy[0]).height, 1u);
+}
+
+TEST_F(AnisoSamplerTest, ThinAperturesMixInProbesOfTheBase) {
+  Build(Image(kN, kN));
+  // L >= 1, or H past twice the probes' half-extent (4): the paper's copies alone.
+  EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 6, 2.5, 0}).probes, 0);
+  EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 8, 0.5, 0}).probes, 0);
+  // H = 3, L = 0.5: the copies of (3, 1) keep L^2 = 1/4; 6 probes share 3/4, spaced so that
+  // their variance is the long side's box's, H^2 / 3.
+  CopyBlend paper = SelectTableCopies(*table_, {TiltAxis::kU, 3, 0.5, 0.2});
+  CopyBlend b = SelectCopies(*table_, {TiltAxis::kU, 3, 0.5, 0.2});
+  ASSERT_EQ(b.count, paper.count);
+  for (int c = 0; c < b.count; ++c) {
+    EXPECT_EQ(b.copy[c], paper.copy[c]);
+    EXPECT_FLOAT_EQ(b.weight[c], 0.25f * paper.weight[c]);
+  }
+  EXPECT_EQ(b.probes, 6);
+  EXPECT_FLOAT_EQ(b.probe_step * b.probe_step * (6 * 6 - 1) / 12, 3.0f);
+  EXPECT_FLOAT_EQ(b.probe_weight, 0.125f);
+  // H = 6: halfway through the fade, the probes' share is halved.
+  b = SelectCopies(*table_, {TiltAxis::kV, 6, 0.5, 0});
+  EXPECT_EQ(b.probes, 12);
+  EXPECT_FLOAT_EQ(b.probe_weight * 12, 0.375f);
+  // H = 0.75, L = 0.5: the first copy with L^2, two probes at +-d, d^2 = (H^2 - L^2) /
+  // (3 (1 - L^2)), which keeps the variance along the long side at H^2 / 3 + 1/6.
+  b = SelectCopies(*table_, {TiltAxis::kU, 0.75, 0.5, 0.3});
+  ASSERT_EQ(b.count, 1);
+  EXPECT_EQ(b.copy[0], table_->cell(0, 0).first);
+  EXPECT_FLOAT_EQ(b.weight[0], 0.25f);
+  EXPECT_EQ(b.probes, 2);
+  EXPECT_FLOAT_EQ(b.probe_weight, 0.375f);
+  const double d = 0.5 * b.probe_step;
+  EXPECT_NEAR(0.25 * (1.0 / 3 + 1.0 / 6) + 0.75 * (d * d + 1.0 / 6), 0.75 * 0.75 / 3 + 1.0 / 6,
+              1e-6);
+  // Nearly isotropic (probes under half a texel apart): the paper's blend.
+  b = SelectCopies(*table_, {TiltAxis::kU, 0.5, 0.45, 0});
+  EXPECT_EQ(b.probes, 0);
+  EXPECT_EQ(b.count, 2);
+}
+
+TEST_F(AnisoSamplerTest, ThinAperturesAreCloserToTheReferenceThanTheTableAlone) {
+  // Footprints thinner than a texel across (L < 1, the table's thinnest copy is L = 1) and 1 to
+  // 12 texels long, on random texels: the base probes bring the result closer to the integral.
+  Image image(kN, kN);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(0, 1);
+  for (int y = 0; y < kN; ++y)
+    for (int x = 0; x < kN; ++x) {
+      const float r = unit(rng);
+      image.at(x, y) = {r, r, r, 1};
+    }
+  Build(image);
+  AnisoSampler sampler(*table_);
+  ReferenceSampler reference(image, 16.0);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI), pos(0, 1), length(1, 12),
+      width(0.3, 1.8);
+  double with_probes = 0, table_alone = 0;
+  const int count = 400;
+  for (int k = 0; k < count; ++k) {
+    const double a = angle(rng), len = length(rng), w = width(rng);  // texels (a = 1)
+    const double ux = std::cos(a), vx = std::sin(a);
+    const TextureFootprint f{pos(rng),
+                             pos(rng),
+                             float(len * ux / kN),
+                             float(len * vx / kN),
+                             float(-w * vx / kN),
+                             float(w * ux / kN)};
+    const double want = reference.Sample(f).r;
+    const ApertureShape shape = ApertureFromFootprint(f, kN);
+    const CopyBlend paper = SelectTableCopies(*table_, shape);
+    double alone = 0;
+    for (int c = 0; c < paper.count; ++c)
+      alone +=
+          paper.weight[c] * sampler.SampleCopy(table_->copy(paper.copy[c]), f.u, f.v, shape.tg).r;
+    with_probes += std::pow(sampler.Sample(f).r - want, 2);
+    table_alone += std::pow(alone - want, 2);
+  }
+  const double rms = std::sqrt(with_probes / count), rms_alone = std::sqrt(table_alone / count);
+  SCOPED_TRACE(testing::Message() << "rms " << rms << ", table alone " << rms_alone);
+  EXPECT_LT(rms, 0.75 * rms_alone);
+  EXPECT_LT(rms, 0.03);
 }
 
 TEST_F(AnisoSamplerTest, ConstantTextureIsReproducedExactlyForAnyFootprint) {
