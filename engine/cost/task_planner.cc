@@ -42,12 +42,15 @@ std::vector<TaskWindow> GridTasks(const FrameGeometry& geo, const AaFilterShape&
 }
 
 // Runs of empty root windows along a row become one task: sky is cheap, and many tiny equal
-// tasks cost more to schedule than to render.
-std::vector<TaskWindow> MergeEmptyRuns(std::vector<TaskWindow> roots, const CostModel& model) {
+// tasks cost more to schedule than to render. A run ends at the grain, so that on many workers a
+// row of sky does not become the frame's longest task.
+std::vector<TaskWindow> MergeEmptyRuns(std::vector<TaskWindow> roots, const CostModel& model,
+                                       double grain) {
   std::vector<TaskWindow> merged;
   for (TaskWindow& t : roots) {
     if (!merged.empty() && t.polygons.empty() && merged.back().polygons.empty() &&
-        merged.back().rect.y0 == t.rect.y0 && merged.back().rect.x1 == t.rect.x0) {
+        merged.back().rect.y0 == t.rect.y0 && merged.back().rect.x1 == t.rect.x0 &&
+        merged.back().predicted_us + t.predicted_us <= grain) {
       TaskWindow& run = merged.back();
       run.rect.x1 = t.rect.x1;
       run.features.pixels += t.features.pixels;
@@ -71,15 +74,20 @@ void Split(const FrameGeometry& geo, const AaFilterShape& aa, const CostModel& m
   const int ym = r.height() > 8 ? r.y0 + r.height() / 2 : r.y1;
   const PixelRect quads[4] = {
       {r.x0, r.y0, xm, ym}, {xm, r.y0, r.x1, ym}, {r.x0, ym, xm, r.y1}, {xm, ym, r.x1, r.y1}};
-  for (const PixelRect& q : quads) {
-    if (q.width() <= 0 || q.height() <= 0) continue;
+  // The quadrants in parallel: a frame's work (and so the planning) gathers in few root windows.
+  std::vector<TaskWindow> from_quad[4];
+  tbb::parallel_for(0, 4, [&](int k) {
+    const PixelRect& q = quads[k];
+    if (q.width() <= 0 || q.height() <= 0) return;
     TaskWindow child;
     child.rect = q;
     child.polygons = Reaching(geo, window.polygons, q, aa.margin);
     child.features = MeasureWindowFeatures(geo, child.polygons, q, 2 * aa.margin + 1);
     child.predicted_us = model.Predict(child.features);
-    Split(geo, aa, model, grain, std::move(child), out);
-  }
+    Split(geo, aa, model, grain, std::move(child), from_quad[k]);
+  });
+  for (auto& tasks : from_quad)
+    for (TaskWindow& t : tasks) out.push_back(std::move(t));
 }
 
 }  // namespace
@@ -93,11 +101,11 @@ std::vector<TaskWindow> PlanTasks(const FrameGeometry& geo, const AaFilterShape&
     return GridTasks(geo, aa, region, std::max(8, options.uniform_tile), options.model,
                      options.predict_uniform);
 
-  std::vector<TaskWindow> roots =
-      MergeEmptyRuns(GridTasks(geo, aa, region, kRootTile, options.model, true), options.model);
+  std::vector<TaskWindow> roots = GridTasks(geo, aa, region, kRootTile, options.model, true);
   double total = 0;
   for (const TaskWindow& t : roots) total += t.predicted_us;
   const double grain = total / (std::max(1, concurrency) * std::max(1, options.tasks_per_thread));
+  roots = MergeEmptyRuns(std::move(roots), options.model, grain);
   std::vector<std::vector<TaskWindow>> per_root(roots.size());
   tbb::parallel_for(size_t{0}, roots.size(), [&](size_t k) {
     Split(geo, aa, options.model, grain, std::move(roots[k]), per_root[k]);

@@ -17,8 +17,9 @@ const char* SchedulingName(Scheduling s);
 
 struct SchedulingOptions {
   Scheduling mode = Scheduling::kCost;
-  int uniform_tile = 32;         // kUniform: tile side, pixels
-  int tasks_per_thread = 16;     // kCost: the grain is the predicted total over threads x this
+  int uniform_tile = 32;      // kUniform: tile side, pixels
+  int tasks_per_thread = 16;  // kCost: the grain is the predicted total over threads x this
+  int plan_workers = 0;  // kCost: set the grain for this many threads; 0: the threads rendering
   bool predict_uniform = false;  // kUniform: also predict each tile's cost (for measurements)
   CostModel model = DefaultCostModel();
 };

@@ -45,6 +45,9 @@ absl::Status ValidateRenderSettings(const RenderSettings& s) {
   if (s.warnock.leaf_size < 1) return absl::InvalidArgumentError("Warnock leaf size must be >= 1");
   if (s.scheduling.uniform_tile < 8 || s.scheduling.tasks_per_thread < 1)
     return absl::InvalidArgumentError("uniform tiles must be >= 8 pixels, tasks per thread >= 1");
+  if (s.scheduling.plan_workers < 0 || s.scheduling.plan_workers > kMaxPlanWorkers)
+    return absl::InvalidArgumentError(
+        absl::StrCat("planned workers must be in 0..", kMaxPlanWorkers, " (0: the threads used)"));
   return absl::OkStatus();
 }
 
@@ -68,8 +71,11 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
 
   start = std::chrono::steady_clock::now();
   const int concurrency = tbb::this_task_arena::max_concurrency();
+  const int plan_workers =
+      settings.scheduling.plan_workers > 0 ? settings.scheduling.plan_workers : concurrency;
   const std::vector<TaskWindow> tasks =
-      PlanTasks(geometry, shape, frame.region, settings.scheduling, concurrency);
+      PlanTasks(geometry, shape, frame.region, settings.scheduling, plan_workers);
+  frame.stats.plan_ms = MillisecondsSince(start);
   struct Worker {
     LeafRenderer renderer;
     std::vector<LeafWindow> leaves;

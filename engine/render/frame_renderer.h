@@ -16,6 +16,7 @@
 namespace aperture {
 
 constexpr int kMaxImageSide = 16384;
+constexpr int kMaxPlanWorkers = 1024;
 
 struct RenderSettings {
   int width = 1920, height = 1080;
@@ -35,7 +36,8 @@ struct TaskTiming {
 
 struct FrameStats {
   double setup_ms = 0;   // projection and clipping
-  double raster_ms = 0;  // subdivision, coverage and shading
+  double raster_ms = 0;  // planning the tasks, subdivision, coverage and shading
+  double plan_ms = 0;    // of raster_ms: cutting the frame into tasks
   size_t visible_polygons = 0;
   size_t empty_leaves = 0, covered_leaves = 0, mixed_leaves = 0;
   int concurrency = 1;

@@ -250,10 +250,12 @@ int Run() {
       std::printf("%zu %s tasks on %d threads, balance efficiency %.2f\n", stats.tasks.size(),
                   SchedulingName(settings.scheduling.mode), stats.concurrency,
                   stats.BalanceEfficiency());
-      std::printf("frame time: setup %.2f ms, raster %.2f ms, encode %.2f ms (%s, %s)%s\n",
-                  stats.setup_ms, stats.raster_ms, encode_ms, ExrCompressionName(exr.compression),
-                  exr.pixel_type == ExrPixelType::kHalf ? "half" : "float",
-                  repeat > 1 ? absl::StrFormat(" [fastest of %d]", repeat).c_str() : "");
+      std::printf(
+          "frame time: setup %.2f ms, raster %.2f ms (planning %.2f), encode %.2f ms (%s, %s)%s\n",
+          stats.setup_ms, stats.raster_ms, stats.plan_ms, encode_ms,
+          ExrCompressionName(exr.compression),
+          exr.pixel_type == ExrPixelType::kHalf ? "half" : "float",
+          repeat > 1 ? absl::StrFormat(" [fastest of %d]", repeat).c_str() : "");
     }
     std::printf("wrote %s%s%s\n", out.c_str(), preview.empty() ? "" : " and ", preview.c_str());
     (traced ? raytrace_ms : raster_ms) = stats.setup_ms + stats.raster_ms;

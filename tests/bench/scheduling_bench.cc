@@ -1,13 +1,17 @@
 // Load-balancing benchmark (issue 6): per scene, cost-driven versus uniform tiles at 1920x1080
 // with 2 threads in one run (frame time, balance efficiency), and how well the cost model ranks
-// the tiles (Spearman, predicted versus measured 32-pixel tile times on one thread).
+// the tiles (Spearman, predicted versus measured 32-pixel tile times on one thread), and every plan
+// replayed on more workers than this machine has (task times measured on one thread, dispatched
+// as the renderer dispatches them; cost/dispatch_replay.h).
 // Usage: scheduling_bench [REPEAT]
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <string>
 #include <vector>
 
+#include "cost/dispatch_replay.h"
 #include "cost/rank_correlation.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -52,6 +56,68 @@ double TaskSpearman(const Scene& scene, const Camera& camera, Scheduling mode, i
   return SpearmanCorrelation(predicted, measured);
 }
 
+// One plan whose task times are measured on one thread for the replay.
+struct ReplayPlan {
+  Scheduling mode;
+  int tile = 32;                // kUniform
+  int plan_workers = 0;         // kCost: the worker count the plan is made for
+  std::vector<double> task_us;  // fastest of the rounds, per task, in plan order
+};
+
+// Every plan's makespan on 2..32 workers. The cost-driven plan is made for each worker count
+// (its grain depends on it); uniform tiles are the same at every count. Each round renders every
+// plan once, so a slow spell of the machine costs all plans alike, and each task keeps its
+// fastest time.
+void PrintReplay(const char* name, const Scene& scene, const Camera& camera, int rounds) {
+  const int worker_counts[] = {2, 4, 8, 16, 32};
+  std::vector<ReplayPlan> plans = {{Scheduling::kUniform, 32, 0, {}},
+                                   {Scheduling::kUniform, 64, 0, {}},
+                                   {Scheduling::kUniform, 128, 0, {}}};
+  for (int workers : worker_counts) plans.push_back({Scheduling::kCost, 32, workers, {}});
+  for (int round = 0; round < rounds; ++round) {
+    for (ReplayPlan& plan : plans) {
+      RenderSettings settings;
+      settings.threads = 1;
+      settings.shading.override_filter = true;
+      settings.scheduling.mode = plan.mode;
+      settings.scheduling.uniform_tile = plan.tile;
+      settings.scheduling.plan_workers = plan.plan_workers;
+      auto frame = RenderFrame(scene, camera, settings);
+      if (!frame.ok()) {
+        std::fprintf(stderr, "scheduling_bench: %s\n", frame.status().ToString().c_str());
+        std::exit(1);
+      }
+      if (plan.task_us.empty()) plan.task_us.assign(frame->stats.tasks.size(), 1e300);
+      for (size_t k = 0; k < plan.task_us.size(); ++k)
+        plan.task_us[k] = std::min(plan.task_us[k], frame->stats.tasks[k].measured_us);
+    }
+  }
+  std::printf(
+      "%-7s replay: task times on 1 thread (fastest of %d rounds) dispatched in plan order to N "
+      "workers; makespan ms (balance)\n",
+      name, rounds);
+  std::printf(
+      "%-7s workers  cost-driven     uniform 32px    uniform 64px    uniform 128px   "
+      "best uniform / cost\n",
+      name);
+  auto cell = [](const std::vector<double>& tasks, int workers) {
+    double busy = 0;
+    for (double t : tasks) busy += t;
+    const double makespan_ms = ReplayDispatch(tasks, workers) / 1000;
+    std::printf("%7.2f (%.2f)  ", makespan_ms, busy / 1000 / (workers * makespan_ms));
+    return makespan_ms;
+  };
+  for (size_t w = 0; w < std::size(worker_counts); ++w) {
+    const int workers = worker_counts[w];
+    std::printf("%-7s %7d  ", name, workers);
+    const double cost_ms = cell(plans[3 + w].task_us, workers);
+    double best_uniform_ms = 1e300;
+    for (int t = 0; t < 3; ++t)
+      best_uniform_ms = std::min(best_uniform_ms, cell(plans[t].task_us, workers));
+    std::printf("%.2fx\n", best_uniform_ms / cost_ms);
+  }
+}
+
 }  // namespace
 }  // namespace aperture
 
@@ -79,11 +145,12 @@ int main(int argc, char** argv) {
       Scheduling scheduling;
       int tile;
       Run best;
+      std::vector<double> ms;  // every round's frame time
     };
-    Mode modes[] = {{"cost-driven", Scheduling::kCost, 0, {}},
-                    {"uniform  32px", Scheduling::kUniform, 32, {}},
-                    {"uniform  64px", Scheduling::kUniform, 64, {}},
-                    {"uniform 128px", Scheduling::kUniform, 128, {}}};
+    Mode modes[] = {{"cost-driven", Scheduling::kCost, 0, {}, {}},
+                    {"uniform  32px", Scheduling::kUniform, 32, {}, {}},
+                    {"uniform  64px", Scheduling::kUniform, 64, {}, {}},
+                    {"uniform 128px", Scheduling::kUniform, 128, {}, {}}};
     for (int round = 0; round < repeat; ++round) {
       for (Mode& m : modes) {
         RenderSettings settings;
@@ -92,17 +159,33 @@ int main(int argc, char** argv) {
         settings.scheduling.mode = m.scheduling;
         settings.scheduling.uniform_tile = std::max(8, m.tile);
         const Run run = Fastest(*c.scene, c.camera, settings, 1);
+        m.ms.push_back(run.frame_ms);
         if (run.frame_ms < m.best.frame_ms) m.best = run;
       }
     }
-    for (const Mode& m : modes)
-      std::printf("%-7s %-14s %7.1f ms, balance %.2f; cost-driven %.2fx faster\n", c.name, m.name,
+    // Each round's uniform / cost-driven ratio pairs runs made moments apart; the median of those
+    // and how many rounds the cost-driven plan won say more on a noisy machine than the minima.
+    for (const Mode& m : modes) {
+      std::vector<double> ratios;
+      int wins = 0;
+      for (int round = 0; round < repeat; ++round) {
+        ratios.push_back(m.ms[round] / modes[0].ms[round]);
+        wins += modes[0].ms[round] < m.ms[round];
+      }
+      std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+      std::printf("%-7s %-14s %7.1f ms, balance %.2f; cost-driven %.3fx faster", c.name, m.name,
                   m.best.frame_ms, m.best.efficiency, m.best.frame_ms / modes[0].best.frame_ms);
+      if (&m != &modes[0])
+        std::printf(" (paired rounds: median %.3fx, won %d of %d)", ratios[ratios.size() / 2], wins,
+                    repeat);
+      std::printf("\n");
+    }
     std::printf(
         "%-7s Spearman predicted vs measured task time (1 thread): uniform 32px tiles "
         "%.3f, cost-driven tasks %.3f\n",
         c.name, TaskSpearman(*c.scene, c.camera, Scheduling::kUniform, 3),
         TaskSpearman(*c.scene, c.camera, Scheduling::kCost, 3));
+    PrintReplay(c.name, *c.scene, c.camera, std::max(3, repeat));
   }
   return 0;
 }

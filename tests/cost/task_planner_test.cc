@@ -108,5 +108,28 @@ TEST(TaskPlanner, CostPlanCoversTheRegionOnceMostExpensiveFirst) {
   }
 }
 
+TEST(TaskPlanner, RunsOfSkyStopAtTheGrain) {
+  // An empty 640 x 320 frame: 10 x 5 root windows of equal predicted cost. Planned for one worker
+  // (16 tasks per thread) the grain is 1/16 of the total, so a run holds at most 3 of the 50 roots.
+  FrameGeometry g;
+  g.width = 640;
+  g.height = 320;
+  SchedulingOptions options;
+  options.model = CostModel{0.01, 0.1, 0.5};
+  const PixelRect region{0, 0, 640, 320};
+  const auto tasks = PlanTasks(g, ShapeOf(AntiAliasing::kBox2), region, options, 1);
+  double total = 0;
+  for (const TaskWindow& t : tasks) total += t.predicted_us;
+  ASSERT_NEAR(total, 0.01 * 640 * 320, 1e-6);
+  long long pixels = 0;
+  for (const TaskWindow& t : tasks) {
+    EXPECT_LE(t.predicted_us, total / 16 + 1e-9);
+    EXPECT_LE(t.rect.width(), 3 * 64);
+    pixels += t.rect.pixels();
+  }
+  EXPECT_EQ(pixels, 640 * 320);
+  EXPECT_EQ(tasks.size(), 20u);  // every row: runs of 3, 3, 3 and 1 roots
+}
+
 }  // namespace
 }  // namespace aperture

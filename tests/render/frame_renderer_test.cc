@@ -118,6 +118,35 @@ TEST(FrameRenderer, PrecisionFarFromTheOrigin) {
   EXPECT_GT(mean, 0.1);  // the checkerboard is there, not an empty frame
 }
 
+TEST(FrameRenderer, CostPlanForMoreWorkersIsFinerAndPixelIdentical) {
+  // scheduling_bench replays plans made for more workers than the machine has: the plan must
+  // follow plan_workers, not the threads that render it, and still give the same pixels.
+  auto scene = BuildScene(MakeDemoScene());
+  ASSERT_TRUE(scene.ok());
+  RenderSettings settings;
+  settings.width = 480;
+  settings.height = 270;
+  settings.shading.override_filter = true;
+  settings.shading.filter = FilterMode::kTrilinear;
+  settings.threads = 1;
+  auto own = RenderFrame(*scene, DemoCamera(), settings);
+  settings.scheduling.plan_workers = 16;
+  auto many = RenderFrame(*scene, DemoCamera(), settings);
+  ASSERT_TRUE(own.ok() && many.ok());
+  EXPECT_EQ(own->stats.concurrency, 1);
+  EXPECT_GT(many->stats.tasks.size(), 2 * own->stats.tasks.size());
+  EXPECT_TRUE(BitIdentical(own->image, many->image));
+  EXPECT_GE(own->stats.raster_ms, own->stats.plan_ms);
+  EXPECT_GT(own->stats.plan_ms, 0);
+
+  settings.scheduling.plan_workers = -1;
+  auto bad = RenderFrame(*scene, DemoCamera(), settings);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("planned workers"), std::string::npos);
+  settings.scheduling.plan_workers = kMaxPlanWorkers + 1;
+  EXPECT_FALSE(RenderFrame(*scene, DemoCamera(), settings).ok());
+}
+
 TEST(FrameRenderer, RejectsBadSettings) {
   auto scene = BuildScene(MakeDemoScene());
   ASSERT_TRUE(scene.ok());
