@@ -25,32 +25,48 @@ struct Run {
   double frame_ms = 1e300, efficiency = 0;
 };
 
+// The bench's frames: box2 edges, every material trilinear.
+RenderSettings BenchSettings(int threads, Scheduling mode, int tile = 32, int plan_workers = 0) {
+  RenderSettings settings;
+  settings.threads = threads;
+  settings.shading.override_filter = true;
+  settings.scheduling.mode = mode;
+  settings.scheduling.uniform_tile = std::max(8, tile);
+  settings.scheduling.plan_workers = plan_workers;
+  return settings;
+}
+
+RenderedFrame RenderOrExit(const Scene& scene, const Camera& camera,
+                           const RenderSettings& settings) {
+  auto frame = RenderFrame(scene, camera, settings);
+  if (!frame.ok()) {
+    std::fprintf(stderr, "scheduling_bench: %s\n", frame.status().ToString().c_str());
+    std::exit(1);
+  }
+  return *std::move(frame);
+}
+
 Run Fastest(const Scene& scene, const Camera& camera, RenderSettings settings, int repeat) {
   Run best;
   for (int i = 0; i < repeat; ++i) {
-    auto frame = RenderFrame(scene, camera, settings);
-    if (!frame.ok()) std::exit(1);
-    const double ms = frame->stats.setup_ms + frame->stats.raster_ms;
-    if (ms < best.frame_ms) best = {ms, frame->stats.BalanceEfficiency()};
+    const RenderedFrame frame = RenderOrExit(scene, camera, settings);
+    const double ms = frame.stats.setup_ms + frame.stats.raster_ms;
+    if (ms < best.frame_ms) best = {ms, frame.stats.BalanceEfficiency()};
   }
   return best;
 }
 
 double TaskSpearman(const Scene& scene, const Camera& camera, Scheduling mode, int repeat) {
-  RenderSettings settings;
-  settings.threads = 1;
-  settings.shading.override_filter = true;
-  settings.scheduling.mode = mode;
+  RenderSettings settings = BenchSettings(1, mode);
   settings.scheduling.predict_uniform = true;
   std::vector<double> predicted, measured;
   for (int i = 0; i < repeat; ++i) {
-    auto frame = RenderFrame(scene, camera, settings);
-    if (!frame.ok()) std::exit(1);
-    if (measured.empty()) measured.assign(frame->stats.tasks.size(), 1e300);
+    const RenderedFrame frame = RenderOrExit(scene, camera, settings);
+    if (measured.empty()) measured.assign(frame.stats.tasks.size(), 1e300);
     predicted.clear();
-    for (size_t k = 0; k < frame->stats.tasks.size(); ++k) {
-      predicted.push_back(frame->stats.tasks[k].predicted_us);
-      measured[k] = std::min(measured[k], frame->stats.tasks[k].measured_us);
+    for (size_t k = 0; k < frame.stats.tasks.size(); ++k) {
+      predicted.push_back(frame.stats.tasks[k].predicted_us);
+      measured[k] = std::min(measured[k], frame.stats.tasks[k].measured_us);
     }
   }
   return SpearmanCorrelation(predicted, measured);
@@ -76,20 +92,11 @@ void PrintReplay(const char* name, const Scene& scene, const Camera& camera, int
   for (int workers : worker_counts) plans.push_back({Scheduling::kCost, 32, workers, {}});
   for (int round = 0; round < rounds; ++round) {
     for (ReplayPlan& plan : plans) {
-      RenderSettings settings;
-      settings.threads = 1;
-      settings.shading.override_filter = true;
-      settings.scheduling.mode = plan.mode;
-      settings.scheduling.uniform_tile = plan.tile;
-      settings.scheduling.plan_workers = plan.plan_workers;
-      auto frame = RenderFrame(scene, camera, settings);
-      if (!frame.ok()) {
-        std::fprintf(stderr, "scheduling_bench: %s\n", frame.status().ToString().c_str());
-        std::exit(1);
-      }
-      if (plan.task_us.empty()) plan.task_us.assign(frame->stats.tasks.size(), 1e300);
+      const RenderedFrame frame =
+          RenderOrExit(scene, camera, BenchSettings(1, plan.mode, plan.tile, plan.plan_workers));
+      if (plan.task_us.empty()) plan.task_us.assign(frame.stats.tasks.size(), 1e300);
       for (size_t k = 0; k < plan.task_us.size(); ++k)
-        plan.task_us[k] = std::min(plan.task_us[k], frame->stats.tasks[k].measured_us);
+        plan.task_us[k] = std::min(plan.task_us[k], frame.stats.tasks[k].measured_us);
     }
   }
   std::printf(
@@ -153,12 +160,7 @@ int main(int argc, char** argv) {
                     {"uniform 128px", Scheduling::kUniform, 128, {}, {}}};
     for (int round = 0; round < repeat; ++round) {
       for (Mode& m : modes) {
-        RenderSettings settings;
-        settings.threads = 2;
-        settings.shading.override_filter = true;
-        settings.scheduling.mode = m.scheduling;
-        settings.scheduling.uniform_tile = std::max(8, m.tile);
-        const Run run = Fastest(*c.scene, c.camera, settings, 1);
+        const Run run = Fastest(*c.scene, c.camera, BenchSettings(2, m.scheduling, m.tile), 1);
         m.ms.push_back(run.frame_ms);
         if (run.frame_ms < m.best.frame_ms) m.best = run;
       }

@@ -18,6 +18,17 @@ bool BitIdentical(const Image& a, const Image& b) {
          std::memcmp(a.texels().data(), b.texels().data(), a.texels().size_bytes()) == 0;
 }
 
+// Every material filtered trilinear, so that no table is built on first use.
+RenderSettings TrilinearSettings(int width, int height, int threads) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.shading.override_filter = true;
+  settings.shading.filter = FilterMode::kTrilinear;
+  settings.threads = threads;
+  return settings;
+}
+
 TEST(FrameRenderer, BitIdenticalAcrossThreadCountsAndRuns) {
   auto scene = BuildScene(MakeDemoScene());
   ASSERT_TRUE(scene.ok()) << scene.status();
@@ -43,12 +54,7 @@ TEST(FrameRenderer, SchedulingAndRegionsDoNotChangeAPixel) {
   // pixels as the whole frame.
   auto scene = BuildScene(MakeDemoScene());
   ASSERT_TRUE(scene.ok());
-  RenderSettings settings;
-  settings.width = 320;
-  settings.height = 180;
-  settings.shading.override_filter = true;
-  settings.shading.filter = FilterMode::kTrilinear;
-  settings.threads = 2;
+  RenderSettings settings = TrilinearSettings(320, 180, 2);
   auto cost = RenderFrame(*scene, DemoCamera(), settings);
   settings.scheduling.mode = Scheduling::kUniform;
   settings.scheduling.uniform_tile = 24;
@@ -123,12 +129,7 @@ TEST(FrameRenderer, CostPlanForMoreWorkersIsFinerAndPixelIdentical) {
   // follow plan_workers, not the threads that render it, and still give the same pixels.
   auto scene = BuildScene(MakeDemoScene());
   ASSERT_TRUE(scene.ok());
-  RenderSettings settings;
-  settings.width = 480;
-  settings.height = 270;
-  settings.shading.override_filter = true;
-  settings.shading.filter = FilterMode::kTrilinear;
-  settings.threads = 1;
+  RenderSettings settings = TrilinearSettings(480, 270, 1);
   auto own = RenderFrame(*scene, DemoCamera(), settings);
   settings.scheduling.plan_workers = 16;
   auto many = RenderFrame(*scene, DemoCamera(), settings);
