@@ -77,13 +77,15 @@ struct ReplayPlan {
   Scheduling mode;
   int tile = 32;                // kUniform
   int plan_workers = 0;         // kCost: the worker count the plan is made for
-  std::vector<double> task_us;  // fastest of the rounds, per task, in plan order
+  std::vector<double> task_us;  // of the round with the fastest frame, in plan order
+  double frame_us = 1e300;      // that round's raster time
 };
 
 // Every plan's makespan on 2..32 workers. The cost-driven plan is made for each worker count
 // (its grain depends on it); uniform tiles are the same at every count. Each round renders every
-// plan once, so a slow spell of the machine costs all plans alike, and each task keeps its
-// fastest time.
+// plan once, so a slow spell of the machine costs all plans alike. A plan's task times are those
+// of its fastest frame: the fastest time of each task on its own would favour fine plans, whose
+// many small tasks each get more chances to miss the machine's slow moments.
 void PrintReplay(const char* name, const Scene& scene, const Camera& camera, int rounds) {
   const int worker_counts[] = {2, 4, 8, 16, 32};
   std::vector<ReplayPlan> plans = {{Scheduling::kUniform, 32, 0, {}},
@@ -94,13 +96,15 @@ void PrintReplay(const char* name, const Scene& scene, const Camera& camera, int
     for (ReplayPlan& plan : plans) {
       const RenderedFrame frame =
           RenderOrExit(scene, camera, BenchSettings(1, plan.mode, plan.tile, plan.plan_workers));
-      if (plan.task_us.empty()) plan.task_us.assign(frame.stats.tasks.size(), 1e300);
-      for (size_t k = 0; k < plan.task_us.size(); ++k)
-        plan.task_us[k] = std::min(plan.task_us[k], frame.stats.tasks[k].measured_us);
+      if (frame.stats.raster_ms * 1000 >= plan.frame_us) continue;
+      plan.frame_us = frame.stats.raster_ms * 1000;
+      plan.task_us.clear();
+      for (const TaskTiming& t : frame.stats.tasks) plan.task_us.push_back(t.measured_us);
     }
   }
   std::printf(
-      "%-7s replay: task times on 1 thread (fastest of %d rounds) dispatched in plan order to N "
+      "%-7s replay: task times on 1 thread (fastest frame of %d rounds) dispatched in plan order "
+      "to N "
       "workers; makespan ms (balance)\n",
       name, rounds);
   std::printf(
