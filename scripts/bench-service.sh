@@ -145,7 +145,8 @@ split() {
   start_server "$work/store-split" --threads 1
   local b="$address"
   for scene in demo skewed; do
-    "$client_bin" render --split 2 --servers "$a,$b" --scene "$scene" --size 64x64 \
+    # One full-size round first: a server's first frames of a size also pay for growing its heap.
+    "$client_bin" render --split 2 --servers "$a,$b" --scene "$scene" --size 1920x1080 \
       -o "$work/w.exr" >/dev/null
     for _ in $(seq 1 "$rounds"); do
       "$client_bin" render --split 2 --servers "$a,$b" --scene "$scene" --size 1920x1080 \
