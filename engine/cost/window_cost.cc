@@ -25,22 +25,10 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
       f.area += f.pixels;
       continue;
     }
-    if (p.min_x > x0 && p.max_x < x1 && p.min_y > y0 && p.max_y < y1) {
-      // Strictly inside (the dense parts of a frame are mostly such polygons): no clipping, no
-      // edge on the border, every vertex inside.
-      ++f.polygons;
-      f.area += std::abs(SignedArea(p.vertices));
-      double perimeter = 0;
-      for (size_t k = 0; k < p.vertices.size(); ++k) {
-        const Vec2& s = p.vertices[k];
-        const Vec2& e = p.vertices[(k + 1) % p.vertices.size()];
-        perimeter += std::hypot(e.x - s.x, e.y - s.y);
-      }
-      f.boundary += a * perimeter / std::sqrt(2.0) + a * a * static_cast<double>(p.vertices.size());
-      continue;
-    }
     poly = p.vertices;
-    ClipToRect(poly, x0, y0, x1, y1, scratch);
+    // A polygon strictly inside the window (most of a dense part of a frame) needs no clipping.
+    if (p.min_x <= x0 || p.max_x >= x1 || p.min_y <= y0 || p.max_y >= y1)
+      ClipToRect(poly, x0, y0, x1, y1, scratch);
     if (poly.empty()) continue;
     ++f.polygons;
     f.area += std::abs(SignedArea(poly));
