@@ -84,7 +84,8 @@ int RunSim() {
   });
 
   std::vector<double> latencies;
-  size_t received = 0, dropped = 0, late = 0;
+  size_t received = 0, dropped = 0, late = 0, skipped = 0;
+  Clock::time_point last_frame = start;
   v1::RenderFrameResponse response;
   while (stream->Read(&response)) {
     const auto now = Clock::now();
@@ -94,12 +95,18 @@ int RunSim() {
       ++dropped;
       continue;
     }
+    // The server rendered a newer state instead (newest state wins): not an error.
+    if (response.outcome() != v1::FRAME_OUTCOME_RENDERED) {
+      ++skipped;
+      continue;
+    }
     Clock::time_point sent_at;
     {
       std::lock_guard lock(mutex);
       sent_at = sent[i];
     }
     latencies.push_back(std::chrono::duration<double, std::milli>(now - sent_at).count());
+    last_frame = now;
     // A frame is late when it arrives after the end of its own slot.
     if (now > start + slot * static_cast<int64_t>(i + 1)) ++late;
   }
@@ -107,17 +114,22 @@ int RunSim() {
   const grpc::Status status = stream->Finish();
   dropped += frames - received;
   const LatencySummary s = Summarize(latencies);
+  // Frames shown per second of the run, from the first slot to the last frame received.
+  const double seconds = std::chrono::duration<double>(last_frame - start).count();
+  const double achieved = seconds > 0 ? static_cast<double>(s.count) / seconds : 0.0;
   if (absl::GetFlag(FLAGS_json)) {
     std::printf(
-        "{\"frames\": %zu, \"rate_hz\": %.3f, \"ok\": %zu, \"late\": %zu, "
-        "\"dropped\": %zu, \"latency_ms\": {\"p50\": %.3f, \"p99\": %.3f, "
-        "\"max\": %.3f}, \"status\": \"%s\"}\n",
-        frames, rate, s.count, late, dropped, s.p50, s.p99, s.max,
+        "{\"frames\": %zu, \"rate_hz\": %.3f, \"achieved_hz\": %.3f, \"ok\": %zu, "
+        "\"late\": %zu, \"skipped\": %zu, \"dropped\": %zu, \"latency_ms\": {\"p50\": %.3f, "
+        "\"p90\": %.3f, \"p99\": %.3f, \"max\": %.3f}, \"status\": \"%s\"}\n",
+        frames, rate, achieved, s.count, late, skipped, dropped, s.p50, s.p90, s.p99, s.max,
         status.ok() ? "OK" : status.error_message().c_str());
   } else {
-    std::printf("%zu frames at %.2f Hz: %zu ok, %zu late for their slot, %zu dropped\n", frames,
-                rate, s.count, late, dropped);
-    std::printf("latency ms: p50 %.2f  p99 %.2f  max %.2f\n", s.p50, s.p99, s.max);
+    std::printf(
+        "%zu frames offered at %.2f Hz: %zu rendered (%.2f Hz achieved), %zu late for their "
+        "slot, %zu skipped for a newer state, %zu dropped\n",
+        frames, rate, s.count, achieved, late, skipped, dropped);
+    std::printf("latency ms: p50 %.2f  p90 %.2f  p99 %.2f  max %.2f\n", s.p50, s.p90, s.p99, s.max);
     if (!status.ok()) std::printf("stream ended: %s\n", status.error_message().c_str());
   }
   return status.ok() && dropped == 0 ? 0 : 1;

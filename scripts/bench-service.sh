@@ -7,9 +7,17 @@
 #   load      `aperture load` for 640x480 frames at concurrency 1, 8 and 32, LOAD_S seconds each;
 #   soak      server RSS at minute 1 and at minute SOAK_MIN of a concurrency-8 load;
 #   split     a 1920x1080 frame split over 2 local servers (issue 6): slowest region's render
-#             time over the mean, demo and skewed scenes, ROUNDS rounds, and the median.
-# Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|all]   (default all)
-# Environment: LOAD_S (default 60), SOAK_MIN (default 5), ROUNDS (default 5).
+#             time over the mean, demo and skewed scenes, ROUNDS rounds, and the median;
+#   node      a farm node's throughput (issue 21): 1920x1080 demo frames/s from `aperture load`
+#             at concurrency 1, 2 and 4, zip and none, NODE_S seconds each, against the raster-only
+#             rate (1000 / the fastest local setup + raster ms on 2 threads); with BEFORE_DIR (a
+#             folder holding an older aperture-server) that server is measured too, interleaved.
+#   sim       a simulator host on RenderStream (issue 20): `aperture sim` of the demo at 1280x720
+#             and 1920x1080 at SIM_RATES (default 5 10 15 20 30), SIM_S seconds each (default 6),
+#             achieved rate, late and skipped frames and latency; BEFORE_DIR as for node.
+# Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|node|sim|all]   (default all)
+# Environment: LOAD_S (default 60), SOAK_MIN (default 5), ROUNDS (default 5), NODE_S (default 10),
+# BEFORE_DIR (unset).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what="${1:-all}"
@@ -160,8 +168,59 @@ split() {
   stop_server
 }
 
+node() {
+  local node_s="${NODE_S:-10}"
+  local line raster_fps
+  line=$("$render_bin" --scene demo --size 1920x1080 --threads 2 --repeat 5 --nopreview \
+    -o "$work/local.exr")
+  raster_fps=$(awk -v a="$(echo "$line" | ms_of setup)" -v b="$(echo "$line" | ms_of raster)" \
+    'BEGIN {printf "%.2f", 1000 / (a + b)}')
+  echo "== node: demo 1920x1080 half, server --threads 2, $node_s s per cell;" \
+    "raster-only $raster_fps frames/s"
+  local builds=("$server_bin")
+  [ -n "${BEFORE_DIR:-}" ] && builds=("$BEFORE_DIR/aperture-server" "$server_bin")
+  for c in zip none; do
+    for n in 1 2 4; do
+      for bin in "${builds[@]}"; do
+        server_bin="$bin" start_server "$work/store-node" --max-queue 64
+        "$client_bin" render --server "$address" --scene demo --size 1920x1080 \
+          -o "$work/warm.exr" >/dev/null
+        "$client_bin" load --server "$address" --scene demo --size 1920x1080 --compression "$c" \
+          --concurrency "$n" --duration "$node_s" --json |
+          awk -v b="$bin" -v c="$c" -v n="$n" -v r="$raster_fps" '{
+            match($0, /"frames_per_s": *[0-9.]+/); f = substr($0, RSTART, RLENGTH);
+            sub(/.*: */, "", f);
+            printf "%-28s %-4s concurrency %d: %6.2f frames/s, %3.0f %% of raster-only\n",
+                   b, c, n, f, 100 * f / r }'
+        stop_server
+      done
+    done
+  done
+}
+
+sim() {
+  local sim_s="${SIM_S:-6}"
+  echo "== sim: demo on RenderStream, server --threads 2, $sim_s s per rate"
+  local builds=("$server_bin")
+  [ -n "${BEFORE_DIR:-}" ] && builds=("$BEFORE_DIR/aperture-server" "$server_bin")
+  for size in 1280x720 1920x1080; do
+    for rate in ${SIM_RATES:-5 10 15 20 30}; do
+      for bin in "${builds[@]}"; do
+        server_bin="$bin" start_server "$work/store-sim" --max-queue 64
+        "$client_bin" render --server "$address" --scene demo --size "$size" \
+          -o "$work/warm.exr" >/dev/null
+        local frames
+        frames=$(awk -v r="$rate" -v s="$sim_s" 'BEGIN {printf "%d", r * s}')
+        "$client_bin" sim --server "$address" --scene demo --size "$size" --rate "$rate" \
+          --frames "$frames" --json | sed "s|^|$bin $size $rate Hz: |" || true
+        stop_server
+      done
+    done
+  done
+}
+
 case "$what" in
-  overhead | restart | load | soak | split) "$what" ;;
-  all) overhead; restart; load; soak; split ;;
-  *) echo "usage: $0 [overhead|restart|load|soak|split|all]" >&2; exit 2 ;;
+  overhead | restart | load | soak | split | node | sim) "$what" ;;
+  all) overhead; restart; load; soak; split; node; sim ;;
+  *) echo "usage: $0 [overhead|restart|load|soak|split|node|sim|all]" >&2; exit 2 ;;
 esac

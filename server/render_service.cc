@@ -127,9 +127,10 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
   return ToGrpcStatus(loaded.status());
 }
 
-absl::Status RenderService::RenderOne(grpc::ServerContext* context,
-                                      const v1::RenderFrameRequest& request,
-                                      v1::RenderFrameResponse* response) {
+absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* context,
+                                                         const v1::RenderFrameRequest& request,
+                                                         LiveClock::time_point stop_at,
+                                                         v1::RenderFrameResponse* response) {
   const auto start = Clock::now();
   response->set_frame_index(request.frame_index());
   auto job = ParseFrameRequest(request, limits_.max_pixels);
@@ -139,49 +140,69 @@ absl::Status RenderService::RenderOne(grpc::ServerContext* context,
     return absl::NotFoundError(
         absl::StrCat("scene_id '", request.scene_id(), "' is not loaded (LoadScene first)"));
 
-  StopCheck stop(context);
+  StopCheck stop(context, stop_at);
   auto ticket = admission_.Enter([&] { return stop(); });
-  if (!ticket.ok()) return ticket.status();
+  if (!ticket.ok())
+    return stop.FrameDeadlinePassed()
+               ? absl::DeadlineExceededError("the frame's deadline_ms passed in the queue")
+               : ticket.status();
   v1::FrameTimings& timings = *response->mutable_timings();
   timings.set_queue_ms(MillisecondsSince(start));
 
-  absl::StatusOr<RenderedFrame> frame;
+  auto frame = std::make_shared<absl::StatusOr<RenderedFrame>>();
   double traced_build_ms = 0;
   arena_.execute([&] {
     // Isolated: while this thread waits for its frame's tasks it takes none of another frame's,
     // so a small frame is not held up behind a big one's work.
     tbb::this_task_arena::isolate([&] {
       if (!job->mode.raytrace) {
-        frame = aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
+        *frame = aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
         return;
       }
       // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays.
       auto traced = traced_.Get(request.scene_id(), scene, &traced_build_ms);
       if (!traced.ok()) {
-        frame = traced.status();
+        *frame = traced.status();
         return;
       }
-      frame = (*traced)->Render(job->camera, job->settings, job->mode.trace, nullptr,
-                                [&] { return stop(); });
+      *frame = (*traced)->Render(job->camera, job->settings, job->mode.trace, nullptr,
+                                 [&] { return stop(); });
     });
   });
-  if (!frame.ok()) return frame.status();
+  if (!frame->ok())
+    return stop.FrameDeadlinePassed() && absl::IsCancelled(frame->status())
+               ? absl::DeadlineExceededError("the frame's deadline_ms passed while rendering")
+               : frame->status();
   // Raytrace: setup is the corner rays (plus building the scene's BVH and tables on its first
   // raytraced frame), raster the pixels' fragments and subdivision.
-  timings.set_setup_ms(frame->stats.setup_ms + traced_build_ms);
-  timings.set_raster_ms(frame->stats.raster_ms);
+  timings.set_setup_ms((*frame)->stats.setup_ms + traced_build_ms);
+  timings.set_raster_ms((*frame)->stats.raster_ms);
+  ExrOptions exr = job->exr;
+  exr.metadata.scene_name = scene->name;
+  exr.metadata.render_ms = (*frame)->stats.setup_ms + (*frame)->stats.raster_ms;
+  return EncodeFrameFn([this, frame, exr, start](v1::RenderFrameResponse* out) -> absl::Status {
+    const auto encode_start = Clock::now();
+    // Compressed in parallel on the render arena's threads: encode and render share the cores.
+    absl::StatusOr<std::string> bytes;
+    arena_.execute(
+        [&] { tbb::this_task_arena::isolate([&] { bytes = EncodeExr((*frame)->image, exr); }); });
+    if (!bytes.ok()) return bytes.status();
+    v1::FrameTimings& out_timings = *out->mutable_timings();
+    out_timings.set_encode_ms(MillisecondsSince(encode_start));
+    out->set_exr(std::move(*bytes));
+    out->set_width(static_cast<uint32_t>((*frame)->image.width()));
+    out->set_height(static_cast<uint32_t>((*frame)->image.height()));
+    out_timings.set_total_ms(MillisecondsSince(start));
+    return absl::OkStatus();
+  });
+}
 
-  const auto encode_start = Clock::now();
-  job->exr.metadata.scene_name = scene->name;
-  job->exr.metadata.render_ms = frame->stats.setup_ms + frame->stats.raster_ms;
-  auto exr = EncodeExr(frame->image, job->exr);
-  if (!exr.ok()) return exr.status();
-  timings.set_encode_ms(MillisecondsSince(encode_start));
-  response->set_exr(exr->data(), exr->size());
-  response->set_width(static_cast<uint32_t>(frame->image.width()));
-  response->set_height(static_cast<uint32_t>(frame->image.height()));
-  timings.set_total_ms(MillisecondsSince(start));
-  return absl::OkStatus();
+absl::Status RenderService::RenderOne(grpc::ServerContext* context,
+                                      const v1::RenderFrameRequest& request,
+                                      v1::RenderFrameResponse* response) {
+  auto encode = RenderImage(context, request, LiveClock::time_point::max(), response);
+  if (!encode.ok()) return encode.status();
+  return (*encode)(response);
 }
 
 grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
@@ -210,37 +231,40 @@ grpc::Status RenderService::RenderStream(
     grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream) {
   const uint64_t id = next_request_id_++;
   const auto stream_start = Clock::now();
-  uint64_t frames = 0, failed = 0;
-  v1::RenderFrameRequest request;
-  while (stream->Read(&request)) {
-    const auto start = Clock::now();
-    v1::RenderFrameResponse response;
-    absl::Status status = RenderOne(context, request, &response);
-    (status.ok() ? frames_rendered_ : frames_failed_)++;
-    ++frames;
+  auto render = [&](const v1::RenderFrameRequest& request, LiveClock::time_point stop_at,
+                    v1::RenderFrameResponse* response) {
+    return RenderImage(context, request, stop_at, response);
+  };
+  auto answered = [&](const LiveFrame& frame) {
+    const v1::RenderFrameRequest& request = frame.request;
+    const v1::RenderFrameResponse& response = frame.response;
     const v1::FrameTimings& t = response.timings();
+    if (response.outcome() != v1::FRAME_OUTCOME_RENDERED) {
+      frames_skipped_++;
+      spdlog::info("req={}.{} rpc=RenderStream skipped={} superseded_by={} total_ms={:.2f}", id,
+                   request.frame_index(),
+                   response.outcome() == v1::FRAME_OUTCOME_SKIPPED_LATE ? "late" : "superseded",
+                   response.superseded_by(), MillisecondsSince(frame.received));
+      return;
+    }
+    (frame.status.ok() ? frames_rendered_ : frames_failed_)++;
     spdlog::info(
         "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} queue_ms={:.2f} "
         "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
         "status={}{}",
         id, request.frame_index(), Short(request.scene_id()), request.options().width(),
         request.options().height(), ModeName(request.options()), t.queue_ms(), t.setup_ms(),
-        t.raster_ms(), t.encode_ms(), MillisecondsSince(start), response.exr().size(),
-        absl::StatusCodeToString(status.code()),
-        status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
-    if (!status.ok()) {
-      ++failed;
-      response.Clear();
-      response.set_frame_index(request.frame_index());
-      response.set_status_code(static_cast<int>(status.code()));
-      response.set_status_message(std::string(status.message()));
-    }
-    if (context->IsCancelled() || !stream->Write(response)) break;
-  }
+        t.raster_ms(), t.encode_ms(), MillisecondsSince(frame.received), response.exr().size(),
+        absl::StatusCodeToString(frame.status.code()),
+        frame.status.ok() ? "" : absl::StrCat(" error='", frame.status.message(), "'"));
+  };
+  const LiveStreamCounts counts = LiveStream(context, stream, render, answered).Run();
   const bool cancelled = context->IsCancelled();
-  spdlog::info("req={} rpc=RenderStream peer={} frames={} failed={} ms={:.2f} status={}", id,
-               context->peer(), frames, failed, MillisecondsSince(stream_start),
-               cancelled ? "CANCELLED" : "OK");
+  spdlog::info(
+      "req={} rpc=RenderStream peer={} frames={} rendered={} skipped={} failed={} ms={:.2f} "
+      "status={}",
+      id, context->peer(), counts.frames, counts.rendered, counts.skipped, counts.failed,
+      MillisecondsSince(stream_start), cancelled ? "CANCELLED" : "OK");
   return cancelled ? grpc::Status::CANCELLED : grpc::Status::OK;
 }
 
@@ -276,6 +300,7 @@ grpc::Status RenderService::GetServerInfo(grpc::ServerContext*, const v1::GetSer
   response->set_textures(static_cast<uint32_t>(textures_.size()));
   response->set_frames_rendered(frames_rendered_.load());
   response->set_frames_failed(frames_failed_.load());
+  response->set_frames_skipped(frames_skipped_.load());
   response->set_frames_rejected(admission_.rejected());
   response->set_frames_in_flight(static_cast<uint32_t>(admission_.running()));
   response->set_frames_queued(static_cast<uint32_t>(admission_.queued()));

@@ -10,6 +10,7 @@
 
 #include "admission.h"
 #include "aperture/v1/render_service.grpc.pb.h"
+#include "live_stream.h"
 #include "scene_store.h"
 #include "texture_store.h"
 #include "traced_scene_cache.h"
@@ -48,7 +49,13 @@ class RenderService final : public v1::Render::Service {
                            v1::PlanRegionsResponse* response) override;
 
  private:
-  // Validation, admission, rendering on the shared arena, encoding; fills `response`.
+  // Validation, admission, rendering on the shared arena (stopped at `stop_at` too); fills the
+  // response's timings and returns what encodes the frame into it.
+  absl::StatusOr<EncodeFrameFn> RenderImage(grpc::ServerContext* context,
+                                            const v1::RenderFrameRequest& request,
+                                            LiveClock::time_point stop_at,
+                                            v1::RenderFrameResponse* response);
+  // RenderImage, then the encode; fills `response`.
   absl::Status RenderOne(grpc::ServerContext* context, const v1::RenderFrameRequest& request,
                          v1::RenderFrameResponse* response);
 
@@ -59,7 +66,7 @@ class RenderService final : public v1::Render::Service {
   tbb::task_arena& arena_;
   const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   std::atomic<uint64_t> next_request_id_{1};
-  std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0};
+  std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0}, frames_skipped_{0};
   // Raytraced scenes' BVH and tables (about 100 MB per 1024² raster texture): the last few.
   static constexpr size_t kTracedScenes = 4;
   TracedSceneCache traced_;

@@ -1,6 +1,7 @@
-// Whether a request's frame should stop: true once the client cancels, its deadline passes,
-// or the server shuts down past its grace period (gRPC then cancels the call). Polled by render
-// workers between tasks, so the call's state is looked at no more than once a millisecond.
+// Whether a request's frame should stop: true once the client cancels, its deadline passes (the
+// call's, or a stream frame's own `deadline_ms`), or the server shuts down past its grace period
+// (gRPC then cancels the call). Polled by render workers between tasks, so the call's state is
+// looked at no more than once a millisecond.
 #pragma once
 
 #include <grpcpp/server_context.h>
@@ -12,23 +13,32 @@ namespace aperture {
 
 class StopCheck {
  public:
-  explicit StopCheck(grpc::ServerContext* context) : context_(context) {}
+  explicit StopCheck(grpc::ServerContext* context,
+                     std::chrono::steady_clock::time_point frame_deadline =
+                         std::chrono::steady_clock::time_point::max())
+      : context_(context), frame_deadline_(frame_deadline) {}
 
   bool operator()() {
     if (stopped_.load(std::memory_order_relaxed)) return true;
-    const int64_t now = std::chrono::steady_clock::now().time_since_epoch().count();
+    const auto steady_now = std::chrono::steady_clock::now();
+    const int64_t now = steady_now.time_since_epoch().count();
     int64_t next = next_check_.load(std::memory_order_relaxed);
     if (now < next || !next_check_.compare_exchange_strong(next, now + kInterval)) return false;
-    if (context_->IsCancelled() || std::chrono::system_clock::now() > context_->deadline())
+    if (context_->IsCancelled() || std::chrono::system_clock::now() > context_->deadline() ||
+        steady_now > frame_deadline_)
       stopped_.store(true, std::memory_order_relaxed);
     return stopped_.load(std::memory_order_relaxed);
   }
+
+  // Whether the frame's own deadline (not the call's) is what stopped it.
+  bool FrameDeadlinePassed() const { return std::chrono::steady_clock::now() > frame_deadline_; }
 
  private:
   static constexpr int64_t kInterval =
       std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(1))
           .count();
   grpc::ServerContext* context_;
+  const std::chrono::steady_clock::time_point frame_deadline_;
   std::atomic<bool> stopped_{false};
   std::atomic<int64_t> next_check_{0};
 };

@@ -1,20 +1,30 @@
 #include "io/exr_writer.h"
 
-#include <Imath/half.h>
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 
 #include "absl/strings/str_cat.h"
+#include "io/exr_chunk_encoder.h"
 
 namespace aperture {
 namespace {
 
-OIIO::ImageSpec MakeSpec(const Image& image, const ExrOptions& options) {
+// dwaa only: OpenEXR 3.1's core library cannot write it, OpenImageIO's C++ path can. No OpenEXR
+// pool ("exr_threads" -1): a server's two concurrent frames waiting on OpenEXR 3.1's one global
+// pool once left a request waiting forever in OutputFile::writePixels.
+absl::Status EncodeThroughOpenImageIO(const Image& image, const ExrOptions& options,
+                                      std::string* bytes) {
+  std::vector<unsigned char> buffer;
+  OIIO::Filesystem::IOVecOutput proxy(buffer);
+  auto out = OIIO::ImageOutput::create("frame.exr", &proxy);
+  if (!out) return absl::InternalError("OpenImageIO has no EXR writer");
+  OIIO::attribute("exr_threads", -1);
   OIIO::ImageSpec spec(
       image.width(), image.height(), 4,
       options.pixel_type == ExrPixelType::kHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
@@ -25,54 +35,12 @@ OIIO::ImageSpec MakeSpec(const Image& image, const ExrOptions& options) {
   spec.attribute("aperture:render_ms", static_cast<float>(m.render_ms));
   spec.attribute("Software", "Aperture");
   for (const auto& [key, value] : m.extra) spec.attribute(key, value);
-  return spec;
-}
-
-// The texels as interleaved RGBA half. Converting here and handing OpenImageIO data already in
-// the file's type takes 20 ms or more off the encode of a 1920x1080 half frame (OpenImageIO would
-// convert scanline by scanline); the values are the same (round to nearest even). In parallel only
-// for a lone encoder (`threads` >= 0, as for OpenEXR's pool): a server encodes on the request's
-// thread and leaves the cores to its render arena.
-std::vector<Imath::half> ToHalf(const Image& image, bool parallel) {
-  const std::span<const Rgba> texels = image.texels();
-  std::vector<Imath::half> out(4 * texels.size());
-  auto convert = [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i < range.end(); ++i) {
-      out[4 * i] = Imath::half(texels[i].r);
-      out[4 * i + 1] = Imath::half(texels[i].g);
-      out[4 * i + 2] = Imath::half(texels[i].b);
-      out[4 * i + 3] = Imath::half(texels[i].a);
-    }
-  };
-  const tbb::blocked_range<size_t> all(0, texels.size(), 1 << 16);
-  if (parallel)
-    tbb::parallel_for(all, convert);
-  else
-    convert(all);
-  return out;
-}
-
-absl::Status WriteTo(OIIO::ImageOutput* out, const Image& image, const ExrOptions& options,
-                     const std::string& name, OIIO::Filesystem::IOProxy* proxy) {
-  OIIO::attribute("exr_threads", options.threads);
-  const OIIO::ImageSpec spec = MakeSpec(image, options);
-  OIIO::ImageSpec config = spec;
-  if (proxy != nullptr) {
-    void* p = proxy;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
-  }
-  if (!out->open(name, config))
-    return absl::InternalError(
-        absl::StrCat("cannot open EXR output '", name, "': ", out->geterror()));
-  const bool half = options.pixel_type == ExrPixelType::kHalf;
-  const std::vector<Imath::half> halves =
-      half ? ToHalf(image, options.threads >= 0) : std::vector<Imath::half>();
-  const bool written = half ? out->write_image(OIIO::TypeDesc::HALF, halves.data())
-                            : out->write_image(OIIO::TypeDesc::FLOAT, image.texels().data());
-  if (!written)
-    return absl::InternalError(absl::StrCat("cannot write EXR '", name, "': ", out->geterror()));
-  if (!out->close())
-    return absl::InternalError(absl::StrCat("cannot finish EXR '", name, "': ", out->geterror()));
+  void* p = &proxy;
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
+  if (!out->open("frame.exr", spec) ||
+      !out->write_image(OIIO::TypeDesc::FLOAT, image.texels().data()) || !out->close())
+    return absl::InternalError(absl::StrCat("cannot write EXR: ", out->geterror()));
+  bytes->assign(buffer.begin(), buffer.end());
   return absl::OkStatus();
 }
 
@@ -104,19 +72,25 @@ absl::StatusOr<ExrCompression> ParseExrCompression(const std::string& name) {
       absl::StrCat("unknown EXR compression '", name, "' (none, rle, zips, zip, piz, dwaa)"));
 }
 
-absl::Status WriteExrFile(const Image& image, const ExrOptions& options, const std::string& path) {
-  auto out = OIIO::ImageOutput::create("x.exr");
-  if (!out) return absl::InternalError("OpenImageIO has no EXR writer");
-  return WriteTo(out.get(), image, options, path, nullptr);
+absl::StatusOr<std::string> EncodeExr(const Image& image, const ExrOptions& options) {
+  std::string bytes;
+  const absl::Status status = CoreEncoderSupports(options.compression)
+                                  ? EncodeExrChunks(image, options, &bytes)
+                                  : EncodeThroughOpenImageIO(image, options, &bytes);
+  if (!status.ok()) return status;
+  return bytes;
 }
 
-absl::StatusOr<std::vector<uint8_t>> EncodeExr(const Image& image, const ExrOptions& options) {
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput proxy(bytes);
-  auto out = OIIO::ImageOutput::create("frame.exr", &proxy);
-  if (!out) return absl::InternalError("OpenImageIO has no EXR writer");
-  if (auto s = WriteTo(out.get(), image, options, "frame.exr", &proxy); !s.ok()) return s;
-  return bytes;  // uint8_t is unsigned char: no copy
+absl::Status WriteExrFile(const Image& image, const ExrOptions& options, const std::string& path) {
+  auto bytes = EncodeExr(image, options);
+  if (!bytes.ok()) return bytes.status();
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  if (file) file.write(bytes->data(), static_cast<std::streamsize>(bytes->size()));
+  if (file) file.close();
+  if (!file)
+    return absl::InternalError(
+        absl::StrCat("cannot write EXR '", path, "': ", std::strerror(errno)));
+  return absl::OkStatus();
 }
 
 absl::Status WritePngPreview(const Image& image, const std::string& path) {

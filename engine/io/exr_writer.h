@@ -1,9 +1,10 @@
-// OpenEXR output through OpenImageIO: RGBA half (default) or float, selectable compression,
-// metadata; to a file or to bytes in memory (single-part, which OpenImageIO 2.4 writes correctly).
+// OpenEXR output: RGBA half (default) or float, selectable compression, metadata; to a file or to
+// bytes in memory. Encoded by OpenEXR's core library with blocks of scanlines compressed in
+// parallel (exr_chunk_encoder.h); dwaa through OpenImageIO.
 #pragma once
 
-#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -27,18 +28,20 @@ struct ExrMetadata {
 struct ExrOptions {
   ExrPixelType pixel_type = ExrPixelType::kHalf;
   ExrCompression compression = ExrCompression::kZip;
-  // OpenEXR's own thread pool for compression, a process-wide setting of OpenImageIO
-  // ("exr_threads"): N pool threads, 0 all cores, -1 no pool (the caller compresses). The default
-  // is -1 because a process encoding several frames at once must not share the pool: a server's two
-  // concurrent frames waiting on OpenEXR 3.1's one global pool left a request waiting forever in
-  // OutputFile::writePixels once in a 5-minute load run. Only a lone encoder (aperture-render)
-  // should ask for a pool.
-  int threads = -1;
+  // zlib level of zip and zips (1 fastest .. 9 smallest). 4 is OpenEXR's own default from 3.2 on:
+  // about twice as fast as zlib's 6 for files about 1 % larger (docs/BENCHMARKS.md).
+  int zip_level = 4;
+  // Blocks of scanlines are compressed in parallel with oneTBB: > 0 in a task arena of that many
+  // threads, 0 in the calling thread's arena (a server encodes inside its render arena, so encode
+  // and render share the cores instead of oversubscribing them). dwaa, which OpenEXR 3.1's core
+  // library cannot write, goes through OpenImageIO on the calling thread.
+  int threads = 0;
   ExrMetadata metadata;
 };
 
 absl::Status WriteExrFile(const Image& image, const ExrOptions& options, const std::string& path);
-absl::StatusOr<std::vector<uint8_t>> EncodeExr(const Image& image, const ExrOptions& options);
+// The file's bytes, in a string so that a protobuf message can take them without a copy.
+absl::StatusOr<std::string> EncodeExr(const Image& image, const ExrOptions& options);
 
 // An 8-bit sRGB PNG for people to look at (linear values clamped to [0, 1]).
 absl::Status WritePngPreview(const Image& image, const std::string& path);

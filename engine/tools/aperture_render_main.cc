@@ -35,6 +35,7 @@ ABSL_FLAG(std::string, filter, "",
           "trilinear (default: each material's own)");
 ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1: pixel, 2: 2x2 square)");
 ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
+ABSL_FLAG(int, zip_level, 4, "zlib level of zip and zips compression, 1 (fastest) .. 9 (smallest)");
 ABSL_FLAG(bool, float_pixels, false, "write 32-bit float channels instead of half");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path");
 ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR");
@@ -145,6 +146,10 @@ int Run() {
   if (!compression.ok()) return Fail(compression.status());
   exr.compression = *compression;
   exr.pixel_type = absl::GetFlag(FLAGS_float_pixels) ? ExrPixelType::kFloat : ExrPixelType::kHalf;
+  exr.zip_level = absl::GetFlag(FLAGS_zip_level);
+  if (exr.zip_level < 1 || exr.zip_level > 9)
+    return Fail(absl::InvalidArgumentError(
+        absl::StrCat("--zip_level ", exr.zip_level, " is outside 1..9")));
   exr.threads = settings.threads;  // encoding follows rendering: the cores are free again
   if (auto s = ValidateRenderSettings(settings); !s.ok()) return Fail(s);
   // "both": raster, then raytrace, on the same scene in one run (the issue 7 benchmark).

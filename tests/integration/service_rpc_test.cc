@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <thread>
 
 #include "content_hash.h"
 #include "grpc/health/v1/health.grpc.pb.h"
@@ -281,6 +282,8 @@ TEST_F(ServiceTest, OversizedMessageIsRefused) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
 }
 
+// One request at a time (the host waits for each frame): every camera is rendered, in order,
+// and a bad one fails alone.
 TEST_F(ServiceTest, RenderStreamAnswersEveryCameraInOrder) {
   StartServer();
   const std::string scene_id = LoadDemoScene();
@@ -288,17 +291,19 @@ TEST_F(ServiceTest, RenderStreamAnswersEveryCameraInOrder) {
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
   auto stream = stub_->RenderStream(&context);
   constexpr int kFrames = 4;
+  std::vector<v1::RenderFrameResponse> frames;
+  v1::RenderFrameResponse response;
   for (int i = 0; i < kFrames; ++i) {
     v1::RenderFrameRequest request = FrameRequest(scene_id, 48, 32);
     request.set_frame_index(100 + i);
     request.mutable_camera()->mutable_position()->set_z(request.camera().position().z() - i);
     if (i == 2) request.mutable_camera()->set_yaw_deg(std::nan(""));  // fails alone
     ASSERT_TRUE(stream->Write(request));
+    ASSERT_TRUE(stream->Read(&response));
+    frames.push_back(response);
   }
   stream->WritesDone();
-  std::vector<v1::RenderFrameResponse> frames;
-  v1::RenderFrameResponse response;
-  while (stream->Read(&response)) frames.push_back(response);
+  EXPECT_FALSE(stream->Read(&response));
   ASSERT_TRUE(stream->Finish().ok());
   ASSERT_EQ(frames.size(), static_cast<size_t>(kFrames));
   for (int i = 0; i < kFrames; ++i) {
@@ -312,6 +317,79 @@ TEST_F(ServiceTest, RenderStreamAnswersEveryCameraInOrder) {
       EXPECT_FALSE(frames[i].exr().empty());
     }
   }
+}
+
+// The newest state wins: a burst of 20 requests to a server that renders slowly (1920x1080 on
+// one thread) is answered 20 times in order; the requests that were still waiting when a newer
+// one came are skipped, naming the newer frame, and the newest is always rendered.
+TEST_F(ServiceTest, RenderStreamSkipsSupersededRequestsAndRendersTheNewest) {
+  StartServer({"--threads=1"});
+  const std::string scene_id = LoadDemoScene();
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(120));
+  auto stream = stub_->RenderStream(&context);
+  constexpr int kFrames = 20;
+  for (int i = 0; i < kFrames; ++i) {
+    v1::RenderFrameRequest request = FrameRequest(scene_id, 1920, 1080);
+    request.set_frame_index(i);
+    ASSERT_TRUE(stream->Write(request));
+  }
+  stream->WritesDone();
+  std::vector<v1::RenderFrameResponse> frames;
+  v1::RenderFrameResponse response;
+  while (stream->Read(&response)) frames.push_back(response);
+  ASSERT_TRUE(stream->Finish().ok());
+  ASSERT_EQ(frames.size(), static_cast<size_t>(kFrames));
+  int rendered = 0;
+  for (int i = 0; i < kFrames; ++i) {
+    const v1::RenderFrameResponse& f = frames[i];
+    EXPECT_EQ(f.frame_index(), static_cast<uint64_t>(i));
+    EXPECT_EQ(f.status_code(), 0) << f.status_message();
+    if (f.outcome() == v1::FRAME_OUTCOME_RENDERED) {
+      ++rendered;
+      EXPECT_EQ(f.width(), 1920u);
+      EXPECT_FALSE(f.exr().empty());
+    } else {
+      EXPECT_EQ(f.outcome(), v1::FRAME_OUTCOME_SKIPPED_SUPERSEDED);
+      EXPECT_GT(f.superseded_by(), f.frame_index());
+      EXPECT_TRUE(f.exr().empty());
+    }
+  }
+  EXPECT_EQ(frames.back().outcome(), v1::FRAME_OUTCOME_RENDERED);
+  // The burst arrives within milliseconds, one frame takes over 100 ms: one or two frames can
+  // start before the newest is read, plus the newest.
+  EXPECT_LE(rendered, 4);
+  EXPECT_EQ(Info().frames_skipped(), static_cast<uint64_t>(kFrames - rendered));
+}
+
+// A request whose own deadline_ms passes while it waits is skipped as late, never rendered.
+TEST_F(ServiceTest, RenderStreamSkipsAFrameTooLateToMatter) {
+  StartServer({"--threads=1"});
+  const std::string scene_id = LoadDemoScene();
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(120));
+  auto stream = stub_->RenderStream(&context);
+  v1::RenderFrameRequest slow = FrameRequest(scene_id, 2560, 1440);
+  slow.set_frame_index(1);
+  v1::RenderFrameRequest late = FrameRequest(scene_id, 64, 64);
+  late.set_frame_index(2);
+  late.set_deadline_ms(1);  // waits behind the slow frame for far longer than 1 ms
+  ASSERT_TRUE(stream->Write(slow));
+  // The slow frame (about 150 ms of raster on one thread) has started; had the late one come at
+  // once, it would have superseded the slow one instead.
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  ASSERT_TRUE(stream->Write(late));
+  stream->WritesDone();
+  std::vector<v1::RenderFrameResponse> frames;
+  v1::RenderFrameResponse response;
+  while (stream->Read(&response)) frames.push_back(response);
+  ASSERT_TRUE(stream->Finish().ok());
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[0].outcome(), v1::FRAME_OUTCOME_RENDERED);
+  EXPECT_FALSE(frames[0].exr().empty());
+  EXPECT_EQ(frames[1].frame_index(), 2u);
+  EXPECT_EQ(frames[1].outcome(), v1::FRAME_OUTCOME_SKIPPED_LATE);
+  EXPECT_TRUE(frames[1].exr().empty());
 }
 
 TEST_F(ServiceTest, ServerInfoReportsLimits) {
