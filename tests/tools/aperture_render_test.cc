@@ -136,6 +136,21 @@ TEST_F(RenderCli, SpheresRenderInRaytraceModeAndRasterNamesIt) {
   EXPECT_NE(r.output.find("spheres[0].radius: must be > 0, is -1"), std::string::npos) << r.output;
 }
 
+// --zip_level: 1..9 reach the file (a faster level, a larger file); anything else is a usage error
+// naming the flag, and nothing is written.
+TEST_F(RenderCli, ZipLevelIsValidatedAndApplied) {
+  const std::string common = "--size 160x120 --nopreview --threads 2 -o ";
+  Result fast = RunRender("--zip_level 1 " + common + Path("z1.exr"));
+  Result small = RunRender("--zip_level 9 " + common + Path("z9.exr"));
+  ASSERT_EQ(fast.exit_code, 0) << fast.output;
+  ASSERT_EQ(small.exit_code, 0) << small.output;
+  EXPECT_GT(std::filesystem::file_size(Path("z1.exr")), std::filesystem::file_size(Path("z9.exr")));
+  const Result bad = RunRender("--zip_level 12 " + common + Path("z12.exr"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--zip_level 12 is outside 1..9"), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(Path("z12.exr")));
+}
+
 // --mode both: the raster frame, then the raytraced one next to it, timed in one run.
 TEST_F(RenderCli, ModeBothRendersRasterThenRaytrace) {
   const Result r = RunRender(
