@@ -282,6 +282,15 @@ TEST_F(ServiceTest, OversizedMessageIsRefused) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
 }
 
+// Every answer of a stream whose writes are done, in the order they came.
+std::vector<v1::RenderFrameResponse> ReadAllAnswers(
+    grpc::ClientReaderWriter<v1::RenderFrameRequest, v1::RenderFrameResponse>& stream) {
+  std::vector<v1::RenderFrameResponse> frames;
+  v1::RenderFrameResponse response;
+  while (stream.Read(&response)) frames.push_back(response);
+  return frames;
+}
+
 // One request at a time (the host waits for each frame): every camera is rendered, in order,
 // and a bad one fails alone.
 TEST_F(ServiceTest, RenderStreamAnswersEveryCameraInOrder) {
@@ -335,9 +344,7 @@ TEST_F(ServiceTest, RenderStreamSkipsSupersededRequestsAndRendersTheNewest) {
     ASSERT_TRUE(stream->Write(request));
   }
   stream->WritesDone();
-  std::vector<v1::RenderFrameResponse> frames;
-  v1::RenderFrameResponse response;
-  while (stream->Read(&response)) frames.push_back(response);
+  const std::vector<v1::RenderFrameResponse> frames = ReadAllAnswers(*stream);
   ASSERT_TRUE(stream->Finish().ok());
   ASSERT_EQ(frames.size(), static_cast<size_t>(kFrames));
   int rendered = 0;
@@ -380,9 +387,7 @@ TEST_F(ServiceTest, RenderStreamSkipsAFrameTooLateToMatter) {
   std::this_thread::sleep_for(std::chrono::milliseconds(30));
   ASSERT_TRUE(stream->Write(late));
   stream->WritesDone();
-  std::vector<v1::RenderFrameResponse> frames;
-  v1::RenderFrameResponse response;
-  while (stream->Read(&response)) frames.push_back(response);
+  const std::vector<v1::RenderFrameResponse> frames = ReadAllAnswers(*stream);
   ASSERT_TRUE(stream->Finish().ok());
   ASSERT_EQ(frames.size(), 2u);
   EXPECT_EQ(frames[0].outcome(), v1::FRAME_OUTCOME_RENDERED);
