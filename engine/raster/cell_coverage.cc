@@ -67,40 +67,76 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     pieces_.push_back(piece);
   }
   if (pieces_.empty()) return;
+  square_ = {-kHalf, -kHalf, kHalf, kHalf};
+  subdivided_ = false;
+  const size_t first = out.size();
+  Resolve(0, 0, with_moments, out);
+  if (!subdivided_) return;
+  // A subdivided cell gives each polygon one piece per square: summed back into one, in the
+  // order the polygons first appear.
+  crowded_out_.assign(out.begin() + static_cast<long>(first), out.end());
+  out.resize(first);
+  merged_.clear();
+  for (const CellPiece& piece : crowded_out_) {
+    auto [it, added] = merged_.try_emplace(piece.polygon, out.size());
+    if (added)
+      out.push_back(piece);
+    else
+      Accumulate(out[it->second].moments, piece.moments);
+  }
+}
 
-  auto moments_of = [&](const Piece& p) {
-    if (p.full) return CellMoments{1, 0, 0, 0};
-    return PolygonMoments(std::span(verts_).subspan(p.begin, p.end - p.begin), with_moments);
-  };
+CellMoments CellCoverage::SquareMoments() const {
+  // Over a rectangle the integral of x y is the area times the centre's x y.
+  const double area = (square_.x1 - square_.x0) * (square_.y1 - square_.y0);
+  const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
+  return {area, area * xc, area * yc, area * xc * yc};
+}
+
+CellMoments CellCoverage::MomentsOf(const Piece& p, bool with_moments) const {
+  if (p.full) return SquareMoments();
+  return PolygonMoments(std::span(verts_).subspan(p.begin, p.end - p.begin), with_moments);
+}
+
+void CellCoverage::Resolve(int depth, int stalled, bool with_moments, std::vector<CellPiece>& out) {
+  if (pieces_.empty()) return;
   if (pieces_.size() == 1) {
-    const CellMoments m = moments_of(pieces_[0]);
+    const CellMoments m = MomentsOf(pieces_[0], with_moments);
     if (m.area > 0) out.push_back({pieces_[0].polygon, m});
     return;
   }
 
-  // A full piece in front of every other at the cell's corners hides them all (depth
+  // A full piece in front of every other at the square's corners hides them all (depth
   // differences are linear, so the corners bound them). Only the piece nearest at the centre can
   // be that piece: a linear depth's value there is the mean of the corners'.
+  const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
   size_t centre_front = 0;
   for (size_t i = 1; i < pieces_.size(); ++i)
-    if (pieces_[i].depth.c > pieces_[centre_front].depth.c) centre_front = i;
+    if (pieces_[i].depth.At(xc, yc) > pieces_[centre_front].depth.At(xc, yc)) centre_front = i;
   if (const Piece& p = pieces_[centre_front]; p.full) {
     bool front = true;
     for (const Piece& q : pieces_) {
       if (&q == &p) continue;
-      for (double y : {-kHalf, kHalf})
-        for (double x : {-kHalf, kHalf}) front = front && p.depth.At(x, y) > q.depth.At(x, y);
+      for (double y : {square_.y0, square_.y1})
+        for (double x : {square_.x0, square_.x1})
+          front = front && p.depth.At(x, y) > q.depth.At(x, y);
       if (!front) break;
     }
     if (front) {
-      out.push_back({p.polygon, CellMoments{1, 0, 0, 0}});
+      out.push_back({p.polygon, SquareMoments()});
       return;
     }
   }
 
-  // Layers: a full piece behind all others over the whole cell (ground under runway paint,
+  const bool may_split = depth < kMaxDepth && stalled < kMaxStalledLevels;
+  if (pieces_.size() > kCrowdedPieces && may_split) {
+    Subdivide(depth, stalled, with_moments, out);
+    return;
+  }
+
+  // Layers: a full piece behind all others over the whole square (ground under runway paint,
   // under a building's edge), the others disjoint: each front piece keeps its own moments and
-  // the background gets the rest of the cell.
+  // the background gets the rest of the square.
   for (size_t b = 0; b < pieces_.size(); ++b) {
     const Piece& back = pieces_[b];
     if (!back.full) continue;
@@ -116,10 +152,10 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
       }
     }
     if (!behind || !PairwiseDisjoint(b)) break;
-    CellMoments rest{1, 0, 0, 0};
+    CellMoments rest = SquareMoments();
     for (size_t q = 0; q < pieces_.size(); ++q) {
       if (q == b) continue;
-      const CellMoments m = moments_of(pieces_[q]);
+      const CellMoments m = MomentsOf(pieces_[q], with_moments);
       if (m.area > 0) out.push_back({pieces_[q].polygon, m});
       rest = {rest.area - m.area, rest.mx - m.mx, rest.my - m.my, rest.mxy - m.mxy};
     }
@@ -130,7 +166,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
   // Pieces whose interiors are disjoint (neighbours in a mesh) need no visibility at all.
   if (PairwiseDisjoint(pieces_.size())) {
     for (const Piece& p : pieces_) {
-      const CellMoments m = moments_of(p);
+      const CellMoments m = MomentsOf(p, with_moments);
       if (m.area > 0) out.push_back({p.polygon, m});
     }
     return;
@@ -143,7 +179,66 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     PaintFrontToBack(with_moments, out);
     return;
   }
+  // The trapezoid decomposition costs about the cube of the pieces: a few more than a handful
+  // are split among quadrants first.
+  if (pieces_.size() > kDecomposePieces && may_split) {
+    Subdivide(depth, stalled, with_moments, out);
+    return;
+  }
   Decompose(with_moments, out);
+}
+
+// The square's four quadrants, each with the pieces clipped to it. A piece is full in a quadrant
+// when the quadrant's corners are inside it (then its vertices are the quadrant's). A quadrant
+// that keeps all of the square's pieces (a vertex many pieces share, pieces stacked on one
+// another) counts a stalled level: after kMaxStalledLevels of them it is resolved whole.
+void CellCoverage::Subdivide(int depth, int stalled, bool with_moments,
+                             std::vector<CellPiece>& out) {
+  subdivided_ = true;
+  if (StopNow()) return;
+  const Square whole = square_;
+  const std::vector<Piece> parent = pieces_;
+  const std::vector<Vec2> parent_verts = verts_;
+  const double xm = 0.5 * (whole.x0 + whole.x1), ym = 0.5 * (whole.y0 + whole.y1);
+  const Square quadrants[4] = {{whole.x0, whole.y0, xm, ym},
+                               {xm, whole.y0, whole.x1, ym},
+                               {whole.x0, ym, xm, whole.y1},
+                               {xm, ym, whole.x1, whole.y1}};
+  for (const Square& q : quadrants) {
+    pieces_.clear();
+    verts_.clear();
+    const Vec2 corners[4] = {{q.x0, q.y0}, {q.x1, q.y0}, {q.x1, q.y1}, {q.x0, q.y1}};
+    for (const Piece& p : parent) {
+      Piece sub = p;
+      sub.begin = verts_.size();
+      const auto first = parent_verts.begin() + static_cast<long>(p.begin);
+      const auto last = parent_verts.begin() + static_cast<long>(p.end);
+      if (!p.full) {
+        // Full when every corner is inside every edge (touching counts).
+        const size_t n = p.end - p.begin;
+        sub.full = true;
+        for (size_t i = 0; i < n && sub.full; ++i) {
+          const Vec2& a = first[static_cast<long>(i)];
+          const Vec2& b = first[static_cast<long>((i + 1) % n)];
+          for (const Vec2& c : corners)
+            sub.full = sub.full && (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) >= 0;
+        }
+      }
+      if (sub.full) {
+        verts_.insert(verts_.end(), std::begin(corners), std::end(corners));
+      } else {
+        clip_.assign(first, last);
+        ClipToRect(clip_, q.x0, q.y0, q.x1, q.y1, scratch_);
+        if (clip_.size() < 3 || !(PolygonMoments(clip_, false).area > 0)) continue;
+        verts_.insert(verts_.end(), clip_.begin(), clip_.end());
+      }
+      sub.end = verts_.size();
+      pieces_.push_back(sub);
+    }
+    square_ = q;
+    Resolve(depth + 1, pieces_.size() < parent.size() ? 0 : stalled + 1, with_moments, out);
+  }
+  square_ = whole;
 }
 
 // Pieces that overlap must not interpenetrate: their depth difference, linear, keeps one sign
@@ -216,7 +311,10 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
 // in front of it left of the cell; what it covers is removed from the rest.
 void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out) {
   std::vector<Vec2>& pool = pool_a_;
-  pool.assign({{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
+  pool.assign({{square_.x0, square_.y0},
+               {square_.x1, square_.y0},
+               {square_.x1, square_.y1},
+               {square_.x0, square_.y1}});
   regions_a_.assign({{0, 4}});
   for (size_t index : order_) {
     const Piece& piece = pieces_[index];
@@ -224,23 +322,43 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
     regions_b_.clear();
     CellMoments visible;
     const size_t n = piece.end - piece.begin;
+    double px0 = INFINITY, py0 = INFINITY, px1 = -INFINITY, py1 = -INFINITY;
+    for (size_t k = piece.begin; k < piece.end; ++k) {
+      px0 = std::min(px0, verts_[k].x), px1 = std::max(px1, verts_[k].x);
+      py0 = std::min(py0, verts_[k].y), py1 = std::max(py1, verts_[k].y);
+    }
+    auto keep = [&](std::span<const Vec2> region) {
+      regions_b_.push_back({pool_b_.size(), pool_b_.size() + region.size()});
+      pool_b_.insert(pool_b_.end(), region.begin(), region.end());
+    };
     for (const auto& [begin, end] : regions_a_) {
-      clip_.assign(pool_a_.begin() + static_cast<long>(begin),
-                   pool_a_.begin() + static_cast<long>(end));
+      const std::span<const Vec2> region(pool_a_.data() + begin, end - begin);
+      // A region beside the piece's bounding box stays whole: cutting it along the lines of the
+      // piece's edges would only multiply the regions (a crowded cell's painter would then grow
+      // them without bound).
+      double rx0 = INFINITY, ry0 = INFINITY, rx1 = -INFINITY, ry1 = -INFINITY;
+      for (const Vec2& v : region) {
+        rx0 = std::min(rx0, v.x), rx1 = std::max(rx1, v.x);
+        ry0 = std::min(ry0, v.y), ry1 = std::max(ry1, v.y);
+      }
+      if (rx1 <= px0 || rx0 >= px1 || ry1 <= py0 || ry0 >= py1) {
+        keep(region);
+        continue;
+      }
+      clip_.assign(region.begin(), region.end());
       for (size_t i = 0; i < n && !clip_.empty(); ++i) {
         const Vec2& p = verts_[piece.begin + i];
         const Vec2& q = verts_[piece.begin + (i + 1) % n];
-        if ((p.x == q.x && std::abs(p.x) == kHalf) || (p.y == q.y && std::abs(p.y) == kHalf))
-          continue;  // on the cell's border: cuts nothing inside
+        if ((p.x == q.x && (p.x == square_.x0 || p.x == square_.x1)) ||
+            (p.y == q.y && (p.y == square_.y0 || p.y == square_.y1)))
+          continue;  // on the square's border: cuts nothing inside
         const double a = -(q.y - p.y), b = q.x - p.x;
         if (a == 0 && b == 0) continue;
         const double c = -(a * p.x + b * p.y);
         outside_.assign(clip_.begin(), clip_.end());
         ClipByHalfPlane(outside_, -a, -b, -c, scratch_);
-        if (!outside_.empty()) {
-          regions_b_.push_back({pool_b_.size(), pool_b_.size() + outside_.size()});
-          pool_b_.insert(pool_b_.end(), outside_.begin(), outside_.end());
-        }
+        // A sliver of no area (a vertex on the line) is nothing left to paint.
+        if (outside_.size() >= 3 && PolygonMoments(outside_, false).area > 0) keep(outside_);
         ClipByHalfPlane(clip_, a, b, c, scratch_);
       }
       if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
@@ -288,12 +406,13 @@ void CellCoverage::AddDepthEqualityLine(const Piece& a, const Piece& b) {
                        std::abs(b.depth.a) + std::abs(b.depth.b) + std::abs(b.depth.c);
   if (std::abs(da) + std::abs(db) <= 1e-14 * scale) return;  // parallel planes never cross
   Vec2 p, q;
+  const Square& s = square_;
   if (std::abs(da) >= std::abs(db)) {  // x = -(db y + dc) / da
-    p = {-(db * -kHalf + dc) / da, -kHalf};
-    q = {-(db * kHalf + dc) / da, kHalf};
+    p = {-(db * s.y0 + dc) / da, s.y0};
+    q = {-(db * s.y1 + dc) / da, s.y1};
   } else {  // y = -(da x + dc) / db
-    p = {-kHalf, -(da * -kHalf + dc) / db};
-    q = {kHalf, -(da * kHalf + dc) / db};
+    p = {s.x0, -(da * s.x0 + dc) / db};
+    q = {s.x1, -(da * s.x1 + dc) / db};
   }
   double t0 = 0, t1 = 1;
   for (const Piece* piece : {&a, &b}) {
@@ -307,20 +426,20 @@ void CellCoverage::AddDepthEqualityLine(const Piece& a, const Piece& b) {
       if (!ClipParam(p, q, ea, eb, ec, t0, t1)) return;
     }
   }
-  const Vec2 s{p.x + (q.x - p.x) * t0, p.y + (q.y - p.y) * t0};
-  const Vec2 e{p.x + (q.x - p.x) * t1, p.y + (q.y - p.y) * t1};
-  if (s.y == e.y) {
-    breaks_.push_back(s.y);  // horizontal: a slab boundary is enough
-  } else if (s.y < e.y) {
-    segments_.push_back({s.x, s.y, e.x, e.y, -1});
+  const Vec2 from{p.x + (q.x - p.x) * t0, p.y + (q.y - p.y) * t0};
+  const Vec2 to{p.x + (q.x - p.x) * t1, p.y + (q.y - p.y) * t1};
+  if (from.y == to.y) {
+    breaks_.push_back(from.y);  // horizontal: a slab boundary is enough
+  } else if (from.y < to.y) {
+    segments_.push_back({from.x, from.y, to.x, to.y, -1});
   } else {
-    segments_.push_back({e.x, e.y, s.x, s.y, -1});
+    segments_.push_back({to.x, to.y, from.x, from.y, -1});
   }
 }
 
 void CellCoverage::Decompose(bool with_moments, std::vector<CellPiece>& out) {
   segments_.clear();
-  breaks_.assign({-kHalf, kHalf});
+  breaks_.assign({square_.y0, square_.y1});
   for (size_t pi = 0; pi < pieces_.size(); ++pi) {
     const Piece& p = pieces_[pi];
     const size_t n = p.end - p.begin;
@@ -360,7 +479,8 @@ void CellCoverage::Decompose(bool with_moments, std::vector<CellPiece>& out) {
   sums_.assign(pieces_.size(), CellMoments{});
   inside_.assign(pieces_.size(), 0);
   for (size_t k = 0; k + 1 < breaks_.size(); ++k) {
-    const double ya = std::max(breaks_[k], -kHalf), yb = std::min(breaks_[k + 1], kHalf);
+    if (k % 64 == 63 && StopNow()) return;
+    const double ya = std::max(breaks_[k], square_.y0), yb = std::min(breaks_[k + 1], square_.y1);
     if (!(ya < yb)) continue;
     const double ym = 0.5 * (ya + yb);
     active_.clear();

@@ -7,13 +7,19 @@
 // trapezoids between consecutive edges. Inside a trapezoid the set of covering polygons and their
 // depth order are constant, so the front polygon is found at its centre and receives the
 // trapezoid's exact area and moments. Interpenetrating polygons are therefore exact as well.
+//
+// A crowded cell (more than kCrowdedPieces pieces: a whole scene seen in one pixel, a far city)
+// is first cut into quadrants, recursively, each resolved with the pieces clipped to it, so its
+// work grows with the pieces and their edges' length, not with their square or cube (issue 19).
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "absl/container/flat_hash_map.h"
 #include "raster/aa_filter.h"
 #include "raster/screen_polygon.h"
 
@@ -26,15 +32,35 @@ struct CellPiece {
 
 class CellCoverage {
  public:
+  // More pieces than this in a square: cut it into four quadrants (the painter's order and the
+  // pairwise tests cost the square of the pieces).
+  static constexpr size_t kCrowdedPieces = 64;
+  // More interpenetrating pieces than this (no painter's order): quadrants rather than the
+  // trapezoid decomposition, whose cost grows with the cube of the pieces.
+  static constexpr size_t kDecomposePieces = 8;
+  // Quadrant levels below the cell at most (a square of 1/4096 pixel), and levels in a row that
+  // may keep every piece of their square; past either the square is resolved whole, exactly.
+  static constexpr int kMaxDepth = 12;
+  static constexpr int kMaxStalledLevels = 2;
+
+  // Asked while a crowded cell is cut into squares and between slabs of a decomposition: once it
+  // returns true the cell's result is incomplete (the caller abandons the frame). May be empty.
+  void SetStop(std::function<bool()> stop) { stop_ = std::move(stop); }
+  bool Stopped() const { return stopped_; }
+
   // Visible pieces in the cell [cx - 0.5, cx + 0.5] x [cy - 0.5, cy + 0.5]. `candidates` are
   // indices into `polygons`; pieces with zero visible area are omitted. Output is appended.
   void Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates, double cx,
                double cy, bool with_moments, std::vector<CellPiece>& out);
 
  private:
+  // The square being resolved, in cell-local coordinates (the cell is [-0.5, 0.5]^2).
+  struct Square {
+    double x0, y0, x1, y1;
+  };
   struct Piece {
     int polygon;
-    bool full;           // covers the whole cell
+    bool full;           // covers the whole square
     ScreenLinear depth;  // inv_depth in cell-local coordinates
     size_t begin, end;   // vertex range in verts_
   };
@@ -44,6 +70,11 @@ class CellCoverage {
     double XAt(double y) const { return x0 + (x1 - x0) * ((y - y0) / (y1 - y0)); }
   };
 
+  // Resolves pieces_ (clipped to square_) into `out`; may subdivide.
+  void Resolve(int depth, int stalled, bool with_moments, std::vector<CellPiece>& out);
+  void Subdivide(int depth, int stalled, bool with_moments, std::vector<CellPiece>& out);
+  CellMoments SquareMoments() const;
+  CellMoments MomentsOf(const Piece& p, bool with_moments) const;
   bool Separated(const Piece& a, const Piece& b) const;
   // Every pair of pieces (but piece `skip`) has disjoint interiors.
   bool PairwiseDisjoint(size_t skip) const;
@@ -74,6 +105,16 @@ class CellCoverage {
     int piece;
   };
   std::vector<Active> active_;
+  Square square_{-0.5, -0.5, 0.5, 0.5};
+  bool subdivided_ = false;
+  std::function<bool()> stop_;
+  bool stopped_ = false;
+  bool StopNow() {
+    if (!stopped_ && stop_ && stop_()) stopped_ = true;
+    return stopped_;
+  }
+  std::vector<CellPiece> crowded_out_;       // a subdivided cell's pieces before merging
+  absl::flat_hash_map<int, size_t> merged_;  // polygon -> its piece in the output
 };
 
 }  // namespace aperture

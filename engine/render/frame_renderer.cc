@@ -82,7 +82,8 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
     size_t kinds[3] = {0, 0, 0};
   };
   tbb::enumerable_thread_specific<Worker> workers([&] {
-    return Worker{LeafRenderer(geometry, shader, settings.aa, scene.sky, frame.region), {}, {}};
+    return Worker{
+        LeafRenderer(geometry, shader, settings.aa, scene.sky, frame.region, stop), {}, {}};
   });
   std::vector<double> task_us(tasks.size(), 0);
   // Tasks are taken strictly in plan order (most expensive first for the cost-driven plan).
@@ -102,7 +103,12 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
           SubdivideWindow(geometry, shape, settings.warnock, tasks[i].rect, tasks[i].polygons,
                           w.leaves);
           for (const LeafWindow& leaf : w.leaves) {
-            w.renderer.Render(leaf, frame.image);
+            // Asked inside a task too, so one long task (a crowded window) does not outlive its
+            // deadline; the check itself is throttled by the caller (server/stop_check.h).
+            if (!w.renderer.Render(leaf, frame.image) || (stop && stop())) {
+              stopped = true;
+              return;
+            }
             ++w.kinds[static_cast<int>(leaf.kind)];
           }
           task_us[i] = 1000.0 * MillisecondsSince(task_start);

@@ -53,7 +53,8 @@ struct RenderedFrame {
   FrameStats stats;
 };
 
-// Asked between tasks, from worker threads: true when the frame is no longer wanted (deadline,
+// Asked between tasks, between the leaf windows of a task and inside crowded cells, from worker
+// threads, so it must be cheap (throttle it): true when the frame is no longer wanted (deadline,
 // client cancellation, shutdown). The frame then ends with CANCELLED.
 using StopRequested = std::function<bool()>;
 

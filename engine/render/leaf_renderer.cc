@@ -4,24 +4,24 @@
 
 namespace aperture {
 
-void LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
+bool LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
   const PixelRect& r = leaf.rect;
   switch (leaf.kind) {
     case LeafWindow::Kind::kEmpty:
       for (int y = r.y0; y < r.y1; ++y)
         for (int x = r.x0; x < r.x1; ++x) Pixel(image, x, y) = sky_;
-      return;
+      return true;
     case LeafWindow::Kind::kCovered:
       for (int y = r.y0; y < r.y1; ++y)
         shader_.ShadeRow(leaf.cover, r.x0 + 0.5, y + 0.5, r.width(), &Pixel(image, r.x0, y));
-      return;
+      return true;
     case LeafWindow::Kind::kMixed:
-      RenderMixed(leaf, image);
-      return;
+      return RenderMixed(leaf, image);
   }
+  return true;
 }
 
-void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
+bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   const PixelRect& r = leaf.rect;
   const int span = shape_.cells_per_axis - 1;  // extra cells beyond the pixels
   const int nx = r.width() + span, ny = r.height() + span;
@@ -33,6 +33,7 @@ void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;
       const double cy = r.y0 + j + shape_.cell_offset + 0.5;
       coverage_.Compute(geo_.polygons, leaf.polygons, cx, cy, shape_.needs_moments, pieces_);
+      if (coverage_.Stopped()) return false;
     }
   }
   cell_begin_.back() = pieces_.size();
@@ -44,16 +45,31 @@ void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
     for (int px = 0; px < r.width(); ++px) {
       pixel_begin_.push_back(entries_.size());
       const size_t first = entries_.size();
+      // A pixel's pieces are few but for crowded cells (a whole scene in one pixel), whose
+      // polygons are found through a map rather than by a scan of the pixel's entries.
+      size_t pieces = 0;
+      for (int cy = 0; cy <= span; ++cy) {
+        const size_t row = static_cast<size_t>(py + cy) * nx + px;
+        pieces += cell_begin_[row + span + 1] - cell_begin_[row];
+      }
+      const bool crowded = pieces > kCrowdedPixelPieces;
+      if (crowded) pixel_entry_.clear();
       for (int cy = 0; cy <= span; ++cy) {
         for (int cx = 0; cx <= span; ++cx) {
           const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
           for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
             const double w = CellWeight(aa_, pieces_[k].moments, cx, cy);
-            bool merged = false;
-            for (size_t e = first; e < entries_.size(); ++e)
-              if (entries_[e].polygon == pieces_[k].polygon) entries_[e].weight += w, merged = true;
-            if (!merged)
-              entries_.push_back({pieces_[k].polygon, w, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
+            const int polygon = pieces_[k].polygon;
+            size_t e = first;
+            if (crowded) {
+              e = pixel_entry_.try_emplace(polygon, entries_.size()).first->second;
+            } else {
+              while (e < entries_.size() && entries_[e].polygon != polygon) ++e;
+            }
+            if (e < entries_.size())
+              entries_[e].weight += w;
+            else
+              entries_.push_back({polygon, w, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
           }
         }
       }
@@ -95,6 +111,7 @@ void LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
                                             b_sum + sky_.b * sky_w, 1.0f};
     }
   }
+  return true;
 }
 
 }  // namespace aperture

@@ -1,8 +1,10 @@
 // Renders one Warnock leaf window into the frame.
 #pragma once
 
+#include <functional>
 #include <vector>
 
+#include "absl/container/flat_hash_map.h"
 #include "raster/aa_filter.h"
 #include "raster/cell_coverage.h"
 #include "raster/warnock.h"
@@ -14,15 +16,21 @@ namespace aperture {
 class LeafRenderer {
  public:
   // `image` holds the pixels of `region` of the frame (row 0 = the region's top row).
+  // `stop` (may be empty) is asked inside crowded cells; see CellCoverage::SetStop.
   LeafRenderer(const FrameGeometry& geometry, const PolygonShader& shader, AntiAliasing aa,
-               Rgba sky, const PixelRect& region)
-      : geo_(geometry), shader_(shader), aa_(aa), shape_(ShapeOf(aa)), sky_(sky), region_(region) {}
+               Rgba sky, const PixelRect& region, std::function<bool()> stop = {})
+      : geo_(geometry), shader_(shader), aa_(aa), shape_(ShapeOf(aa)), sky_(sky), region_(region) {
+    coverage_.SetStop(std::move(stop));
+  }
 
-  // Not thread-safe (scratch buffers): one LeafRenderer per worker.
-  void Render(const LeafWindow& leaf, Image& image);
+  // Not thread-safe (scratch buffers): one LeafRenderer per worker. False when the stop test
+  // cut the leaf short (its pixels are then not to be used).
+  bool Render(const LeafWindow& leaf, Image& image);
 
  private:
-  void RenderMixed(const LeafWindow& leaf, Image& image);
+  bool RenderMixed(const LeafWindow& leaf, Image& image);
+  // More pieces than this in a pixel's cells: its polygons are merged through a map.
+  static constexpr size_t kCrowdedPixelPieces = 32;
   Rgba& Pixel(Image& image, int x, int y) const { return image.at(x - region_.x0, y - region_.y0); }
 
   const FrameGeometry& geo_;
@@ -39,7 +47,8 @@ class LeafRenderer {
     double weight;
     Vec2 point;  // the pixel centre
   };
-  std::vector<Weighted> entries_;    // of every pixel of the leaf, row by row
+  absl::flat_hash_map<int, size_t> pixel_entry_;  // polygon -> its entry, in a crowded pixel
+  std::vector<Weighted> entries_;                 // of every pixel of the leaf, row by row
   std::vector<size_t> pixel_begin_;  // pixel i's entries: [pixel_begin_[i], pixel_begin_[i + 1])
   std::vector<size_t> order_;        // entries by polygon
   std::vector<Vec2> points_;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <thread>
+#include <utility>
 
 #include "content_hash.h"
 #include "grpc/health/v1/health.grpc.pb.h"
@@ -221,6 +222,32 @@ TEST_F(ServiceTest, RenderFrameReturnsExrAndTimings) {
   EXPECT_GT(response.timings().raster_ms(), 0);
   EXPECT_GE(response.timings().total_ms(), response.timings().raster_ms());
   EXPECT_EQ(Info().frames_rendered(), rendered_before + 1);
+}
+
+// Issue 19: a 1 x 1 frame of the demo puts the whole scene in one pixel (1,460 polygons in four
+// cells). It took 10-17 s and held a render slot past any deadline; now it must come back within
+// its 200 ms deadline (rendered or DEADLINE_EXCEEDED), and the next frame must not wait.
+TEST_F(ServiceTest, WholeSceneInOnePixelKeepsItsDeadlineAndBlocksNothing) {
+  StartServer();
+  const std::string scene_id = LoadDemoScene();
+  for (const auto& [width, height] : {std::pair{1, 1}, std::pair{640, 1}}) {
+    const auto start = std::chrono::steady_clock::now();
+    v1::RenderFrameResponse tiny;
+    const grpc::Status status = Render(FrameRequest(scene_id, width, height), 0.2, &tiny);
+    const double tiny_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_TRUE(status.ok() || status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED)
+        << status.error_message();
+    if (status.ok()) {
+      EXPECT_EQ(tiny.width(), static_cast<uint32_t>(width));
+    }
+    EXPECT_LT(tiny_ms, 1000) << width << "x" << height;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  v1::RenderFrameResponse response;
+  const grpc::Status status = Render(FrameRequest(scene_id, 320, 180), 30, &response);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
 TEST_F(ServiceTest, RenderFrameRegionReturnsOnlyTheRegion) {

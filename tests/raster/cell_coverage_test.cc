@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -114,6 +115,117 @@ TEST(CellCoverage, CrowdedCellsOfTrianglesAtManyDepthsMatchSampling) {
 TEST(CellCoverage, TrianglesOnCellSidesAndCornersMatchSampling) {
   CheckRandomTriangles(98, 0.25, true);
   CheckRandomTriangles(99, 0.25);
+}
+
+// The same by a depth buffer of n x n samples, polygon by polygon over each one's bounding box
+// (for cells of thousands of small polygons).
+std::vector<double> DepthBufferAreas(const std::vector<ScreenPolygon>& polys, int n) {
+  std::vector<double> best(static_cast<size_t>(n) * n, -INFINITY);
+  std::vector<int> id(best.size(), -1);
+  auto index = [n](double v) {
+    return std::clamp(static_cast<int>(std::floor((v + 0.5) * n)), 0, n - 1);
+  };
+  for (size_t k = 0; k < polys.size(); ++k) {
+    const ScreenPolygon& p = polys[k];
+    for (int j = index(p.min_y); j <= index(p.max_y); ++j) {
+      for (int i = index(p.min_x); i <= index(p.max_x); ++i) {
+        const double x = -0.5 + (i + 0.5) / n, y = -0.5 + (j + 0.5) / n;
+        const size_t s = static_cast<size_t>(j) * n + i;
+        if (!p.Contains(x, y)) continue;
+        const double w = p.inv_depth.At(x, y);
+        if (w > best[s]) best[s] = w, id[s] = static_cast<int>(k);
+      }
+    }
+  }
+  std::vector<double> area(polys.size(), 0);
+  for (int k : id)
+    if (k >= 0) area[k] += 1.0 / (double(n) * n);
+  return area;
+}
+
+// Areas per polygon from Compute against `n` x `n` samples; also checks the areas sum to the
+// covered fraction. Returns the largest per-polygon difference.
+double WorstAreaError(const std::vector<ScreenPolygon>& polys, int n, CellCoverage& coverage) {
+  std::vector<int> candidates(polys.size());
+  for (size_t k = 0; k < polys.size(); ++k) candidates[k] = static_cast<int>(k);
+  std::vector<CellPiece> out;
+  coverage.Compute(polys, candidates, 0, 0, true, out);
+  std::vector<double> exact(polys.size(), 0);
+  std::vector<int> seen(polys.size(), 0);
+  for (const CellPiece& piece : out) {
+    exact[piece.polygon] += piece.moments.area;
+    ++seen[piece.polygon];
+  }
+  for (size_t k = 0; k < polys.size(); ++k)
+    EXPECT_LE(seen[k], 1) << "a crowded cell gives each polygon one piece; polygon " << k;
+  const std::vector<double> sampled = DepthBufferAreas(polys, n);
+  double worst = 0;
+  for (size_t k = 0; k < polys.size(); ++k)
+    worst = std::max(worst, std::abs(exact[k] - sampled[k]));
+  return worst;
+}
+
+// Issue 19: a cell that 1,000+ pieces reach (a whole scene seen in one pixel). Small triangles
+// with crossing depth planes (interpenetrating: no painter's order) plus a ground under them.
+TEST(CellCoverage, ThousandsOfInterpenetratingPiecesMatchSampling) {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> centre(-0.55, 0.55), offset(-0.06, 0.06), slope(-0.5, 0.5),
+      depth(1, 2);
+  std::vector<ScreenPolygon> polys;
+  polys.push_back(Triangle({-5, -5}, {5, -5}, {0, 5}, {0, 0, 0.5}));  // ground, behind all
+  while (polys.size() < 1500) {
+    const Vec2 c{centre(rng), centre(rng)};
+    const Vec2 a{c.x + offset(rng), c.y + offset(rng)}, b{c.x + offset(rng), c.y + offset(rng)},
+        d{c.x + offset(rng), c.y + offset(rng)};
+    if (std::abs(SignedArea({a, b, d})) < 1e-6) continue;
+    polys.push_back(Triangle(a, b, d, {slope(rng), slope(rng), depth(rng)}));
+  }
+  CellCoverage coverage;
+  // 2048^2 samples: a polygon's sampled area errs by about its perimeter / 2048.
+  EXPECT_LT(WorstAreaError(polys, 2048, coverage), 1e-3);
+}
+
+TEST(CellCoverage, ThousandsOfStackedAndFannedPiecesMatchSampling) {
+  std::vector<ScreenPolygon> polys;
+  // A fan of 1,200 thin triangles meeting at one point inside the cell: every square around the
+  // point keeps all of them (the stalled levels of the subdivision).
+  const Vec2 hub{0.13, -0.21};
+  const int fan = 1200;
+  for (int k = 0; k < fan; ++k) {
+    const double a0 = 2 * M_PI * k / fan, a1 = 2 * M_PI * (k + 1) / fan;
+    polys.push_back(Triangle(hub, {hub.x + 2 * std::cos(a0), hub.y + 2 * std::sin(a0)},
+                             {hub.x + 2 * std::cos(a1), hub.y + 2 * std::sin(a1)},
+                             {0, 0, 1.0 + 0.001 * (k % 7)}));
+  }
+  // And 300 squares stacked at distinct depths over the middle (a painter's order).
+  for (int k = 0; k < 300; ++k) {
+    const double h = 0.05 + 0.001 * k;
+    ScreenPolygon p;
+    p.vertices = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
+    p.Finalize();
+    p.inv_depth = {0, 0, 2.0 + 0.01 * k};
+    polys.push_back(p);
+  }
+  CellCoverage coverage;
+  EXPECT_LT(WorstAreaError(polys, 1024, coverage), 2e-3);
+}
+
+TEST(CellCoverage, StopTestCutsACrowdedCellShort) {
+  std::vector<ScreenPolygon> polys;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> pos(-0.5, 0.5), slope(-0.5, 0.5);
+  for (int k = 0; k < 400; ++k)
+    polys.push_back(Triangle({pos(rng), pos(rng)}, {pos(rng), pos(rng)}, {pos(rng), pos(rng)},
+                             {slope(rng), slope(rng), 2}));
+  std::vector<int> candidates(polys.size());
+  for (size_t k = 0; k < polys.size(); ++k) candidates[k] = static_cast<int>(k);
+  CellCoverage coverage;
+  int asked = 0;
+  coverage.SetStop([&] { return ++asked >= 3; });
+  std::vector<CellPiece> out;
+  coverage.Compute(polys, candidates, 0, 0, false, out);
+  EXPECT_TRUE(coverage.Stopped());
+  EXPECT_EQ(asked, 3);
 }
 
 }  // namespace
