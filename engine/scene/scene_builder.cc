@@ -426,7 +426,7 @@ class Builder {
       scene_.polygons.push_back(std::move(base));
       return absl::OkStatus();
     }
-    auto triangles = TriangulateEarClipping(flat);
+    auto triangles = TriangulatePolygon(flat);
     if (!triangles.ok()) return Invalid(where, std::string(triangles.status().message()));
     for (const auto& tri : *triangles) {
       ScenePolygon piece = base;

@@ -1,4 +1,5 @@
-// Splits a simple planar polygon into triangles (ear clipping), or keeps it whole when convex.
+// Splits a simple planar polygon into triangles in O(n log n) (monotone pieces), or keeps it whole
+// when convex.
 #pragma once
 
 #include <array>
@@ -14,9 +15,10 @@ double SignedArea(const std::vector<Vec2>& polygon);
 
 bool IsConvex(const std::vector<Vec2>& polygon);
 
-// Triangles as vertex index triples of a simple polygon given in 2D (either winding).
-// Fails on self-intersecting input that leaves no ear.
-absl::StatusOr<std::vector<std::array<int, 3>>> TriangulateEarClipping(
+// Triangles as counter-clockwise vertex index triples of a simple polygon given in 2D (either
+// winding): n - 2 of them, O(n log n) time. Fails with InvalidArgument on input the sweep finds
+// self-intersecting (not every self-intersection is found).
+absl::StatusOr<std::vector<std::array<int, 3>>> TriangulatePolygon(
     const std::vector<Vec2>& polygon);
 
 }  // namespace aperture

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cmath>
+
 #include "scene/demo_scene.h"
 #include "support/test_scenes.h"
 
@@ -65,6 +68,43 @@ TEST(SceneBuilder, DemoSceneBuilds) {
   ASSERT_TRUE(scene.ok()) << scene.status();
   EXPECT_GT(scene->polygons.size(), 1000u);
   EXPECT_EQ(scene->textures.size(), 3u);
+}
+
+// Issue 19: a big concave polygon (a 200,000-vertex star on the ground) is triangulated in
+// O(n log n) while the scene loads; ear clipping took minutes. Generous bound; the figure is in
+// docs/BENCHMARKS.md.
+TEST(SceneBuilder, BigConcavePolygonLoadsQuickly) {
+  v1::Scene proto;
+  proto.add_materials()->set_id("m");
+  v1::Mesh* mesh = proto.add_meshes();
+  mesh->set_id("star");
+  mesh->set_material_id("m");
+  v1::Polygon* poly = mesh->add_polygons();
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const double a = -2 * M_PI * (i + 0.5) / n, r = i % 2 == 0 ? 100 : 60 + (i % 7);
+    v1::Vec3* v = poly->add_vertices();
+    v->set_x(r * std::cos(a));
+    v->set_z(r * std::sin(a));
+  }
+  const auto start = std::chrono::steady_clock::now();
+  auto scene = BuildScene(proto);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  EXPECT_EQ(scene->polygons.size(), static_cast<size_t>(n - 2));
+  double area = 0;
+  for (const ScenePolygon& p : scene->polygons) {
+    const Vec3 e1 = p.vertices[1] - p.vertices[0], e2 = p.vertices[2] - p.vertices[0];
+    area += 0.5 * Length(Cross(e1, e2));
+  }
+  double expected = 0;  // the star's own area, by the shoelace formula in (x, z)
+  for (int i = 0; i < n; ++i) {
+    const v1::Vec3 &a = poly->vertices(i), &b = poly->vertices((i + 1) % n);
+    expected += 0.5 * (a.x() * b.z() - b.x() * a.z());
+  }
+  EXPECT_NEAR(area, std::abs(expected), 1e-9 * std::abs(expected));
+  EXPECT_LT(seconds, 10.0);
 }
 
 }  // namespace
