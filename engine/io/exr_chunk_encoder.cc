@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "io/exr_deflate.h"
 
 namespace aperture {
 namespace {
@@ -71,7 +72,12 @@ struct Batch {
 class ChunkWriter {
  public:
   ChunkWriter(const Image& image, const ExrOptions& options, Sink& sink)
-      : image_(image), half_(options.pixel_type == ExrPixelType::kHalf), sink_(sink) {
+      : image_(image),
+        half_(options.pixel_type == ExrPixelType::kHalf),
+        deflate_(options.compression == ExrCompression::kZip ||
+                 options.compression == ExrCompression::kZips),
+        zip_level_(options.zip_level),
+        sink_(sink) {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.user_data = &sink_;
     init.write_fn = &WriteToSink;
@@ -164,6 +170,10 @@ class ChunkWriter {
       if (r == EXR_ERR_SUCCESS) {
         PointAtRows(encode, y);
         if (!initialized) r = exr_encoding_choose_default_routines(context_, part_, &encode);
+        if (!initialized && deflate_) {
+          encode.compress_fn = &DeflateExrChunk;
+          encode.encoding_user_data = const_cast<int*>(&zip_level_);
+        }
         initialized = true;
       }
       // The writes happen in order in the pipeline's last stage, not here.
@@ -209,6 +219,8 @@ class ChunkWriter {
 
   const Image& image_;
   const bool half_;
+  const bool deflate_;  // zip and zips by libdeflate (io/exr_deflate.h)
+  const int zip_level_;
   Sink& sink_;
   exr_context_t context_ = nullptr;
   int part_ = 0;

@@ -35,7 +35,8 @@ ABSL_FLAG(std::string, filter, "",
           "trilinear (default: each material's own)");
 ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1: pixel, 2: 2x2 square)");
 ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
-ABSL_FLAG(int, zip_level, 4, "zlib level of zip and zips compression, 1 (fastest) .. 9 (smallest)");
+ABSL_FLAG(int, zip_level, 4,
+          "deflate level of zip and zips compression (libdeflate), 1 (fastest) .. 9 (smallest)");
 ABSL_FLAG(bool, float_pixels, false, "write 32-bit float channels instead of half");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path");
 ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR");
