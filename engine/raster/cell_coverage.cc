@@ -30,8 +30,10 @@ bool ClipParam(const Vec2& p, const Vec2& q, double a, double b, double c, doubl
 
 void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
                            double cx, double cy, bool with_moments, std::vector<CellPiece>& out) {
-  pieces_.clear();
-  verts_.clear();
+  // First which polygons reach the cell and how (no clipping yet): a cell wholly covered by the
+  // polygon in front of all the others is then answered without clipping any of them.
+  reach_.clear();
+  crossing_.clear();
   for (int index : candidates) {
     const ScreenPolygon& sp = polygons[index];
     if (sp.max_x <= cx - kHalf || sp.min_x >= cx + kHalf || sp.max_y <= cy - kHalf ||
@@ -41,7 +43,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     // polygon when one edge is negative all over it, inside when all are non-negative; only
     // the edges that cross the cell clip it.
     bool outside = false;
-    crossing_.clear();
+    const size_t first_edge = crossing_.size();
     for (const ScreenLinear& e : sp.edges) {
       const double d = e.At(cx, cy), r = kHalf * (std::abs(e.a) + std::abs(e.b));
       if (d + r <= 0) {
@@ -50,14 +52,46 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
       }
       if (d - r < 0) crossing_.push_back({e.a, e.b, d});
     }
-    if (outside) continue;
+    if (outside) {
+      crossing_.resize(first_edge);
+      continue;
+    }
+    reach_.push_back({index,
+                      {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)},
+                      first_edge,
+                      crossing_.size()});
+  }
+  if (reach_.empty()) return;
+  if (reach_.size() > 1) {
+    // The test Resolve makes first (below), on every polygon that reaches the cell: when it
+    // holds here it holds for the clipped pieces too, which are these less the empty ones.
+    size_t front = 0;
+    for (size_t i = 1; i < reach_.size(); ++i)
+      if (reach_[i].depth.c > reach_[front].depth.c) front = i;
+    const Reach& f = reach_[front];
+    bool hides_all = f.edges_begin == f.edges_end;
+    for (size_t i = 0; i < reach_.size() && hides_all; ++i) {
+      if (i == front) continue;
+      for (double y : {-kHalf, kHalf})
+        for (double x : {-kHalf, kHalf})
+          hides_all = hides_all && f.depth.At(x, y) > reach_[i].depth.At(x, y);
+    }
+    if (hides_all) {
+      out.push_back({f.polygon, CellMoments{1, 0, 0, 0}});
+      return;
+    }
+  }
+  pieces_.clear();
+  verts_.clear();
+  for (const Reach& r : reach_) {
     Piece piece;
-    piece.polygon = index;
-    piece.depth = {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)};
-    piece.full = crossing_.empty();
+    piece.polygon = r.polygon;
+    piece.depth = r.depth;
+    piece.full = r.edges_begin == r.edges_end;
     piece.begin = verts_.size();
     clip_.assign({{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
-    for (const ScreenLinear& e : crossing_) {
+    for (size_t k = r.edges_begin; k < r.edges_end; ++k) {
+      const ScreenLinear& e = crossing_[k];
       ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
       if (clip_.empty()) break;
     }

@@ -86,6 +86,14 @@ class CellCoverage {
   void PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out);
   void Decompose(bool with_moments, std::vector<CellPiece>& out);
 
+  // A polygon reaching the cell, before clipping: its crossing edges are
+  // crossing_[edges_begin, edges_end) (none: it covers the cell).
+  struct Reach {
+    int polygon;
+    ScreenLinear depth;
+    size_t edges_begin, edges_end;
+  };
+  std::vector<Reach> reach_;
   std::vector<Piece> pieces_;
   std::vector<Vec2> verts_, clip_, scratch_;
   std::vector<ScreenLinear> crossing_;

@@ -67,6 +67,41 @@ v1::Scene MakeTriangleFieldScene(int count, double screen_size, uint32_t seed) {
   return scene;
 }
 
+v1::Scene MakeTrisScene(int count, double radius_px, int width, int height, uint32_t seed) {
+  v1::Scene scene;
+  scene.set_name(absl::StrCat("tris-", count));
+  SetColor(scene.mutable_sky(), 0, 0, 0);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  constexpr int kPalette = 64;
+  for (int i = 0; i < kPalette; ++i) {
+    v1::Material* m = scene.add_materials();
+    m->set_id(absl::StrCat("c", i));
+    m->set_unlit(true);
+    SetColor(m->mutable_base_color(), static_cast<float>(unit(rng)), static_cast<float>(unit(rng)),
+             static_cast<float>(unit(rng)));
+  }
+  v1::Mesh* mesh = scene.add_meshes();
+  mesh->set_id("tris");
+  const double tan_half = std::tan(30.0 * 3.14159265358979323846 / 180.0);
+  const double pixel = 2 * tan_half / height;  // view-plane size of a pixel at depth 1
+  for (int i = 0; i < count; ++i) {
+    const double depth = 100 - 90 * (i + 0.5) / count;  // later triangles nearer
+    const double cx = (unit(rng) - 0.5) * width, cy = (unit(rng) - 0.5) * height;  // pixels
+    v1::Polygon* p = mesh->add_polygons();
+    p->set_material_id(absl::StrCat("c", static_cast<int>(unit(rng) * kPalette) % kPalette));
+    for (int k = 0; k < 3; ++k) {
+      // A vertex uniform in the disc of radius_px around the centre.
+      const double r = radius_px * std::sqrt(unit(rng)), a = 6.283185307179586 * unit(rng);
+      v1::Vec3* v = p->add_vertices();
+      v->set_x((cx + r * std::cos(a)) * pixel * depth);
+      v->set_y(-(cy + r * std::sin(a)) * pixel * depth);
+      v->set_z(-depth);
+    }
+  }
+  return scene;
+}
+
 v1::Scene MakeSkewedCityScene(uint32_t seed) {
   v1::Scene scene;
   scene.set_name("skewed-city");

@@ -12,6 +12,14 @@ namespace aperture {
 // across on a 1920 x 1080 image with a 60 degree vertical field of view; lit, untextured.
 v1::Scene MakeTriangleFieldScene(int count, double screen_size = 40, uint32_t seed = 1);
 
+// Issue 19's tris-N scene, the peer benchmark's (scripts/bench-peers.sh): `count` triangles with
+// centres uniform over a `width` x `height` frame (60 degree vertical field of view, camera at the
+// origin looking along -z), vertices at most `radius_px` pixels from their centre, flat unlit
+// colours from a palette of 64; each later triangle lies in front of every earlier one (depths
+// from 100 down to 10, facing the camera), so the frame is the triangles painted in order.
+v1::Scene MakeTrisScene(int count, double radius_px = 12, int width = 1920, int height = 1080,
+                        uint32_t seed = 19);
+
 // Issue 6's skewed scene: a dense city block (a 30 x 30 grid of buildings, 4,500 polygons) in
 // the lower-left corner of the view of a camera at the origin looking along -z; sky elsewhere.
 v1::Scene MakeSkewedCityScene(uint32_t seed = 2);

@@ -1,5 +1,6 @@
 #include "scene/builtin_scenes.h"
 
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/demo_scene.h"
@@ -11,8 +12,15 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   // The benchmark scenes are laid out around a camera at the origin looking along -z.
   if (name == "triangles") return BuiltinScene{MakeTriangleFieldScene(10000), Camera{}};
   if (name == "skewed") return BuiltinScene{MakeSkewedCityScene(), Camera{}};
+  if (name.rfind("tris-", 0) == 0) {
+    int count = 0;
+    if (!absl::SimpleAtoi(name.substr(5), &count) || count < 1 || count > kMaxTrisCount)
+      return absl::InvalidArgumentError(
+          absl::StrCat("built-in scene '", name, "': tris-N takes N in 1..", kMaxTrisCount));
+    return BuiltinScene{MakeTrisScene(count), Camera{}};
+  }
   return absl::InvalidArgumentError(
-      absl::StrCat("unknown built-in scene '", name, "' (demo, triangles, skewed)"));
+      absl::StrCat("unknown built-in scene '", name, "' (demo, triangles, skewed, tris-N)"));
 }
 
 }  // namespace aperture

@@ -1,6 +1,7 @@
 // The scenes built into every tool and the server, by name: "demo" (the airfield on final
-// approach), "triangles" (10,000 random triangles) and "skewed" (a dense city block in one corner
-// of the view). Each comes with the camera it is meant to be seen from.
+// approach), "triangles" (10,000 random triangles), "skewed" (a dense city block in one corner
+// of the view) and "tris-N" (issue 19's peer-benchmark scene of N triangles painted in order).
+// Each comes with the camera it is meant to be seen from.
 #pragma once
 
 #include <string>
@@ -15,6 +16,9 @@ struct BuiltinScene {
   v1::Scene scene;
   Camera camera;
 };
+
+// The largest N of "tris-N" (the peer benchmark's largest scene).
+inline constexpr int kMaxTrisCount = 1000000;
 
 // InvalidArgument naming the known scenes for any other name.
 absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name);

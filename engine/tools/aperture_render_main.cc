@@ -14,6 +14,7 @@
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
+#include "scene/builtin_scenes.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
@@ -22,7 +23,8 @@
 
 ABSL_FLAG(std::string, scene, "demo",
           "'demo' (built-in airfield), 'triangles' (10,000 random triangles), 'skewed' (a city "
-          "block in one corner of the view) or a scene JSON file");
+          "block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
+          "benchmark's) or a scene JSON file");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
           "or 0,1.7,0,0,0,0 for a scene file");
@@ -106,9 +108,10 @@ int Run() {
   if (absl::GetFlag(FLAGS_calibrate)) return RunCalibration();
   // Options first, so that a mistake is reported before any work is done.
   const std::string scene_arg = absl::GetFlag(FLAGS_scene);
-  const bool demo = scene_arg == "demo", triangles = scene_arg == "triangles",
-             skewed = scene_arg == "skewed";
-  Camera camera = demo ? DemoCamera() : Camera{.position = {0, triangles || skewed ? 0.0 : 1.7, 0}};
+  // A built-in scene by name (scene/builtin_scenes.h) comes with its camera; else a file.
+  auto builtin = FindBuiltinScene(scene_arg);
+  if (!builtin.ok() && scene_arg.rfind("tris-", 0) == 0) return Fail(builtin.status());
+  Camera camera = builtin.ok() ? builtin->camera : Camera{.position = {0, 1.7, 0}};
   if (const std::string spec = absl::GetFlag(FLAGS_camera); !spec.empty()) {
     auto parsed = ParseCameraSpec(spec);
     if (!parsed.ok()) return Fail(parsed.status());
@@ -167,10 +170,7 @@ int Run() {
   trace_options.max_depth = absl::GetFlag(FLAGS_max_depth);
   if (auto s = ValidateTraceOptions(trace_options); !s.ok()) return Fail(s);
 
-  auto built = demo        ? BuildScene(MakeDemoScene())
-               : triangles ? BuildScene(MakeTriangleFieldScene(10000))
-               : skewed    ? BuildScene(MakeSkewedCityScene())
-                           : LoadSceneFile(scene_arg);
+  auto built = builtin.ok() ? BuildScene(builtin->scene) : LoadSceneFile(scene_arg);
   if (!built.ok()) return Fail(built.status());
   if (built->name.empty()) built->name = scene_arg;
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "scene/builtin_scenes.h"
 #include "scene/demo_scene.h"
 #include "support/test_scenes.h"
 
@@ -105,6 +106,38 @@ TEST(SceneBuilder, BigConcavePolygonLoadsQuickly) {
   }
   EXPECT_NEAR(area, std::abs(expected), 1e-9 * std::abs(expected));
   EXPECT_LT(seconds, 10.0);
+}
+
+// Issue 19's tris-N scene (the peer benchmark's): N triangles, each later one nearer, vertices
+// within 12 pixels of a centre inside the 1920 x 1080 frame of the camera at the origin.
+TEST(SceneBuilder, TrisSceneByNameHasItsTrianglesInPaintingOrder) {
+  auto builtin = FindBuiltinScene("tris-500");
+  ASSERT_TRUE(builtin.ok()) << builtin.status();
+  auto scene = BuildScene(builtin->scene);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  ASSERT_EQ(scene->polygons.size(), 500u);
+  const double pixel = 2 * std::tan(M_PI / 6) / 1080;  // at depth 1
+  double previous_depth = INFINITY;
+  for (const ScenePolygon& p : scene->polygons) {
+    ASSERT_EQ(p.vertices.size(), 3u);
+    const double depth = -p.vertices[0].z;
+    EXPECT_LT(depth, previous_depth);  // later in front
+    previous_depth = depth;
+    Vec3 c{0, 0, 0};
+    for (const Vec3& v : p.vertices) c = c + v * (1.0 / 3);
+    for (const Vec3& v : p.vertices) {
+      EXPECT_EQ(v.z, p.vertices[0].z);
+      // Within 2 R of the centroid (each vertex is within R of the generating centre).
+      EXPECT_LE(std::hypot(v.x - c.x, v.y - c.y) / (pixel * depth), 24.0 + 1e-9);
+      EXPECT_LE(std::abs(v.x / (pixel * depth)), 960 + 12 + 1e-9);
+      EXPECT_LE(std::abs(v.y / (pixel * depth)), 540 + 12 + 1e-9);
+    }
+  }
+  for (const char* bad : {"tris-0", "tris-x", "tris-1000001"}) {
+    auto refused = FindBuiltinScene(bad);
+    ASSERT_FALSE(refused.ok()) << bad;
+    EXPECT_NE(refused.status().message().find("1..1000000"), std::string::npos) << bad;
+  }
 }
 
 }  // namespace

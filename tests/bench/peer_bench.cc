@@ -1,0 +1,392 @@
+// Issue 19's peer benchmark: Mesa llvmpipe (through OSMesa) against Aperture on the same frames,
+// timed interleaved in one run, each image scored against a dense box reference.
+//
+//   tris-N   N flat triangles (engine/scene/benchmark_scenes.h, MakeTrisScene), painted in order:
+//            llvmpipe 1x and 4x MSAA against Aperture box1 and box2 edges.
+//   plane-T  DESIGN.md's grazing plane pitched down T degrees, 1024^2 checkerboard of 8 x 8
+//            cells repeated every 4 m: llvmpipe trilinear against Aperture trilinear and aniso.
+//
+// Usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] [--psnr_pixels P]
+// (scripts/bench-peers.sh builds and runs it with LP_NUM_THREADS=2; docs/BENCHMARKS.md.)
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/osmesa.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "raster/projection.h"
+#include "render/frame_renderer.h"
+#include "scene/benchmark_scenes.h"
+#include "scene/scene_builder.h"
+#include "support/reference_render.h"
+#include "support/test_scenes.h"
+
+namespace aperture {
+namespace {
+
+constexpr int kWidth = 1920, kHeight = 1080;
+constexpr double kFovDeg = 60;
+
+double Now() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+// The OSMesa context (llvmpipe), with a 4x multisampled framebuffer object for MSAA.
+class Peer {
+ public:
+  bool Init() {
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              24,
+                              OSMESA_PROFILE,
+                              OSMESA_COMPAT_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              3,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              0,
+                              0};
+    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    if (context_ == nullptr) return false;
+    pixels_.resize(static_cast<size_t>(kWidth) * kHeight);
+    if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, kWidth, kHeight))
+      return false;
+    std::printf("peer: %s, %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                reinterpret_cast<const char*>(glGetString(GL_VERSION)));
+    glGenFramebuffers(1, &msaa_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
+    GLuint buffers[2];
+    glGenRenderbuffers(2, buffers);
+    glBindRenderbuffer(GL_RENDERBUFFER, buffers[0]);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, GL_RGBA8, kWidth, kHeight);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, buffers[0]);
+    glBindRenderbuffer(GL_RENDERBUFFER, buffers[1]);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, GL_DEPTH_COMPONENT24, kWidth, kHeight);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, buffers[1]);
+    const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return complete;
+  }
+  ~Peer() {
+    if (context_ != nullptr) OSMesaDestroyContext(context_);
+  }
+
+  // Draws with `draw` into the window (1x) or the 4x MSAA buffer resolved into the window;
+  // returns milliseconds from clear to glFinish.
+  double Frame(bool msaa, const std::function<void()>& draw) {
+    const double start = Now();
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa ? msaa_fbo_ : 0);
+    glViewport(0, 0, kWidth, kHeight);
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    draw();
+    if (msaa) {
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+      glBlitFramebuffer(0, 0, kWidth, kHeight, 0, 0, kWidth, kHeight, GL_COLOR_BUFFER_BIT,
+                        GL_NEAREST);
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+    glFinish();
+    return Now() - start;
+  }
+
+  // The window as linear RGB floats, row 0 at the top (OpenGL's row 0 is the bottom).
+  Image Read() const {
+    Image image = Image::Uninitialized(kWidth, kHeight);
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = 0; x < kWidth; ++x) {
+        const uint32_t p = pixels_[static_cast<size_t>(kHeight - 1 - y) * kWidth + x];
+        image.at(x, y) = {(p & 0xff) / 255.0f, ((p >> 8) & 0xff) / 255.0f,
+                          ((p >> 16) & 0xff) / 255.0f, 1};
+      }
+    }
+    return image;
+  }
+
+ private:
+  OSMesaContext context_ = nullptr;
+  std::vector<uint32_t> pixels_;
+  GLuint msaa_fbo_ = 0;
+};
+
+// The same perspective as Aperture's camera: 60 degrees vertical, near 0.1 (as Camera's).
+void LoadProjection(double near, double far) {
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  const double top = near * std::tan(kFovDeg * M_PI / 360), right = top * kWidth / kHeight;
+  glFrustum(-right, right, -top, top, near, far);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+}
+
+// PSNR (peak 1, RGB) of `image` against `reference` colours of the chosen pixels.
+double Psnr(const Image& image, const std::vector<std::pair<int, int>>& pixels,
+            const std::vector<Rgba>& reference) {
+  double sum = 0;
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    const Rgba& a = image.at(pixels[i].first, pixels[i].second);
+    const Rgba& b = reference[i];
+    sum += (a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) + (a.b - b.b) * (a.b - b.b);
+  }
+  const double mse = sum / (3.0 * pixels.size());
+  return mse > 0 ? 10 * std::log10(1 / mse) : 99;
+}
+
+struct Options {
+  int rounds = 5;
+  std::vector<int> tris = {10000, 100000};
+  std::vector<double> planes = {5, 20, 60};
+  int psnr_pixels = 3000;
+};
+
+double AperturePlaneOrTrisMs(const Scene& scene, const Camera& camera, RenderSettings settings,
+                             Image* out) {
+  const double start = Now();
+  auto frame = RenderFrame(scene, camera, settings);
+  const double ms = Now() - start;
+  if (!frame.ok()) {
+    std::fprintf(stderr, "render failed: %s\n", std::string(frame.status().message()).c_str());
+    std::exit(1);
+  }
+  if (out != nullptr) *out = std::move(frame->image);
+  return ms;
+}
+
+void RunTris(Peer& peer, int count, const Options& o) {
+  auto scene = BuildScene(MakeTrisScene(count));
+  if (!scene.ok()) std::exit(1);
+  const Camera camera;  // at the origin looking along -z, 60 degrees
+  // The same triangles for OpenGL, in order; no depth test: each later one is in front.
+  std::vector<float> xyz, rgb;
+  for (const ScenePolygon& p : scene->polygons) {
+    const Rgba c = scene->materials[p.material].base_color;
+    for (const Vec3& v : p.vertices) {
+      xyz.insert(xyz.end(), {float(v.x), float(v.y), float(v.z)});
+      rgb.insert(rgb.end(), {c.r, c.g, c.b});
+    }
+  }
+  auto draw = [&] {
+    LoadProjection(1, 1000);
+    glDisable(GL_DEPTH_TEST);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(3, GL_FLOAT, 0, xyz.data());
+    glColorPointer(3, GL_FLOAT, 0, rgb.data());
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(xyz.size() / 3));
+  };
+  RenderSettings box1, box2;
+  box1.aa = AntiAliasing::kBox1;
+  box2.aa = AntiAliasing::kBox2;
+  box1.threads = box2.threads = 2;
+  std::vector<double> gl1, gl4, ap1, ap2;
+  Image gl1_image, gl4_image, ap1_image, ap2_image;
+  // A round not counted: llvmpipe compiles its shaders, the allocators warm up.
+  peer.Frame(false, draw);
+  peer.Frame(true, draw);
+  AperturePlaneOrTrisMs(*scene, camera, box1, nullptr);
+  AperturePlaneOrTrisMs(*scene, camera, box2, nullptr);
+  for (int r = 0; r < o.rounds; ++r) {
+    gl1.push_back(peer.Frame(false, draw));
+    if (r == 0) gl1_image = peer.Read();
+    ap1.push_back(AperturePlaneOrTrisMs(*scene, camera, box1, r == 0 ? &ap1_image : nullptr));
+    gl4.push_back(peer.Frame(true, draw));
+    if (r == 0) gl4_image = peer.Read();
+    ap2.push_back(AperturePlaneOrTrisMs(*scene, camera, box2, r == 0 ? &ap2_image : nullptr));
+  }
+  // Dense references (64 x 64 samples per pixel box, 128 x 128 per 2 x 2 box) at random pixels
+  // that an edge crosses (a neighbour of a different colour in llvmpipe's 1x image).
+  const FrameGeometry geo = ProjectScene(*scene, camera, kWidth, kHeight, 2);
+  std::vector<std::pair<int, int>> pixels;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> px(1, kWidth - 2), py(1, kHeight - 2);
+  while (static_cast<int>(pixels.size()) < o.psnr_pixels) {
+    const int x = px(rng), y = py(rng);
+    const Rgba c = gl1_image.at(x, y);
+    bool edge = false;
+    for (int dy = -1; dy <= 1 && !edge; ++dy)
+      for (int dx = -1; dx <= 1 && !edge; ++dx) edge = !(gl1_image.at(x + dx, y + dy) == c);
+    if (edge) pixels.push_back({x, y});
+  }
+  // Each reference sees only the polygons that reach its pixel's 2 x 2 box (from 16-pixel bins).
+  constexpr int kBin = 16;
+  const int bins_x = kWidth / kBin + 1, bins_y = kHeight / kBin + 1;
+  std::vector<std::vector<int>> bins(static_cast<size_t>(bins_x) * bins_y);
+  for (size_t k = 0; k < geo.polygons.size(); ++k) {
+    const ScreenPolygon& p = geo.polygons[k];
+    const int x0 = std::clamp(static_cast<int>(std::floor(p.min_x - 1)) / kBin, 0, bins_x - 1);
+    const int x1 = std::clamp(static_cast<int>(std::floor(p.max_x + 1)) / kBin, 0, bins_x - 1);
+    const int y0 = std::clamp(static_cast<int>(std::floor(p.min_y - 1)) / kBin, 0, bins_y - 1);
+    const int y1 = std::clamp(static_cast<int>(std::floor(p.max_y + 1)) / kBin, 0, bins_y - 1);
+    for (int by = y0; by <= y1; ++by)
+      for (int bx = x0; bx <= x1; ++bx) bins[static_cast<size_t>(by) * bins_x + bx].push_back(k);
+  }
+  std::vector<Rgba> ref1, ref1_half, ref2;
+  for (const auto& [x, y] : pixels) {
+    FrameGeometry local;
+    std::vector<int> material;
+    for (int k : bins[static_cast<size_t>(y / kBin) * bins_x + x / kBin]) {
+      const ScreenPolygon& p = geo.polygons[k];
+      if (p.max_x <= x - 1 || p.min_x >= x + 2 || p.max_y <= y - 1 || p.min_y >= y + 2) continue;
+      local.polygons.push_back(p);
+      material.push_back(p.material);
+    }
+    auto local_colour = [&](int k) { return scene->materials[material[k]].base_color; };
+    ref1.push_back(testing::DenseReferencePixel(local, local_colour, scene->sky,
+                                                AntiAliasing::kBox1, x, y, 64));
+    ref1_half.push_back(testing::DenseReferencePixel(local, local_colour, scene->sky,
+                                                     AntiAliasing::kBox1, x, y, 32));
+    ref2.push_back(testing::DenseReferencePixel(local, local_colour, scene->sky,
+                                                AntiAliasing::kBox2, x, y, 128));
+  }
+  // Convergence: the pixel-box reference at 32 x 32 samples against 64 x 64, and what box1 scores
+  // against each (a reference's own error caps the PSNR it can show).
+  Image coarse = Image::Uninitialized(kWidth, kHeight);
+  for (size_t i = 0; i < pixels.size(); ++i)
+    coarse.at(pixels[i].first, pixels[i].second) = ref1_half[i];
+  std::printf(
+      "tris-%-8d %zu edge pixels; references of 32x32 and 64x64 samples per pixel are "
+      "%.1f dB apart; box1 scores %.1f / %.1f dB against them\n",
+      count, pixels.size(), Psnr(coarse, pixels, ref1), Psnr(ap1_image, pixels, ref1_half),
+      Psnr(ap1_image, pixels, ref1));
+  std::printf("tris-%-8d llvmpipe 1x %8.1f ms %5.1f dB | box1 %8.1f ms %5.1f dB | ratio %5.2fx\n",
+              count, Median(gl1), Psnr(gl1_image, pixels, ref1), Median(ap1),
+              Psnr(ap1_image, pixels, ref1), Median(ap1) / Median(gl1));
+  std::printf(
+      "tris-%-8d llvmpipe 4x %8.1f ms %5.1f dB | box2 %8.1f ms %5.1f dB | ratio %5.2fx"
+      " (4x MSAA and box1 against the pixel box, box2 against the 2x2 box)\n",
+      count, Median(gl4), Psnr(gl4_image, pixels, ref1), Median(ap2), Psnr(ap2_image, pixels, ref2),
+      Median(ap2) / Median(gl4));
+  std::fflush(stdout);
+}
+
+void RunPlane(Peer& peer, double pitch_deg, const Options& o) {
+  auto scene = BuildScene(testing::MakeGrazingPlaneScene(20000));
+  if (!scene.ok()) std::exit(1);
+  Camera camera;  // DESIGN.md: at (0, 1, 0), pitched down by the angle
+  camera.position = {0, 1, 0};
+  camera.pitch_deg = -pitch_deg;
+  camera.vertical_fov_deg = kFovDeg;
+  // The checkerboard as an OpenGL texture with its mip-maps; u = x / 4, v = z / 4, repeated.
+  static GLuint texture = 0;
+  if (texture == 0) {
+    const int n = 1024;
+    std::vector<uint8_t> texels(static_cast<size_t>(n) * n * 4);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const uint8_t v = ((i / 128) + (j / 128)) % 2 == 0 ? 255 : 0;
+        uint8_t* t = &texels[(static_cast<size_t>(j) * n + i) * 4];
+        t[0] = t[1] = t[2] = v;
+        t[3] = 255;
+      }
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  }
+  auto draw = [&] {
+    LoadProjection(0.1, 30000);
+    glRotated(pitch_deg, 1, 0, 0);  // pitch down: the camera's view turned up by the same
+    glTranslated(0, -1, 0);
+    glEnable(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glColor3f(1, 1, 1);
+    const double e = 20000;
+    glBegin(GL_QUADS);
+    glTexCoord2d(-e / 4, e / 4), glVertex3d(-e, 0, e);
+    glTexCoord2d(e / 4, e / 4), glVertex3d(e, 0, e);
+    glTexCoord2d(e / 4, -e / 4), glVertex3d(e, 0, -e);
+    glTexCoord2d(-e / 4, -e / 4), glVertex3d(-e, 0, -e);
+    glEnd();
+    glDisable(GL_TEXTURE_2D);
+  };
+  std::vector<double> gl, tri, aniso;
+  for (int r = -1; r < o.rounds; ++r) {  // round -1 is not counted (shaders, seed 000's table)
+    const double gl_ms = peer.Frame(false, draw);
+    if (r >= 0) gl.push_back(gl_ms);
+    for (FilterMode f : {FilterMode::kTrilinear, FilterMode::kAniso}) {
+      RenderSettings s;
+      s.threads = 2;
+      s.shading.override_filter = true;
+      s.shading.filter = f;
+      s.shading.texture_aperture = 1;
+      const double ms = AperturePlaneOrTrisMs(*scene, camera, s, nullptr);
+      if (r >= 0) (f == FilterMode::kTrilinear ? tri : aniso).push_back(ms);
+    }
+  }
+  std::printf(
+      "plane-%-4.0f llvmpipe trilinear %6.1f ms | trilinear %6.1f ms, ratio %5.2fx | aniso (a = 1) "
+      "%6.1f ms, ratio %5.2fx, %4.2fx Aperture's trilinear\n",
+      pitch_deg, Median(gl), Median(tri), Median(tri) / Median(gl), Median(aniso),
+      Median(aniso) / Median(gl), Median(aniso) / Median(tri));
+  std::fflush(stdout);
+}
+
+template <typename T>
+std::vector<T> ParseList(const char* s) {
+  std::vector<T> out;
+  for (const char* p = s; *p;) {
+    char* end = nullptr;
+    out.push_back(static_cast<T>(std::strtod(p, &end)));
+    if (end == p) break;
+    p = *end == ',' ? end + 1 : end;
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace aperture
+
+int main(int argc, char** argv) {
+  aperture::Options o;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string flag = argv[i];
+    if (flag == "--rounds") {
+      o.rounds = std::max(1, std::atoi(argv[i + 1]));
+    } else if (flag == "--tris") {
+      o.tris = aperture::ParseList<int>(argv[i + 1]);
+    } else if (flag == "--planes") {
+      o.planes = aperture::ParseList<double>(argv[i + 1]);
+    } else if (flag == "--psnr_pixels") {
+      o.psnr_pixels = std::max(1, std::atoi(argv[i + 1]));
+    } else {
+      std::fprintf(stderr,
+                   "usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] "
+                   "[--psnr_pixels P]\n");
+      return 2;
+    }
+  }
+  aperture::Peer peer;
+  if (!peer.Init()) {
+    std::fprintf(stderr, "peer_bench: no OSMesa context with a 4x MSAA framebuffer\n");
+    return 1;
+  }
+  std::printf(
+      "1920x1080, median of %d interleaved rounds; Aperture --threads 2, llvmpipe "
+      "LP_NUM_THREADS=%s\n",
+      o.rounds, std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(unset)");
+  for (int n : o.tris) aperture::RunTris(peer, n, o);
+  for (double t : o.planes) aperture::RunPlane(peer, t, o);
+  return 0;
+}
