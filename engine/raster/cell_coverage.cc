@@ -104,7 +104,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
   square_ = {-kHalf, -kHalf, kHalf, kHalf};
   subdivided_ = false;
   const size_t first = out.size();
-  Resolve(0, 0, with_moments, out);
+  Resolve(0, /*splittable=*/true, with_moments, out);
   if (!subdivided_) return;
   // A subdivided cell gives each polygon one piece per square: summed back into one, in the
   // order the polygons first appear.
@@ -132,7 +132,8 @@ CellMoments CellCoverage::MomentsOf(const Piece& p, bool with_moments) const {
   return PolygonMoments(std::span(verts_).subspan(p.begin, p.end - p.begin), with_moments);
 }
 
-void CellCoverage::Resolve(int depth, int stalled, bool with_moments, std::vector<CellPiece>& out) {
+void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
+                           std::vector<CellPiece>& out) {
   if (pieces_.empty()) return;
   if (pieces_.size() == 1) {
     const CellMoments m = MomentsOf(pieces_[0], with_moments);
@@ -162,9 +163,12 @@ void CellCoverage::Resolve(int depth, int stalled, bool with_moments, std::vecto
     }
   }
 
-  const bool may_split = depth < kMaxDepth && stalled < kMaxStalledLevels;
-  if (pieces_.size() > kCrowdedPieces && may_split) {
-    Subdivide(depth, stalled, with_moments, out);
+  const bool may_split = depth < kMaxDepth && splittable;
+  if (pieces_.size() > kCrowdedPieces && splittable) {
+    if (may_split)
+      Subdivide(depth, with_moments, out);
+    else
+      FrontAtCentre(out);
     return;
   }
 
@@ -216,63 +220,112 @@ void CellCoverage::Resolve(int depth, int stalled, bool with_moments, std::vecto
   // The trapezoid decomposition costs about the cube of the pieces: a few more than a handful
   // are split among quadrants first.
   if (pieces_.size() > kDecomposePieces && may_split) {
-    Subdivide(depth, stalled, with_moments, out);
+    Subdivide(depth, with_moments, out);
     return;
   }
   Decompose(with_moments, out);
 }
 
 // The square's four quadrants, each with the pieces clipped to it. A piece is full in a quadrant
-// when the quadrant's corners are inside it (then its vertices are the quadrant's). A quadrant
-// that keeps all of the square's pieces (a vertex many pieces share, pieces stacked on one
-// another) counts a stalled level: after kMaxStalledLevels of them it is resolved whole.
-void CellCoverage::Subdivide(int depth, int stalled, bool with_moments,
-                             std::vector<CellPiece>& out) {
+// when the quadrant's corners are inside it (then its vertices are the quadrant's). When every
+// quadrant keeps all of the square's pieces (pieces stacked over the whole square, which no cut
+// separates), the square is resolved whole instead; a quadrant that alone keeps them all (a vertex
+// many pieces share) is cut on, down to kMaxDepth.
+void CellCoverage::Subdivide(int depth, bool with_moments, std::vector<CellPiece>& out) {
   subdivided_ = true;
   if (StopNow()) return;
   const Square whole = square_;
-  const std::vector<Piece> parent = pieces_;
-  const std::vector<Vec2> parent_verts = verts_;
+  std::vector<Piece> parent = std::move(pieces_);
+  std::vector<Vec2> parent_verts = std::move(verts_);
   const double xm = 0.5 * (whole.x0 + whole.x1), ym = 0.5 * (whole.y0 + whole.y1);
   const Square quadrants[4] = {{whole.x0, whole.y0, xm, ym},
                                {xm, whole.y0, whole.x1, ym},
                                {whole.x0, ym, xm, whole.y1},
                                {xm, ym, whole.x1, whole.y1}};
-  for (const Square& q : quadrants) {
-    pieces_.clear();
-    verts_.clear();
+  std::vector<Piece> child_pieces[4];
+  std::vector<Vec2> child_verts[4];
+  bool all_kept = true;
+  for (int c = 0; c < 4; ++c) {
+    const Square& q = quadrants[c];
+    std::vector<Piece>& pieces = child_pieces[c];
+    std::vector<Vec2>& verts = child_verts[c];
     const Vec2 corners[4] = {{q.x0, q.y0}, {q.x1, q.y0}, {q.x1, q.y1}, {q.x0, q.y1}};
     for (const Piece& p : parent) {
+      const std::span<const Vec2> pv(parent_verts.data() + p.begin, p.end - p.begin);
       Piece sub = p;
-      sub.begin = verts_.size();
-      const auto first = parent_verts.begin() + static_cast<long>(p.begin);
-      const auto last = parent_verts.begin() + static_cast<long>(p.end);
-      if (!p.full) {
-        // Full when every corner is inside every edge (touching counts).
-        const size_t n = p.end - p.begin;
-        sub.full = true;
-        for (size_t i = 0; i < n && sub.full; ++i) {
-          const Vec2& a = first[static_cast<long>(i)];
-          const Vec2& b = first[static_cast<long>((i + 1) % n)];
-          for (const Vec2& c : corners)
-            sub.full = sub.full && (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) >= 0;
+      sub.begin = verts.size();
+      if (p.full) {
+        verts.insert(verts.end(), std::begin(corners), std::end(corners));
+      } else {
+        double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+        for (const Vec2& v : pv) {
+          x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+          y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+        }
+        if (x1 <= q.x0 || x0 >= q.x1 || y1 <= q.y0 || y0 >= q.y1) continue;  // beside it
+        if (x0 >= q.x0 && x1 <= q.x1 && y0 >= q.y0 && y1 <= q.y1) {
+          verts.insert(verts.end(), pv.begin(), pv.end());  // wholly inside: no cut
+        } else {
+          // Full when every corner is inside every edge (touching counts).
+          sub.full = x0 <= q.x0 && x1 >= q.x1 && y0 <= q.y0 && y1 >= q.y1;
+          for (size_t i = 0; i < pv.size() && sub.full; ++i) {
+            const Vec2& a = pv[i];
+            const Vec2& b = pv[(i + 1) % pv.size()];
+            for (const Vec2& k : corners)
+              sub.full = sub.full && (b.x - a.x) * (k.y - a.y) - (b.y - a.y) * (k.x - a.x) >= 0;
+          }
+          if (sub.full) {
+            verts.insert(verts.end(), std::begin(corners), std::end(corners));
+          } else {
+            clip_.assign(pv.begin(), pv.end());
+            // Only the quadrant's sides that cut the piece's box.
+            if (x0 < q.x0) ClipByHalfPlane(clip_, 1, 0, -q.x0, scratch_);
+            if (x1 > q.x1 && !clip_.empty()) ClipByHalfPlane(clip_, -1, 0, q.x1, scratch_);
+            if (y0 < q.y0 && !clip_.empty()) ClipByHalfPlane(clip_, 0, 1, -q.y0, scratch_);
+            if (y1 > q.y1 && !clip_.empty()) ClipByHalfPlane(clip_, 0, -1, q.y1, scratch_);
+            if (clip_.size() < 3 || !(PolygonMoments(clip_, false).area > 0)) continue;
+            verts.insert(verts.end(), clip_.begin(), clip_.end());
+          }
         }
       }
-      if (sub.full) {
-        verts_.insert(verts_.end(), std::begin(corners), std::end(corners));
-      } else {
-        clip_.assign(first, last);
-        ClipToRect(clip_, q.x0, q.y0, q.x1, q.y1, scratch_);
-        if (clip_.size() < 3 || !(PolygonMoments(clip_, false).area > 0)) continue;
-        verts_.insert(verts_.end(), clip_.begin(), clip_.end());
-      }
-      sub.end = verts_.size();
-      pieces_.push_back(sub);
+      sub.end = verts.size();
+      pieces.push_back(sub);
     }
-    square_ = q;
-    Resolve(depth + 1, pieces_.size() < parent.size() ? 0 : stalled + 1, with_moments, out);
+    all_kept = all_kept && pieces.size() == parent.size();
+  }
+  if (all_kept) {
+    pieces_ = std::move(parent);
+    verts_ = std::move(parent_verts);
+    Resolve(depth, /*splittable=*/false, with_moments, out);
+    return;
+  }
+  for (int c = 0; c < 4; ++c) {
+    pieces_ = std::move(child_pieces[c]);
+    verts_ = std::move(child_verts[c]);
+    square_ = quadrants[c];
+    Resolve(depth + 1, /*splittable=*/true, with_moments, out);
   }
   square_ = whole;
+}
+
+// At kMaxDepth a still crowded square (a point many pieces share) goes whole to the piece in
+// front at its centre: an error of at most 4^-kMaxDepth of the cell each.
+void CellCoverage::FrontAtCentre(std::vector<CellPiece>& out) {
+  const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
+  int front = -1;
+  double best = 0;
+  for (const Piece& p : pieces_) {
+    bool inside = true;
+    const size_t n = p.end - p.begin;
+    for (size_t i = 0; i < n && inside && !p.full; ++i) {
+      const Vec2& a = verts_[p.begin + i];
+      const Vec2& b = verts_[p.begin + (i + 1) % n];
+      inside = (b.x - a.x) * (yc - a.y) - (b.y - a.y) * (xc - a.x) >= 0;
+    }
+    if (inside && (front < 0 || p.depth.At(xc, yc) > best))
+      front = p.polygon, best = p.depth.At(xc, yc);
+  }
+  if (front >= 0) out.push_back({front, SquareMoments()});
 }
 
 // Pieces that overlap must not interpenetrate: their depth difference, linear, keeps one sign
@@ -404,10 +457,32 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
   }
 }
 
-bool CellCoverage::PairwiseDisjoint(size_t skip) const {
-  for (size_t i = 0; i < pieces_.size(); ++i)
-    for (size_t j = i + 1; j < pieces_.size(); ++j)
-      if (i != skip && j != skip && !Separated(pieces_[i], pieces_[j])) return false;
+// Only pairs whose bounding boxes overlap are tested (a sweep along x over the boxes sorted by
+// their left side), so a mesh's pieces cost about k log k, not k^2.
+bool CellCoverage::PairwiseDisjoint(size_t skip) {
+  const size_t n = pieces_.size();
+  boxes_.resize(n);
+  by_left_.clear();
+  for (size_t i = 0; i < n; ++i) {
+    const Piece& p = pieces_[i];
+    Box b{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (size_t k = p.begin; k < p.end; ++k) {
+      b.x0 = std::min(b.x0, verts_[k].x), b.x1 = std::max(b.x1, verts_[k].x);
+      b.y0 = std::min(b.y0, verts_[k].y), b.y1 = std::max(b.y1, verts_[k].y);
+    }
+    boxes_[i] = b;
+    if (i != skip) by_left_.push_back(i);
+  }
+  std::sort(by_left_.begin(), by_left_.end(),
+            [&](size_t a, size_t b) { return boxes_[a].x0 < boxes_[b].x0; });
+  for (size_t u = 0; u < by_left_.size(); ++u) {
+    const Box& a = boxes_[by_left_[u]];
+    for (size_t v = u + 1; v < by_left_.size() && boxes_[by_left_[v]].x0 <= a.x1; ++v) {
+      const Box& b = boxes_[by_left_[v]];
+      if (b.y1 < a.y0 || b.y0 > a.y1) continue;
+      if (!Separated(pieces_[by_left_[u]], pieces_[by_left_[v]])) return false;
+    }
+  }
   return true;
 }
 

@@ -38,10 +38,11 @@ class CellCoverage {
   // More interpenetrating pieces than this (no painter's order): quadrants rather than the
   // trapezoid decomposition, whose cost grows with the cube of the pieces.
   static constexpr size_t kDecomposePieces = 8;
-  // Quadrant levels below the cell at most (a square of 1/4096 pixel), and levels in a row that
-  // may keep every piece of their square; past either the square is resolved whole, exactly.
+  // Quadrant levels below the cell at most (a square of 1/4096 pixel). A square still crowded
+  // there (a point many pieces share) goes to the piece in front at its centre: an error of at
+  // most 4^-12 of the cell's weight for each such square. A square whose four quadrants would
+  // each keep all of its pieces (a stack no cut separates) is resolved whole, exactly.
   static constexpr int kMaxDepth = 12;
-  static constexpr int kMaxStalledLevels = 2;
 
   // Asked while a crowded cell is cut into squares and between slabs of a decomposition: once it
   // returns true the cell's result is incomplete (the caller abandons the frame). May be empty.
@@ -71,13 +72,15 @@ class CellCoverage {
   };
 
   // Resolves pieces_ (clipped to square_) into `out`; may subdivide.
-  void Resolve(int depth, int stalled, bool with_moments, std::vector<CellPiece>& out);
-  void Subdivide(int depth, int stalled, bool with_moments, std::vector<CellPiece>& out);
+  // `splittable`: false for a square that cutting does not separate (resolved whole).
+  void Resolve(int depth, bool splittable, bool with_moments, std::vector<CellPiece>& out);
+  void Subdivide(int depth, bool with_moments, std::vector<CellPiece>& out);
+  void FrontAtCentre(std::vector<CellPiece>& out);
   CellMoments SquareMoments() const;
   CellMoments MomentsOf(const Piece& p, bool with_moments) const;
   bool Separated(const Piece& a, const Piece& b) const;
   // Every pair of pieces (but piece `skip`) has disjoint interiors.
-  bool PairwiseDisjoint(size_t skip) const;
+  bool PairwiseDisjoint(size_t skip);
   void AddDepthEqualityLine(const Piece& a, const Piece& b);
   enum class Order { kFound, kInterpenetrating, kCyclic };
   // The painter's order into order_; `order_by_ranges`: pairs whose depth ranges do not meet are
@@ -94,6 +97,11 @@ class CellCoverage {
     size_t edges_begin, edges_end;
   };
   std::vector<Reach> reach_;
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes_;  // PairwiseDisjoint's sweep
+  std::vector<size_t> by_left_;
   std::vector<Piece> pieces_;
   std::vector<Vec2> verts_, clip_, scratch_;
   std::vector<ScreenLinear> crossing_;
