@@ -18,6 +18,7 @@
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
+#include "store/shared_store.h"
 #include "tools/cli_options.h"
 #include "trace/trace_renderer.h"
 
@@ -25,6 +26,10 @@ ABSL_FLAG(std::string, scene, "demo",
           "'demo' (built-in airfield), 'triangles' (10,000 random triangles), 'skewed' (a city "
           "block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
           "benchmark's) or a scene JSON file");
+ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
+          "the machine's shared texture store (the server's default): seed 000 tables, decoded "
+          "packed textures and raytrace tables are mapped from it, or built once and kept there "
+          "for the next process; 'none': build them in this process only");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
           "or 0,1.7,0,0,0,0 for a scene file");
@@ -170,7 +175,21 @@ int Run() {
   trace_options.max_depth = absl::GetFlag(FLAGS_max_depth);
   if (auto s = ValidateTraceOptions(trace_options); !s.ok()) return Fail(s);
 
-  auto built = builtin.ok() ? BuildScene(builtin->scene) : LoadSceneFile(scene_arg);
+  // The shared store, so that a one-frame job maps what an earlier process built. A store that
+  // cannot be opened (no /dev/shm, no permission) is not fatal: the tables are built here.
+  std::shared_ptr<SharedStore> store;
+  if (const std::string dir = absl::GetFlag(FLAGS_store); dir != "none") {
+    auto opened = SharedStore::Open(dir);
+    if (opened.ok())
+      store = *opened;
+    else
+      std::fprintf(stderr, "aperture-render: warning: store %s not used: %s\n", dir.c_str(),
+                   std::string(opened.status().message()).c_str());
+  }
+  SceneBuildOptions build_options;
+  build_options.store = store;
+  auto built =
+      builtin.ok() ? BuildScene(builtin->scene, build_options) : LoadSceneFile(scene_arg, store);
   if (!built.ok()) return Fail(built.status());
   if (built->name.empty()) built->name = scene_arg;
 
@@ -179,7 +198,7 @@ int Run() {
     std::unique_ptr<TracedScene> traced;
     if (mode == RenderMode::kRaytrace) {
       const auto build_start = std::chrono::steady_clock::now();
-      auto ts = TracedScene::Build(*built);
+      auto ts = TracedScene::Build(*built, store);
       if (!ts.ok()) return Fail(ts.status());
       traced = std::move(*ts);
       std::printf(
@@ -270,6 +289,12 @@ int Run() {
     std::printf("raster %.1f ms, raytrace %.1f ms: raytrace takes %.1fx the raster frame\n",
                 raster_ms, raytrace_ms, raster_ms > 0 ? raytrace_ms / raster_ms : 0.0);
   if (absl::GetFlag(FLAGS_stats)) PrintStatistics(*built, camera, settings);
+  if (store) {
+    const StoreCounters c = store->counters();
+    std::printf("store %s: %llu entries mapped, %llu built here\n",
+                absl::GetFlag(FLAGS_store).c_str(), static_cast<unsigned long long>(c.attached),
+                static_cast<unsigned long long>(c.built));
+  }
   return 0;
 }
 

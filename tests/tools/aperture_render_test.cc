@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -60,6 +61,44 @@ TEST_F(RenderCli, RendersTheDemoToAnExrAndAPreview) {
   EXPECT_EQ(in->spec().format, OIIO::TypeDesc::HALF);
   EXPECT_EQ(in->spec().get_string_attribute("aperture:scene"), "demo-airfield");
   EXPECT_TRUE(std::filesystem::exists(Path("demo.png")));
+}
+
+// Issue 21: a one-frame job maps the tables an earlier process built into the machine's store
+// instead of building them again; --store none builds in the process and leaves no store.
+TEST_F(RenderCli, SecondProcessMapsTheStoreInsteadOfBuilding) {
+  const std::string store = Path("store");
+  const std::string common = "--scene demo --size 64x36 --nopreview --store " + store + " -o ";
+  const Result first = RunRender(common + Path("a.exr"));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_NE(first.output.find("0 entries mapped, 3 built here"), std::string::npos) << first.output;
+  const Result second = RunRender(common + Path("b.exr"));
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find("3 entries mapped, 0 built here"), std::string::npos)
+      << second.output;
+  // The same frame either way, and without a store too.
+  const Result none =
+      RunRender("--scene demo --size 64x36 --nopreview --store none -o " + Path("c.exr"));
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  EXPECT_EQ(none.output.find("entries mapped"), std::string::npos) << none.output;
+  std::vector<float> pixels[3];
+  int k = 0;
+  for (const char* name : {"a.exr", "b.exr", "c.exr"}) {
+    auto in = OIIO::ImageInput::open(Path(name));
+    ASSERT_TRUE(in) << name;
+    pixels[k].resize(64 * 36 * 4);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels[k].data()));
+    ++k;
+  }
+  EXPECT_EQ(pixels[0], pixels[1]);
+  EXPECT_EQ(pixels[0], pixels[2]);
+  // A store directory that cannot be made is a warning, not a failure.
+  const Result unusable = RunRender(
+      "--scene demo --size 16x9 --filter trilinear --nopreview "
+      "--store /proc/no-such-store -o " +
+      Path("d.exr"));
+  EXPECT_EQ(unusable.exit_code, 0) << unusable.output;
+  EXPECT_NE(unusable.output.find("warning: store /proc/no-such-store not used"), std::string::npos)
+      << unusable.output;
 }
 
 TEST_F(RenderCli, FloatPixelsAndCompressionAreHonoured) {
