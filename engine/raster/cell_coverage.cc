@@ -32,6 +32,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
                            double cx, double cy, bool with_moments, std::vector<CellPiece>& out) {
   // First which polygons reach the cell and how (no clipping yet): a cell wholly covered by the
   // polygon in front of all the others is then answered without clipping any of them.
+  stopped_ = false;
   reach_.clear();
   crossing_.clear();
   for (int index : candidates) {

@@ -47,6 +47,7 @@ class CellCoverage {
   // Asked while a crowded cell is cut into squares and between slabs of a decomposition: once it
   // returns true the cell's result is incomplete (the caller abandons the frame). May be empty.
   void SetStop(std::function<bool()> stop) { stop_ = std::move(stop); }
+  // Whether the last Compute was cut short by the stop test.
   bool Stopped() const { return stopped_; }
 
   // Visible pieces in the cell [cx - 0.5, cx + 0.5] x [cy - 0.5, cy + 0.5]. `candidates` are
