@@ -72,7 +72,9 @@ v1::Material* AddMaterial(v1::Scene& scene, const char* id, float r, float g, fl
 void AddEncodedTexture(v1::Scene& scene, const char* id, const Image& image) {
   v1::Texture* t = scene.add_textures();
   t->set_id(id);
-  auto png = EncodePng(image);
+  // Noise hardly compresses: the fastest level, since every process that builds the demo (a
+  // one-frame job, a server's LoadScene) encodes it and decodes it again.
+  auto png = EncodePng(image, /*zlib_level=*/1);
   if (png.ok()) t->set_encoded(std::string(png->begin(), png->end()));
 }
 

@@ -49,7 +49,7 @@ Image MakeNoiseTexture(int size, uint32_t seed, Rgba dark, Rgba light) {
   return image;
 }
 
-absl::StatusOr<std::vector<uint8_t>> EncodePng(const Image& image) {
+absl::StatusOr<std::vector<uint8_t>> EncodePng(const Image& image, int zlib_level) {
   std::vector<uint8_t> pixels(static_cast<size_t>(image.width()) * image.height() * 3);
   size_t k = 0;
   for (const Rgba& t : image.texels())
@@ -60,6 +60,7 @@ absl::StatusOr<std::vector<uint8_t>> EncodePng(const Image& image) {
   auto out = OIIO::ImageOutput::create("texture.png", &proxy);
   if (!out) return absl::InternalError("OpenImageIO has no PNG writer");
   OIIO::ImageSpec spec(image.width(), image.height(), 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("png:compressionLevel", zlib_level);
   if (!out->open("texture.png", spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
       !out->close())
     return absl::InternalError("cannot encode PNG: " + out->geterror());

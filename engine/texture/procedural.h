@@ -12,7 +12,8 @@ namespace aperture {
 // Periodic (tileable) multi-octave value noise in [0, 1], `size` a power of two.
 Image MakeNoiseTexture(int size, uint32_t seed, Rgba dark, Rgba light);
 
-// Encodes an image as 8-bit PNG bytes (values clamped to [0, 1], stored linearly).
-absl::StatusOr<std::vector<uint8_t>> EncodePng(const Image& image);
+// Encodes an image as 8-bit PNG bytes (values clamped to [0, 1], stored linearly) at zlib level
+// 0 (stored) .. 9 (smallest).
+absl::StatusOr<std::vector<uint8_t>> EncodePng(const Image& image, int zlib_level = 6);
 
 }  // namespace aperture
