@@ -109,17 +109,28 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
                                       v1::LoadSceneResponse* response) {
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
-  auto loaded = BuildSceneFromRequest(*request, textures_);
+  // A request loaded before (a built-in scene by name, a farm job's scene per frame) is answered
+  // from the scene store: the same request bytes are the same scene.
+  const std::string scene_id = SceneRequestId(*request);
+  absl::StatusOr<LoadedScene> loaded;
+  LoadedScene cached{scene_id, nullptr, std::nullopt};
+  cached.scene = scenes_.Find(scene_id, &cached.default_camera);
+  const bool reused = cached.scene != nullptr;
+  if (reused)
+    loaded = std::move(cached);
+  else
+    loaded = BuildSceneFromRequest(*request, textures_);
   if (loaded.ok()) {
-    scenes_.Put(loaded->id, loaded->scene);
+    if (!reused) scenes_.Put(loaded->id, loaded->scene, loaded->default_camera);
     response->set_scene_id(loaded->id);
     response->set_polygons(static_cast<uint32_t>(loaded->scene->polygons.size()));
     response->set_textures(static_cast<uint32_t>(loaded->scene->textures.size()));
     response->set_build_ms(MillisecondsSince(start));
     if (loaded->default_camera) *response->mutable_default_camera() = *loaded->default_camera;
   }
-  spdlog::info("req={} rpc=LoadScene peer={} scene={} name='{}' ms={:.2f} status={}{}", id,
+  spdlog::info("req={} rpc=LoadScene peer={} scene={}{} name='{}' ms={:.2f} status={}{}", id,
                context->peer(), loaded.ok() ? Short(loaded->id) : "-",
+               reused ? " (loaded before)" : "",
                request->builtin_scene().empty() ? request->scene().name()
                                                 : "builtin:" + request->builtin_scene(),
                MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),

@@ -25,6 +25,10 @@ std::string DeterministicBytes(const v1::LoadSceneRequest& request) {
 
 }  // namespace
 
+std::string SceneRequestId(const v1::LoadSceneRequest& request) {
+  return Sha256Hex(DeterministicBytes(request));
+}
+
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
                                                   const TextureStore& textures) {
   v1::Scene scene = request.scene();
@@ -74,8 +78,8 @@ absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& re
   options.store = textures.shared();
   auto built = BuildScene(scene, options);
   if (!built.ok()) return built.status();
-  return LoadedScene{Sha256Hex(DeterministicBytes(request)),
-                     std::make_shared<const Scene>(*std::move(built)), std::move(default_camera)};
+  return LoadedScene{SceneRequestId(request), std::make_shared<const Scene>(*std::move(built)),
+                     std::move(default_camera)};
 }
 
 }  // namespace aperture

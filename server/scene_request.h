@@ -20,6 +20,10 @@ struct LoadedScene {
   std::optional<v1::Camera> default_camera;  // built-in scenes: the camera they are seen from
 };
 
+// The id a request loads to: SHA-256 of its deterministic bytes. Textures are referenced by
+// content hash, so the same id always means the same scene.
+std::string SceneRequestId(const v1::LoadSceneRequest& request);
+
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
                                                   const TextureStore& textures);
 

@@ -180,7 +180,7 @@ TEST_F(ServiceTest, LoadSceneResolvesUploadedTexturesAndRefusesUnknownOnes) {
 }
 
 TEST_F(ServiceTest, BuiltinScenesAreBuiltByTheServerWithTheirCamera) {
-  StartServer();
+  StartServer({"--max-scenes=64"});  // its own server: no scene loaded before
   v1::LoadSceneRequest request;
   request.set_builtin_scene("demo");
   grpc::ClientContext context;
@@ -192,6 +192,18 @@ TEST_F(ServiceTest, BuiltinScenesAreBuiltByTheServerWithTheirCamera) {
   const v1::Camera expected = CameraToProto(DemoCamera());
   EXPECT_EQ(response.default_camera().SerializeAsString(), expected.SerializeAsString());
   EXPECT_TRUE(Render(FrameRequest(response.scene_id(), 32, 24), 30).ok());
+
+  // Issue 21: loaded again, the same request is answered from the scene store (not rebuilt):
+  // the same id, camera and polygons, in a fraction of the build's time.
+  grpc::ClientContext again_context;
+  v1::LoadSceneResponse again;
+  status = stub_->LoadScene(&again_context, request, &again);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(again.scene_id(), response.scene_id());
+  EXPECT_EQ(again.polygons(), response.polygons());
+  EXPECT_EQ(again.default_camera().SerializeAsString(), expected.SerializeAsString());
+  EXPECT_LT(again.build_ms(), 0.2 * response.build_ms())
+      << "first " << response.build_ms() << " ms, again " << again.build_ms() << " ms";
 
   v1::LoadSceneRequest unknown;
   unknown.set_builtin_scene("moon");
