@@ -1,6 +1,7 @@
 #include <arpa/inet.h>
 #include <netdb.h>
 #include <sys/socket.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -18,9 +19,11 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "batch_job.h"
+#include "batch_progress.h"
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
+#include "contact_sheet.h"
 #include "request_flags.h"
 #include "scene_upload.h"
 
@@ -110,6 +113,25 @@ std::vector<std::string> ResolveServers(const std::string& list) {
   for (const std::string& a : out)
     if (std::find(unique.begin(), unique.end(), a) == unique.end()) unique.push_back(a);
   return unique;
+}
+
+// The contact sheet of the frames on disk, next to them (one per shard when sharded); a sheet that
+// cannot be written is a warning: the frames are what the job is for.
+void WriteSheet(const std::vector<size_t>& owned, const std::string& out_dir, const Shard& shard) {
+  std::vector<std::pair<size_t, std::string>> frames;
+  std::error_code error;
+  for (size_t f : owned)
+    if (fs::exists(FramePath(out_dir, f), error)) frames.push_back({f, FramePath(out_dir, f)});
+  if (frames.empty()) return;
+  const std::string name = shard.count == 1 ? "contact_sheet.png"
+                                            : absl::StrFormat("contact_sheet-shard-%zu-of-%zu.png",
+                                                              shard.index, shard.count);
+  const std::string path = (fs::path(out_dir) / name).string();
+  if (auto s = WriteContactSheet(frames, path); !s.ok())
+    std::fprintf(stderr, "aperture batch: warning: %s\n", std::string(s.message()).c_str());
+  else
+    std::printf("contact sheet: %s (%zu frames)\n", path.c_str(),
+                std::min(frames.size(), kMaxThumbnails));
 }
 
 // --check: reads back the shard's frames, lists those missing or invalid; no server involved.
@@ -202,17 +224,8 @@ int RunBatch(const std::string& job_path) {
   const uint32_t width = base->options().width(), height = base->options().height();
   const int attempts = 3 * static_cast<int>(ready.size());
   std::atomic<size_t> next{0}, rendered{0}, skipped{0}, failed{0}, retries{0};
-  std::mutex print;
   const auto start = Clock::now();
-  auto progress = [&] {
-    const size_t done = rendered + skipped + failed;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    const double eta = rendered > 0 ? elapsed / rendered * (frames - done) : 0;
-    const int bar = frames == 0 ? 30 : static_cast<int>(30 * done / frames);
-    std::lock_guard lock(print);
-    std::fprintf(stderr, "\r[%s%s] %zu/%zu frames, ETA %.0f s ", std::string(bar, '#').c_str(),
-                 std::string(30 - bar, ' ').c_str(), done, frames, eta);
-  };
+  BatchProgress progress(frames, stderr, ::isatty(::fileno(stderr)) != 0);
 
   std::vector<std::thread> workers;
   for (int w = 0; w < std::max(1, absl::GetFlag(FLAGS_concurrency)); ++w) {
@@ -222,7 +235,7 @@ int RunBatch(const std::string& job_path) {
         const std::string path = FramePath(out_dir, i);
         if (InvalidFrame(path, width, height).empty()) {
           ++skipped;
-          progress();
+          progress.Finish(BatchProgress::Outcome::kSkipped);
           continue;
         }
         v1::RenderFrameRequest request = *base;
@@ -236,24 +249,26 @@ int RunBatch(const std::string& job_path) {
           grpc::ClientContext context;
           context.set_deadline(DeadlineIn(absl::GetFlag(FLAGS_deadline_s)));
           v1::RenderFrameResponse response;
-          if (stub->RenderFrame(&context, request, &response).ok() &&
-              WriteFrame(path, response.exr())) {
+          const bool answered = stub->RenderFrame(&context, request, &response).ok();
+          progress.Attempt(context.peer(), answered);
+          if (answered && WriteFrame(path, response.exr())) {
             ++rendered;
-            progress();
+            progress.Finish(BatchProgress::Outcome::kRendered);
             break;
           }
           if (attempt + 1 == attempts) ok = false;
         }
         if (!ok) {
           ++failed;
-          progress();
+          progress.Finish(BatchProgress::Outcome::kFailed);
         }
       }
     });
   }
   for (std::thread& t : workers) t.join();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  std::fprintf(stderr, "\n");
+  progress.Close();
+  if (absl::GetFlag(FLAGS_contact_sheet)) WriteSheet(owned, out_dir, *shard);
   std::printf(
       "batch: %s on %zu servers: %zu rendered, %zu skipped (already valid), "
       "%zu failed, %zu retries in %.2f s\n",

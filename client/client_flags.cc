@@ -41,6 +41,9 @@ ABSL_FLAG(int, concurrency, 1, "load, batch: requests in flight at once");
 ABSL_FLAG(std::string, shard, "",
           "batch: render only shard I/N of the job, the frames f with f mod N = I (for job arrays: "
           "--shard $JOB_COMPLETION_INDEX/N, --shard $SLURM_ARRAY_TASK_ID/N); empty: every frame");
+ABSL_FLAG(
+    bool, contact_sheet, true,
+    "batch: write contact_sheet.png (thumbnails with frame numbers) next to the frames at the end");
 ABSL_FLAG(bool, check, false,
           "batch: render nothing, contact no server: read back every frame of the job (or of "
           "--shard) and list those missing or invalid; exit 0 only when all are valid");

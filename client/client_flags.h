@@ -29,6 +29,7 @@ ABSL_DECLARE_FLAG(double, deadline_s);
 ABSL_DECLARE_FLAG(int, concurrency);
 ABSL_DECLARE_FLAG(std::string, shard);
 ABSL_DECLARE_FLAG(bool, check);
+ABSL_DECLARE_FLAG(bool, contact_sheet);
 ABSL_DECLARE_FLAG(int, requests);
 ABSL_DECLARE_FLAG(double, duration);
 ABSL_DECLARE_FLAG(bool, json);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 21's farm benchmark, on loopback: one `aperture batch` job of FRAMES demo frames along a
-# camera path (final approach, 14 m up, 100 -> 600 m out) rendered by N local servers of one
-# thread each (N in SERVERS, default "1 2 4"; this 2-core machine holds two at full speed, so
+# camera path (14 m up, backing away from the runway's threshold from 100 to 600 m) rendered by N
+# local servers of one thread each (N in SERVERS, default "1 2 4"; this 2-core machine holds two at full speed, so
 # N = 4 shows the cost of oversubscription, not of the farm). Per N it prints the job's frames/s,
 # the efficiency against N x the one-server rate (and against min(N, cores) x it), and the
 # distribution of the servers' own per-frame times (total_ms of every RenderFrame in their logs).

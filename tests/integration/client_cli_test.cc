@@ -274,6 +274,41 @@ TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
   EXPECT_THAT(second.out, HasSubstr("0 rendered, 200 skipped"));
 }
 
+// Issue 21, part 5: a batch a person can watch. Its output here is not a terminal, so progress
+// comes as plain lines (no carriage returns) with frames/s and the server's tally; at the end a
+// contact sheet of thumbnails lies next to the frames.
+TEST_F(ClientTest, BatchPrintsPlainProgressAndWritesAContactSheet) {
+  constexpr int kFrames = 12;
+  WriteGroundScene(dir_);
+  const std::string job = (dir_ / "sheet_job.json").string();
+  std::ofstream(job) << R"({"scene": "ground.json", "size": "64x36",
+      "path": {"from": "0,1.7,0,0,-10,0", "to": "0,1.7,-50,0,-10,0", "frames": )"
+                     << kFrames << "}}";
+  const std::filesystem::path out = dir_ / "sheet_frames";
+  const CommandResult r = RunCommand(
+      {APERTURE_CLIENT_BIN, "batch", job, "--servers=" + server_->address(), "-o=" + out.string()},
+      60);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("progress: 12/12 frames (12 rendered, 0 skipped, 0 failed)"));
+  EXPECT_THAT(r.err, HasSubstr("frames/s"));
+  EXPECT_THAT(r.err, HasSubstr(server_->address() + " 12 ok"));
+  EXPECT_THAT(r.out, HasSubstr("contact sheet: "));
+  // 10 thumbnails 160 wide across, 2 rows of 90 (the frames' 16:9), 4-pixel gaps.
+  auto in = OIIO::ImageInput::open((out / "contact_sheet.png").string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().width, 10 * (160 + 4) + 4);
+  EXPECT_EQ(in->spec().height, 2 * (90 + 4) + 4);
+  std::vector<uint8_t> rgb(static_cast<size_t>(in->spec().width) * in->spec().height * 3);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data()));
+  // Thumbnail 0's centre shows the frame (not the sheet's dark background).
+  const size_t centre = (static_cast<size_t>(4 + 45) * in->spec().width + 4 + 80) * 3;
+  EXPECT_GT(rgb[centre] + rgb[centre + 1] + rgb[centre + 2], 3 * 40);
+  // The 13th cell (row 2, third column) is empty background.
+  const size_t empty = (static_cast<size_t>(4 + 94 + 45) * in->spec().width + 4 + 2 * 164 + 80) * 3;
+  EXPECT_EQ(rgb[empty], 24);
+}
+
 std::string FrameName(int i) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06d.exr", i);
