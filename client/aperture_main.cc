@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
       "[--json]\n"
       "  aperture sim --server ADDR --rate HZ --frames N [--path FILE.csv]\n"
       "  aperture batch JOB.json --servers HOST:PORT,... -o DIR [--concurrency N] "
-      "[--shard I/N]\n"
+      "[--shard I/N] [--nocontact_sheet]\n"
       "  aperture batch JOB.json --check -o DIR [--shard I/N]: every frame present and valid?\n"
       "  aperture health --server ADDR\n"
       "  aperture info --server ADDR");
