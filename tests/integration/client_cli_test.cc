@@ -274,16 +274,23 @@ TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
   EXPECT_THAT(second.out, HasSubstr("0 rendered, 200 skipped"));
 }
 
+// A batch job of `frames` frames of the ground scene (written beside it) along a 50 m path.
+std::string WriteGroundJob(const std::filesystem::path& dir, const std::string& name,
+                           const std::string& size, int frames) {
+  WriteGroundScene(dir);
+  const std::string job = (dir / name).string();
+  std::ofstream(job) << R"({"scene": "ground.json", "size": ")" << size << R"(",
+      "path": {"from": "0,1.7,0,0,-10,0", "to": "0,1.7,-50,0,-10,0", "frames": )"
+                     << frames << "}}";
+  return job;
+}
+
 // Issue 21, part 5: a batch a person can watch. Its output here is not a terminal, so progress
 // comes as plain lines (no carriage returns) with frames/s and the server's tally; at the end a
 // contact sheet of thumbnails lies next to the frames.
 TEST_F(ClientTest, BatchPrintsPlainProgressAndWritesAContactSheet) {
   constexpr int kFrames = 12;
-  WriteGroundScene(dir_);
-  const std::string job = (dir_ / "sheet_job.json").string();
-  std::ofstream(job) << R"({"scene": "ground.json", "size": "64x36",
-      "path": {"from": "0,1.7,0,0,-10,0", "to": "0,1.7,-50,0,-10,0", "frames": )"
-                     << kFrames << "}}";
+  const std::string job = WriteGroundJob(dir_, "sheet_job.json", "64x36", kFrames);
   const std::filesystem::path out = dir_ / "sheet_frames";
   const CommandResult r = RunCommand(
       {APERTURE_CLIENT_BIN, "batch", job, "--servers=" + server_->address(), "-o=" + out.string()},
@@ -323,11 +330,7 @@ class BatchShardTest : public ClientTest {};
 
 TEST_F(BatchShardTest, ShardsSplitAJobAndCheckFindsGaps) {
   constexpr int kFrames = 10, kShards = 3;
-  WriteGroundScene(dir_);
-  const std::string job = (dir_ / "job.json").string();
-  std::ofstream(job) << R"({"scene": "ground.json", "size": "64x48",
-      "path": {"from": "0,1.7,0,0,-10,0", "to": "0,1.7,-50,0,-10,0", "frames": )"
-                     << kFrames << "}}";
+  const std::string job = WriteGroundJob(dir_, "job.json", "64x48", kFrames);
   const std::filesystem::path out = dir_ / "frames";
   auto batch = [&](std::vector<std::string> extra) {
     std::vector<std::string> args = {APERTURE_CLIENT_BIN, "batch", job,
