@@ -25,8 +25,7 @@ struct LeafWindow {
 };
 
 struct WarnockOptions {
-  int leaf_size = 8;   // a mixed window at most this wide and high is not split further
-  int root_size = 64;  // the screen is first cut into root windows of this size
+  int leaf_size = 8;  // a mixed window at most this wide and high is not split further
 };
 
 // Subdivides one window whose candidate polygons are known, appending its leaves.

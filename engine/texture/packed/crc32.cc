@@ -1,27 +1,20 @@
 #include "texture/packed/crc32.h"
 
-#include <array>
+#include <zlib.h>
+
+#include <algorithm>
 
 namespace aperture::packed {
-namespace {
-
-constexpr std::array<uint32_t, 256> MakeTable() {
-  std::array<uint32_t, 256> table{};
-  for (uint32_t n = 0; n < 256; ++n) {
-    uint32_t c = n;
-    for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    table[n] = c;
-  }
-  return table;
-}
-constexpr std::array<uint32_t, 256> kTable = MakeTable();
-
-}  // namespace
 
 uint32_t Crc32(std::span<const uint8_t> bytes, uint32_t crc) {
-  crc = ~crc;
-  for (uint8_t b : bytes) crc = kTable[(crc ^ b) & 0xFFu] ^ (crc >> 8);
-  return ~crc;
+  // zlib's crc32 continues from an earlier result and takes at most a uInt of bytes at a time.
+  uLong value = crc;
+  for (size_t at = 0; at < bytes.size();) {
+    const size_t n = std::min<size_t>(bytes.size() - at, 1u << 30);
+    value = ::crc32(value, bytes.data() + at, static_cast<uInt>(n));
+    at += n;
+  }
+  return static_cast<uint32_t>(value);
 }
 
 }  // namespace aperture::packed

@@ -1,4 +1,4 @@
-// CRC-32 (IEEE 802.3, as zlib and PNG compute it), the .apv file checksum.
+// CRC-32 (IEEE 802.3) of zlib, the .apv file checksum; `crc` continues an earlier result.
 #pragma once
 
 #include <cstdint>
