@@ -206,7 +206,7 @@ void AddBaseProbes(const ApertureShape& shape, CopyBlend& blend) {
     // Magnification, between the base (bilinear texels, H = 0) and the first copy (the box of
     // 2 x 2 texels, H = L = 1). The paper falls back to the base for all H < 1; blending with
     // weight H^2 gives the blend the variance of a box of 2H texels, so the blur grows
-    // continuously up to the table (docs/benchmarks/seed000.md measures both).
+    // continuously up to the table (docs/BENCHMARKS.md, issue 3, measures both).
     const float m = static_cast<float>(shape.H * shape.H);
     blend.count = 2;
     blend.copy[0] = 0;
