@@ -63,24 +63,14 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
                       crossing_.size()});
   }
   if (reach_.empty()) return;
-  if (reach_.size() > 1) {
-    // The test Resolve makes first (below), on every polygon that reaches the cell: when it
-    // holds here it holds for the clipped pieces too, which are these less the empty ones.
-    size_t front = 0;
-    for (size_t i = 1; i < reach_.size(); ++i)
-      if (reach_[i].depth.c > reach_[front].depth.c) front = i;
-    const Reach& f = reach_[front];
-    bool hides_all = f.edges_begin == f.edges_end;
-    for (size_t i = 0; i < reach_.size() && hides_all; ++i) {
-      if (i == front) continue;
-      for (double y : {-kHalf, kHalf})
-        for (double x : {-kHalf, kHalf})
-          hides_all = hides_all && f.depth.At(x, y) > reach_[i].depth.At(x, y);
-    }
-    if (hides_all) {
-      out.push_back({f.polygon, CellMoments{1, 0, 0, 0}});
-      return;
-    }
+  square_ = {-kHalf, -kHalf, kHalf, kHalf};
+  // The test Resolve makes first, on every polygon that reaches the cell: when it holds here it
+  // holds for the clipped pieces too, which are these less the empty ones.
+  if (const int front =
+          FrontHidingAll(reach_, [](const Reach& r) { return r.edges_begin == r.edges_end; });
+      front >= 0) {
+    out.push_back({reach_[front].polygon, SquareMoments()});
+    return;
   }
   pieces_.clear();
   verts_.clear();
@@ -102,7 +92,6 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     pieces_.push_back(piece);
   }
   if (pieces_.empty()) return;
-  square_ = {-kHalf, -kHalf, kHalf, kHalf};
   subdivided_ = false;
   const size_t first = out.size();
   Resolve(0, /*splittable=*/true, with_moments, out);
@@ -142,26 +131,10 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
     return;
   }
 
-  // A full piece in front of every other at the square's corners hides them all (depth
-  // differences are linear, so the corners bound them). Only the piece nearest at the centre can
-  // be that piece: a linear depth's value there is the mean of the corners'.
-  const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
-  size_t centre_front = 0;
-  for (size_t i = 1; i < pieces_.size(); ++i)
-    if (pieces_[i].depth.At(xc, yc) > pieces_[centre_front].depth.At(xc, yc)) centre_front = i;
-  if (const Piece& p = pieces_[centre_front]; p.full) {
-    bool front = true;
-    for (const Piece& q : pieces_) {
-      if (&q == &p) continue;
-      for (double y : {square_.y0, square_.y1})
-        for (double x : {square_.x0, square_.x1})
-          front = front && p.depth.At(x, y) > q.depth.At(x, y);
-      if (!front) break;
-    }
-    if (front) {
-      out.push_back({p.polygon, SquareMoments()});
-      return;
-    }
+  if (const int front = FrontHidingAll(pieces_, [](const Piece& p) { return p.full; });
+      front >= 0) {
+    out.push_back({pieces_[front].polygon, SquareMoments()});
+    return;
   }
 
   const bool may_split = depth < kMaxDepth && splittable;

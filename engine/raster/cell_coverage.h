@@ -78,6 +78,24 @@ class CellCoverage {
   void Subdivide(int depth, bool with_moments, std::vector<CellPiece>& out);
   void FrontAtCentre(std::vector<CellPiece>& out);
   CellMoments SquareMoments() const;
+  // The item that covers square_ whole and is in front of every other at its corners, which then
+  // hides them all (depth differences are linear, so the corners bound them), or -1. Only the
+  // item nearest at the centre can be it: a linear depth's value there is the corners' mean.
+  template <class Item, class IsFull>
+  int FrontHidingAll(const std::vector<Item>& items, IsFull is_full) const {
+    const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
+    size_t front = 0;
+    for (size_t i = 1; i < items.size(); ++i)
+      if (items[i].depth.At(xc, yc) > items[front].depth.At(xc, yc)) front = i;
+    if (!is_full(items[front])) return -1;
+    for (size_t i = 0; i < items.size(); ++i) {
+      if (i == front) continue;
+      for (double y : {square_.y0, square_.y1})
+        for (double x : {square_.x0, square_.x1})
+          if (!(items[front].depth.At(x, y) > items[i].depth.At(x, y))) return -1;
+    }
+    return static_cast<int>(front);
+  }
   CellMoments MomentsOf(const Piece& p, bool with_moments) const;
   bool Separated(const Piece& a, const Piece& b) const;
   // Every pair of pieces (but piece `skip`) has disjoint interiors.
