@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
       "  aperture render --split K --servers A,B,... [same options]: one frame over servers\n"
       "  aperture load --server ADDR --concurrency N (--requests M | --duration S) --size WxH "
       "[--json]\n"
-      "  aperture sim --server ADDR --rate HZ --frames N [--path FILE.csv]\n"
+      "  aperture sim --server ADDR --rate HZ --frames N [--path FILE] [--channels N]\n"
       "  aperture batch JOB.json --servers HOST:PORT,... -o DIR [--concurrency N] "
       "[--shard I/N] [--nocontact_sheet]\n"
       "  aperture batch JOB.json --check -o DIR [--shard I/N]: every frame present and valid?\n"

@@ -53,5 +53,11 @@ ABSL_FLAG(bool, json, false, "load, sim: print the summary as JSON");
 ABSL_FLAG(double, rate, 30, "sim: frames per second");
 ABSL_FLAG(int, frames, 100, "sim: frames to request");
 ABSL_FLAG(std::string, path, "",
-          "sim: camera path CSV, one X,Y,Z,YAW,PITCH,ROLL per line "
-          "(default: flying along the demo approach)");
+          "sim: path file, per line a camera X,Y,Z,YAW,PITCH,ROLL or a JSON RenderFrameRequest "
+          "with camera and scene update (docs/SERVICE.md; default: flying along -z at 60 m/s, the "
+          "scene's named objects rolling forward)");
+ABSL_FLAG(int, channels, 1,
+          "sim: display channels side by side, each its own stream with an off-axis frustum "
+          "(1..16)");
+ABSL_FLAG(std::string, last_frames, "",
+          "sim: write each channel's last rendered frame to DIR/channel-K.exr");

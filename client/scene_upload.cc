@@ -47,6 +47,7 @@ absl::StatusOr<SceneOnServer> Load(v1::Render::Stub& stub, const v1::LoadSceneRe
   result.scene_id = response.scene_id();
   result.polygons = response.polygons();
   if (response.has_default_camera()) result.default_camera = response.default_camera();
+  result.objects.assign(response.objects().begin(), response.objects().end());
   return result;
 }
 

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "aperture/v1/render_service.grpc.pb.h"
@@ -16,6 +17,7 @@ struct SceneOnServer {
   uint32_t polygons = 0;
   int textures_sent = 0, textures_skipped = 0;
   std::optional<v1::Camera> default_camera;  // built-in scenes: the camera they are seen from
+  std::vector<v1::NamedObject> objects;      // what a SceneUpdate can move, as loaded
 };
 
 // A built-in scene's name or the path of a scene file (proto3 JSON of aperture.v1.Scene).

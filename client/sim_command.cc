@@ -1,78 +1,57 @@
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "absl/flags/flag.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
 #include "latency_stats.h"
 #include "request_flags.h"
 #include "scene_upload.h"
+#include "sim_channels.h"
+#include "sim_path.h"
 
 namespace aperture {
 namespace {
 
-// Cameras from a CSV file (X,Y,Z,YAW,PITCH,ROLL per line; '#' lines skipped), or the base camera
-// flying forward at 60 m/s along -z.
-absl::StatusOr<std::vector<v1::Camera>> CameraPath(const v1::Camera& base, int frames,
-                                                   double rate) {
-  std::vector<v1::Camera> path;
-  if (const std::string file = absl::GetFlag(FLAGS_path); !file.empty()) {
-    std::ifstream in(file);
-    if (!in) return absl::NotFoundError(absl::StrCat("cannot read --path ", file));
-    std::string line;
-    while (std::getline(in, line) && static_cast<int>(path.size()) < frames) {
-      if (line.empty() || line[0] == '#') continue;
-      v1::Camera camera = base;
-      if (auto s = ParseCameraInto(line, &camera); !s.ok()) return s;
-      path.push_back(camera);
-    }
-    return path;
-  }
-  for (int i = 0; i < frames; ++i) {
-    v1::Camera camera = base;
-    camera.mutable_position()->set_z(base.position().z() - 60.0 * i / rate);
-    path.push_back(camera);
-  }
-  return path;
-}
+using Clock = std::chrono::steady_clock;
 
-}  // namespace
+// What one channel's stream got.
+struct ChannelReport {
+  size_t frames = 0, received = 0, dropped = 0, late = 0, skipped = 0;
+  LatencySummary latency;
+  double achieved_hz = 0;
+  grpc::Status status;
+  v1::RenderFrameResponse last;  // the last rendered frame (--last_frames)
+};
 
-int RunSim() {
-  using Clock = std::chrono::steady_clock;
-  auto fail = [](const absl::Status& status) {
-    std::fprintf(stderr, "aperture sim: error: %s\n", std::string(status.message()).c_str());
-    return absl::IsInvalidArgument(status) ? 2 : 1;
-  };
-  const double rate = absl::GetFlag(FLAGS_rate);
-  if (!(rate > 0)) return fail(absl::InvalidArgumentError("--rate must be > 0"));
-  auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
-  auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
-  if (!scene.ok()) return fail(scene.status());
-  auto base = FrameRequestFromFlags(*scene);
-  if (!base.ok()) return fail(base.status());
-  auto path = CameraPath(base->camera(), absl::GetFlag(FLAGS_frames), rate);
-  if (!path.ok()) return fail(path.status());
-  const size_t frames = path->size();
-
+// One channel: a RenderStream fed one request per slot of the shared clock (slot i carries frame
+// i on every channel), answers read as they come.
+ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& base,
+                         const std::vector<SimFrame>& path, const v1::Frustum* frustum,
+                         Clock::time_point start, Clock::duration slot, bool keep_last) {
+  ChannelReport report;
+  report.frames = path.size();
   grpc::ClientContext context;
-  auto stream = stub->RenderStream(&context);
-  const auto slot =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate));
-  const auto start = Clock::now() + std::chrono::milliseconds(20);
-  std::vector<Clock::time_point> sent(frames);
+  auto stream = stub.RenderStream(&context);
+  std::vector<Clock::time_point> sent(path.size());
   std::mutex mutex;
   std::thread writer([&] {
-    for (size_t i = 0; i < frames; ++i) {
+    for (size_t i = 0; i < path.size(); ++i) {
       std::this_thread::sleep_until(start + slot * static_cast<int64_t>(i));
-      v1::RenderFrameRequest request = *base;
-      *request.mutable_camera() = (*path)[i];
+      v1::RenderFrameRequest request = base;
+      *request.mutable_camera() = path[i].camera;
+      if (frustum != nullptr) *request.mutable_camera()->mutable_frustum() = *frustum;
+      if (path[i].update) *request.mutable_update() = *path[i].update;
       request.set_frame_index(i);
       {
         std::lock_guard lock(mutex);
@@ -84,20 +63,22 @@ int RunSim() {
   });
 
   std::vector<double> latencies;
-  size_t received = 0, dropped = 0, late = 0, skipped = 0;
   Clock::time_point last_frame = start;
   v1::RenderFrameResponse response;
   while (stream->Read(&response)) {
     const auto now = Clock::now();
     const size_t i = response.frame_index();
-    ++received;
-    if (response.status_code() != 0 || i >= frames) {
-      ++dropped;
+    ++report.received;
+    if (response.status_code() != 0 || i >= path.size()) {
+      if (report.dropped == 0 && response.status_code() != 0)
+        std::fprintf(stderr, "aperture sim: frame %zu failed: %s\n", i,
+                     response.status_message().c_str());
+      ++report.dropped;
       continue;
     }
     // The server rendered a newer state instead (newest state wins): not an error.
     if (response.outcome() != v1::FRAME_OUTCOME_RENDERED) {
-      ++skipped;
+      ++report.skipped;
       continue;
     }
     Clock::time_point sent_at;
@@ -108,31 +89,125 @@ int RunSim() {
     latencies.push_back(std::chrono::duration<double, std::milli>(now - sent_at).count());
     last_frame = now;
     // A frame is late when it arrives after the end of its own slot.
-    if (now > start + slot * static_cast<int64_t>(i + 1)) ++late;
+    if (now > start + slot * static_cast<int64_t>(i + 1)) ++report.late;
+    if (keep_last) report.last = std::move(response);
   }
   writer.join();
-  const grpc::Status status = stream->Finish();
-  dropped += frames - received;
-  const LatencySummary s = Summarize(latencies);
+  report.status = stream->Finish();
+  report.dropped += path.size() - report.received;
+  report.latency = Summarize(latencies);
   // Frames shown per second of the run, from the first slot to the last frame received.
   const double seconds = std::chrono::duration<double>(last_frame - start).count();
-  const double achieved = seconds > 0 ? static_cast<double>(s.count) / seconds : 0.0;
-  if (absl::GetFlag(FLAGS_json)) {
-    std::printf(
-        "{\"frames\": %zu, \"rate_hz\": %.3f, \"achieved_hz\": %.3f, \"ok\": %zu, "
-        "\"late\": %zu, \"skipped\": %zu, \"dropped\": %zu, \"latency_ms\": {\"p50\": %.3f, "
-        "\"p90\": %.3f, \"p99\": %.3f, \"max\": %.3f}, \"status\": \"%s\"}\n",
-        frames, rate, achieved, s.count, late, skipped, dropped, s.p50, s.p90, s.p99, s.max,
-        status.ok() ? "OK" : status.error_message().c_str());
-  } else {
-    std::printf(
-        "%zu frames offered at %.2f Hz: %zu rendered (%.2f Hz achieved), %zu late for their "
-        "slot, %zu skipped for a newer state, %zu dropped\n",
-        frames, rate, s.count, achieved, late, skipped, dropped);
-    std::printf("latency ms: p50 %.2f  p90 %.2f  p99 %.2f  max %.2f\n", s.p50, s.p90, s.p99, s.max);
-    if (!status.ok()) std::printf("stream ended: %s\n", status.error_message().c_str());
+  report.achieved_hz = seconds > 0 ? static_cast<double>(report.latency.count) / seconds : 0.0;
+  return report;
+}
+
+// The channel a host would notice first: the most frames not shown on time, then the slowest.
+size_t WorstChannel(const std::vector<ChannelReport>& reports) {
+  size_t worst = 0;
+  auto badness = [](const ChannelReport& r) {
+    return std::pair(r.late + r.dropped + r.skipped + (r.status.ok() ? 0 : r.frames),
+                     r.latency.p99);
+  };
+  for (size_t k = 1; k < reports.size(); ++k)
+    if (badness(reports[k]) > badness(reports[worst])) worst = k;
+  return worst;
+}
+
+std::string Json(const ChannelReport& r, double rate) {
+  return absl::StrFormat(
+      "\"frames\": %zu, \"rate_hz\": %.3f, \"achieved_hz\": %.3f, \"ok\": %zu, \"late\": %zu, "
+      "\"skipped\": %zu, \"dropped\": %zu, \"latency_ms\": {\"p50\": %.3f, \"p90\": %.3f, "
+      "\"p99\": %.3f, \"max\": %.3f}, \"status\": \"%s\"",
+      r.frames, rate, r.achieved_hz, r.latency.count, r.late, r.skipped, r.dropped, r.latency.p50,
+      r.latency.p90, r.latency.p99, r.latency.max,
+      r.status.ok() ? "OK" : r.status.error_message().c_str());
+}
+
+void PrintText(const ChannelReport& r, double rate, const std::string& label) {
+  std::printf(
+      "%s%zu frames offered at %.2f Hz: %zu rendered (%.2f Hz achieved), %zu late for their slot, "
+      "%zu skipped for a newer state, %zu dropped\n",
+      label.c_str(), r.frames, rate, r.latency.count, r.achieved_hz, r.late, r.skipped, r.dropped);
+  std::printf("%slatency ms: p50 %.2f  p90 %.2f  p99 %.2f  max %.2f\n",
+              std::string(label.size(), ' ').c_str(), r.latency.p50, r.latency.p90, r.latency.p99,
+              r.latency.max);
+  if (!r.status.ok()) std::printf("stream ended: %s\n", r.status.error_message().c_str());
+}
+
+absl::Status WriteLastFrames(const std::vector<ChannelReport>& reports, const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  for (size_t k = 0; k < reports.size(); ++k) {
+    if (reports[k].last.exr().empty())
+      return absl::UnavailableError(absl::StrCat("channel ", k, " rendered no frame to write"));
+    const std::string file = absl::StrCat(dir, "/channel-", k, ".exr");
+    std::ofstream out(file, std::ios::binary);
+    out.write(reports[k].last.exr().data(),
+              static_cast<std::streamsize>(reports[k].last.exr().size()));
+    if (!out) return absl::UnavailableError(absl::StrCat("cannot write ", file));
   }
-  return status.ok() && dropped == 0 ? 0 : 1;
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+int RunSim() {
+  auto fail = [](const absl::Status& status) {
+    std::fprintf(stderr, "aperture sim: error: %s\n", std::string(status.message()).c_str());
+    return absl::IsInvalidArgument(status) ? 2 : 1;
+  };
+  const double rate = absl::GetFlag(FLAGS_rate);
+  if (!(rate > 0)) return fail(absl::InvalidArgumentError("--rate must be > 0"));
+  const int channels = absl::GetFlag(FLAGS_channels);
+  auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
+  auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
+  if (!scene.ok()) return fail(scene.status());
+  auto base = FrameRequestFromFlags(*scene);
+  if (!base.ok()) return fail(base.status());
+  auto frusta =
+      ChannelFrusta(base->camera(), channels, base->options().width(), base->options().height());
+  if (!frusta.ok()) return fail(frusta.status());
+  auto path = MakeSimPath(absl::GetFlag(FLAGS_path), base->camera(), scene->objects,
+                          absl::GetFlag(FLAGS_frames), rate);
+  if (!path.ok()) return fail(path.status());
+
+  const auto slot =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate));
+  const auto start = Clock::now() + std::chrono::milliseconds(20);
+  const std::string last_frames = absl::GetFlag(FLAGS_last_frames);
+  std::vector<ChannelReport> reports(static_cast<size_t>(channels));
+  std::vector<std::thread> threads;
+  for (int k = 0; k < channels; ++k)
+    threads.emplace_back([&, k] {
+      reports[k] = RunChannel(*stub, *base, *path, channels > 1 ? &(*frusta)[k] : nullptr, start,
+                              slot, !last_frames.empty());
+    });
+  for (std::thread& t : threads) t.join();
+
+  const size_t worst = WorstChannel(reports);
+  if (absl::GetFlag(FLAGS_json)) {
+    // The top-level figures are the worst channel's (all of them when there is one channel).
+    std::string json = absl::StrCat("{", Json(reports[worst], rate));
+    if (channels > 1) {
+      std::vector<std::string> each;
+      for (const ChannelReport& r : reports) each.push_back(absl::StrCat("{", Json(r, rate), "}"));
+      absl::StrAppend(&json, ", \"worst_channel\": ", worst, ", \"channels\": [",
+                      absl::StrJoin(each, ", "), "]");
+    }
+    std::printf("%s}\n", json.c_str());
+  } else if (channels == 1) {
+    PrintText(reports[0], rate, "");
+  } else {
+    for (int k = 0; k < channels; ++k)
+      PrintText(reports[k], rate, absl::StrCat("channel ", k, ": "));
+    std::printf("worst channel: %zu\n", worst);
+  }
+  if (!last_frames.empty())
+    if (auto s = WriteLastFrames(reports, last_frames); !s.ok()) return fail(s);
+  bool ok = true;
+  for (const ChannelReport& r : reports) ok = ok && r.status.ok() && r.dropped == 0;
+  return ok ? 0 : 1;
 }
 
 }  // namespace aperture

@@ -15,7 +15,12 @@
 #   sim       a simulator host on RenderStream (issue 20): `aperture sim` of the demo at 1280x720
 #             and 1920x1080 at SIM_RATES (default 5 10 15 20 30), SIM_S seconds each (default 6),
 #             achieved rate, late and skipped frames and latency; BEFORE_DIR as for node.
-# Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|node|sim|all]   (default all)
+#   moving    what a moving object costs (issue 20): `aperture sim` of the demo at 1920x1080,
+#             5 Hz, MOVING_FRAMES frames (default 30) from one camera, with the aircraft moved by
+#             a SceneUpdate every frame against no update, ROUNDS rounds interleaved; per frame
+#             the server's update + setup + raster ms (median of each run), and the ratio.
+# Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|node|sim|moving|all]
+#        (default all)
 # Environment: LOAD_S (default 60), SOAK_MIN (default 5), ROUNDS (default 5), NODE_S (default 10),
 # BEFORE_DIR (unset).
 set -euo pipefail
@@ -219,8 +224,46 @@ sim() {
   done
 }
 
+# The median over a server log's RenderStream frames of update + setup + raster ms.
+frame_work_ms() {
+  grep 'rpc=RenderStream scene=' "$1" |
+    sed -E 's/.*update_ms=([0-9.]+).*setup_ms=([0-9.]+) raster_ms=([0-9.]+).*/\1 \2 \3/' |
+    awk '{print $1 + $2 + $3}' | sort -n |
+    awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'
+}
+
+moving() {
+  local frames="${MOVING_FRAMES:-30}"
+  echo "== moving: demo 1920x1080 at 5 Hz, $frames frames from one camera, $rounds rounds"
+  local camera='"camera": {"position": {"x": 0, "y": 14, "z": 420}, "pitchDeg": -5}'
+  : >"$work/static.jsonl"
+  : >"$work/moving.jsonl"
+  for i in $(seq 0 $((frames - 1))); do
+    echo "{$camera}" >>"$work/static.jsonl"
+    awk -v i="$i" -v c="$camera" 'BEGIN {printf "{%s, \"update\": {\"objects\": [{\"name\": \"aircraft\", \"transform\": {\"translation\": {\"x\": %.2f, \"z\": %.2f}, \"yawDeg\": %.2f}}]}}\n", c, -0.1 * i, 50 - 1.5 * i, 0.5 * i}' >>"$work/moving.jsonl"
+  done
+  local ratios=()
+  for round in $(seq 1 "$rounds"); do
+    local static_ms moving_ms
+    for kind in static moving; do
+      start_server "$work/store-moving"
+      "$client_bin" sim --server "$address" --scene demo --size 1920x1080 --rate 5 \
+        --path "$work/$kind.jsonl" --frames "$frames" --json >"$work/$kind.json" || true
+      stop_server
+      local ms
+      ms=$(frame_work_ms "$log_of_last_server.err")
+      [ "$kind" = static ] && static_ms=$ms || moving_ms=$ms
+      echo "round $round $kind: median update+setup+raster $ms ms; $(cat "$work/$kind.json")"
+    done
+    ratios+=("$(awk -v m="$moving_ms" -v s="$static_ms" 'BEGIN {printf "%.3f", m / s}')")
+    echo "round $round: moving / static = ${ratios[-1]}"
+  done
+  printf '%s\n' "${ratios[@]}" | sort -n |
+    awk '{v[NR] = $1} END {printf "moving / static, median of %d rounds: %s\n", NR, v[int((NR + 1) / 2)]}'
+}
+
 case "$what" in
-  overhead | restart | load | soak | split | node | sim) "$what" ;;
-  all) overhead; restart; load; soak; split; node; sim ;;
-  *) echo "usage: $0 [overhead|restart|load|soak|split|node|sim|all]" >&2; exit 2 ;;
+  overhead | restart | load | soak | split | node | sim | moving) "$what" ;;
+  all) overhead; restart; load; soak; split; node; sim; moving ;;
+  *) echo "usage: $0 [overhead|restart|load|soak|split|node|sim|moving|all]" >&2; exit 2 ;;
 esac

@@ -3,6 +3,8 @@
 #include <thread>
 #include <utility>
 
+#include "scene/scene_update.h"
+
 namespace aperture {
 namespace {
 
@@ -16,10 +18,11 @@ double MillisecondsSince(LiveClock::time_point start) {
 
 }  // namespace
 
-LiveStream::LiveStream(grpc::ServerContext* context, Stream* stream, RenderFrameFn render,
-                       std::function<void(const LiveFrame&)> answered)
+LiveStream::LiveStream(grpc::ServerContext* context, Stream* stream, CheckFrameFn check,
+                       RenderFrameFn render, std::function<void(const LiveFrame&)> answered)
     : context_(context),
       stream_(stream),
+      check_(std::move(check)),
       render_(std::move(render)),
       answered_(std::move(answered)) {}
 
@@ -39,14 +42,28 @@ void LiveStream::Skip(LiveFrame& frame, v1::FrameOutcome outcome, uint64_t super
   frame.response.set_outcome(outcome);
   frame.response.set_superseded_by(superseded_by);
   frame.response.mutable_timings()->set_total_ms(MillisecondsSince(frame.received));
+  // Its update holds from its frame on: the next request rendered applies it first.
+  if (frame.request.has_update()) {
+    if (!carried_) carried_.emplace();
+    MergeSceneUpdate(frame.request.update(), &*carried_);
+  }
 }
 
 void LiveStream::ReadRequests() {
   auto frame = std::make_shared<LiveFrame>();
   while (stream_->Read(&frame->request)) {
     frame->received = LiveClock::now();
+    absl::Status checked = check_(frame->request);
     {
       std::lock_guard lock(mutex_);
+      if (!checked.ok()) {  // never rendered, supersedes nothing: answered in its turn
+        frame->status = std::move(checked);
+        frame->state = LiveFrame::State::kAnswered;
+        answers_.push_back(frame);
+        changed_.notify_all();
+        frame = std::make_shared<LiveFrame>();
+        continue;
+      }
       if (waiting_)
         Skip(*waiting_, v1::FRAME_OUTCOME_SKIPPED_SUPERSEDED, frame->request.frame_index());
       answers_.push_back(frame);
@@ -79,6 +96,11 @@ void LiveStream::RenderNewest() {
         Skip(*frame, v1::FRAME_OUTCOME_SKIPPED_LATE, 0);
         changed_.notify_all();
         continue;
+      }
+      if (carried_) {  // the skipped requests' updates first, then its own
+        MergeSceneUpdate(frame->request.update(), &*carried_);
+        *frame->request.mutable_update() = *std::move(carried_);
+        carried_.reset();
       }
       frame->state = LiveFrame::State::kRendering;
       ++rendered_unwritten_;

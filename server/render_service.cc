@@ -127,6 +127,12 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
     response->set_textures(static_cast<uint32_t>(loaded->scene->textures.size()));
     response->set_build_ms(MillisecondsSince(start));
     if (loaded->default_camera) *response->mutable_default_camera() = *loaded->default_camera;
+    for (const SceneObject& object : loaded->scene->objects) {
+      v1::NamedObject& named = *response->add_objects();
+      named.set_name(object.name);
+      *named.mutable_transform() = object.transform;
+      named.set_hidden(!object.visible);
+    }
   }
   spdlog::info("req={} rpc=LoadScene peer={} scene={}{} name='{}' ms={:.2f} status={}{}", id,
                context->peer(), loaded.ok() ? Short(loaded->id) : "-",
@@ -140,16 +146,20 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
 
 absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* context,
                                                          const v1::RenderFrameRequest& request,
+                                                         LiveScene& live,
                                                          LiveClock::time_point stop_at,
                                                          v1::RenderFrameResponse* response) {
   const auto start = Clock::now();
   response->set_frame_index(request.frame_index());
   auto job = ParseFrameRequest(request, limits_.max_pixels);
   if (!job.ok()) return job.status();
-  std::shared_ptr<const Scene> scene = scenes_.Find(request.scene_id());
-  if (!scene)
-    return absl::NotFoundError(
-        absl::StrCat("scene_id '", request.scene_id(), "' is not loaded (LoadScene first)"));
+  // Before admission: the update holds from this frame on even if the frame is refused.
+  const auto update_start = Clock::now();
+  auto live_scene = live.Advance(request);
+  if (!live_scene.ok()) return live_scene.status();
+  const std::shared_ptr<const Scene> scene = *std::move(live_scene);
+  const bool updated = live.updated();
+  const double update_ms = MillisecondsSince(update_start);
 
   StopCheck stop(context, stop_at);
   auto ticket = admission_.Enter([&] { return stop(); });
@@ -158,7 +168,8 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
                ? absl::DeadlineExceededError("the frame's deadline_ms passed in the queue")
                : ticket.status();
   v1::FrameTimings& timings = *response->mutable_timings();
-  timings.set_queue_ms(MillisecondsSince(start));
+  timings.set_update_ms(update_ms);
+  timings.set_queue_ms(MillisecondsSince(start) - update_ms);
 
   auto frame = std::make_shared<absl::StatusOr<RenderedFrame>>();
   double traced_build_ms = 0;
@@ -170,8 +181,21 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
         *frame = aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
         return;
       }
-      // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays.
-      auto traced = traced_.Get(request.scene_id(), scene, &traced_build_ms);
+      // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays. A
+      // channel's updated scene has its own, built for this frame (the tables come from the
+      // store when there is one).
+      absl::StatusOr<std::shared_ptr<const TracedScene>> traced;
+      if (updated) {
+        const auto build_start = Clock::now();
+        auto built = TracedScene::Build(*scene, textures_.shared());
+        traced_build_ms = MillisecondsSince(build_start);
+        if (built.ok())
+          traced = std::shared_ptr<const TracedScene>(*std::move(built));
+        else
+          traced = built.status();
+      } else {
+        traced = traced_.Get(request.scene_id(), scene, &traced_build_ms);
+      }
       if (!traced.ok()) {
         *frame = traced.status();
         return;
@@ -211,7 +235,8 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
 absl::Status RenderService::RenderOne(grpc::ServerContext* context,
                                       const v1::RenderFrameRequest& request,
                                       v1::RenderFrameResponse* response) {
-  auto encode = RenderImage(context, request, LiveClock::time_point::max(), response);
+  LiveScene live(scenes_);  // the request's update applies to this frame only
+  auto encode = RenderImage(context, request, live, LiveClock::time_point::max(), response);
   if (!encode.ok()) return encode.status();
   return (*encode)(response);
 }
@@ -242,9 +267,12 @@ grpc::Status RenderService::RenderStream(
     grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream) {
   const uint64_t id = next_request_id_++;
   const auto stream_start = Clock::now();
+  // The stream's scene state: updates apply from their frame on, for this stream only.
+  LiveScene live(scenes_);
+  auto check = [&](const v1::RenderFrameRequest& request) { return live.Check(request); };
   auto render = [&](const v1::RenderFrameRequest& request, LiveClock::time_point stop_at,
                     v1::RenderFrameResponse* response) {
-    return RenderImage(context, request, stop_at, response);
+    return RenderImage(context, request, live, stop_at, response);
   };
   auto answered = [&](const LiveFrame& frame) {
     const v1::RenderFrameRequest& request = frame.request;
@@ -260,16 +288,17 @@ grpc::Status RenderService::RenderStream(
     }
     (frame.status.ok() ? frames_rendered_ : frames_failed_)++;
     spdlog::info(
-        "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} queue_ms={:.2f} "
+        "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} update_ms={:.3f} queue_ms={:.2f} "
         "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
         "status={}{}",
         id, request.frame_index(), Short(request.scene_id()), request.options().width(),
-        request.options().height(), ModeName(request.options()), t.queue_ms(), t.setup_ms(),
+        request.options().height(), ModeName(request.options()), t.update_ms(), t.queue_ms(),
+        t.setup_ms(),
         t.raster_ms(), t.encode_ms(), MillisecondsSince(frame.received), response.exr().size(),
         absl::StatusCodeToString(frame.status.code()),
         frame.status.ok() ? "" : absl::StrCat(" error='", frame.status.message(), "'"));
   };
-  const LiveStreamCounts counts = LiveStream(context, stream, render, answered).Run();
+  const LiveStreamCounts counts = LiveStream(context, stream, check, render, answered).Run();
   const bool cancelled = context->IsCancelled();
   spdlog::info(
       "req={} rpc=RenderStream peer={} frames={} rendered={} skipped={} failed={} ms={:.2f} "

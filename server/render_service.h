@@ -10,6 +10,7 @@
 
 #include "admission.h"
 #include "aperture/v1/render_service.grpc.pb.h"
+#include "live_scene.h"
 #include "live_stream.h"
 #include "scene_store.h"
 #include "texture_store.h"
@@ -49,10 +50,11 @@ class RenderService final : public v1::Render::Service {
                            v1::PlanRegionsResponse* response) override;
 
  private:
-  // Validation, admission, rendering on the shared arena (stopped at `stop_at` too); fills the
-  // response's timings and returns what encodes the frame into it.
+  // Validation, the request's scene update (on `live`), admission, rendering on the shared arena
+  // (stopped at `stop_at` too); fills the response's timings and returns what encodes the frame
+  // into it.
   absl::StatusOr<EncodeFrameFn> RenderImage(grpc::ServerContext* context,
-                                            const v1::RenderFrameRequest& request,
+                                            const v1::RenderFrameRequest& request, LiveScene& live,
                                             LiveClock::time_point stop_at,
                                             v1::RenderFrameResponse* response);
   // RenderImage, then the encode; fills `response`.

@@ -54,6 +54,45 @@ void AddTank(v1::Mesh* mesh, double cx, double cz, double radius, double height,
   }
 }
 
+// The faces of an axis-aligned box, to leave some out.
+enum BoxFace : unsigned {
+  kPlusZ = 1,
+  kMinusZ = 2,
+  kPlusX = 4,
+  kMinusX = 8,
+  kTop = 16,
+  kBottom = 32
+};
+
+// An axis-aligned box [lo, hi], every face seen from outside counter-clockwise, except the faces
+// in `skip` (one that lies on another box's face would make coplanar overlapping polygons).
+void AddSolidBox(v1::Mesh* mesh, const Vec3& lo, const Vec3& hi, unsigned skip = 0) {
+  const double x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
+  if (!(skip & kPlusZ)) AddPolygon(mesh, {{x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}});
+  if (!(skip & kMinusZ)) AddPolygon(mesh, {{x1, y0, z0}, {x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}});
+  if (!(skip & kPlusX)) AddPolygon(mesh, {{x1, y0, z1}, {x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}});
+  if (!(skip & kMinusX)) AddPolygon(mesh, {{x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0}});
+  if (!(skip & kTop)) AddPolygon(mesh, {{x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0}, {x0, y1, z0}});
+  if (!(skip & kBottom)) AddPolygon(mesh, {{x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1}});
+}
+
+// A twin-jet the size of an A320 (38 m long, 34 m span) in its own frame: the nose towards -z
+// (where yaw 0 looks), the wheels on y = 0, the centre of the fuselage at x = z = 0. Its parts
+// touch but never pass through each other: interpenetrating pieces make the exact visibility of
+// a cell cost more (seed 002's depth-equality lines).
+void AddAircraft(v1::Mesh* mesh) {
+  AddSolidBox(mesh, {-2, 1.2, -19}, {2, 5.2, 19});          // fuselage
+  AddSolidBox(mesh, {-17, 2.4, -3}, {-2, 2.8, 3}, kPlusX);  // wings, from its sides
+  AddSolidBox(mesh, {2, 2.4, -3}, {17, 2.8, 3}, kMinusX);
+  AddSolidBox(mesh, {-6, 4.6, 14}, {-2, 4.9, 18}, kPlusX);  // tailplane
+  AddSolidBox(mesh, {2, 4.6, 14}, {6, 4.9, 18}, kMinusX);
+  AddSolidBox(mesh, {-0.25, 5.2, 13}, {0.25, 12, 19}, kBottom);  // fin, on its top
+  AddSolidBox(mesh, {-9, 1.0, -4}, {-7, 2.3, 0});                // engines, under the wings
+  AddSolidBox(mesh, {7, 1.0, -4}, {9, 2.3, 0});
+  for (const Vec3& at : {Vec3{0, 0, -14}, Vec3{-3, 0, 1}, Vec3{3, 0, 1}})  // gear legs
+    AddSolidBox(mesh, {at.x - 0.3, 0, at.z - 0.3}, {at.x + 0.3, 1.15, at.z + 0.3});
+}
+
 v1::Material* AddMaterial(v1::Scene& scene, const char* id, float r, float g, float b,
                           const char* texture = nullptr, double repeat = 1) {
   v1::Material* m = scene.add_materials();
@@ -105,6 +144,7 @@ v1::Scene BuildDemoScene() {
   AddMaterial(scene, "paint", 0.85f, 0.85f, 0.82f);
   AddMaterial(scene, "hangar", 0.55f, 0.57f, 0.60f);
   AddMaterial(scene, "tank", 0.80f, 0.80f, 0.76f);
+  AddMaterial(scene, "livery", 0.90f, 0.90f, 0.92f);
 
   v1::Mesh* ground = scene.add_meshes();
   ground->set_id("ground");
@@ -161,6 +201,20 @@ v1::Scene BuildDemoScene() {
       AddBox(town, x, z, x + 18, z + 18, height);
     }
   }
+
+  // The aircraft is the one object that moves (a live channel's updates name it); every other
+  // mesh stands once where it was built.
+  v1::Mesh* aircraft = scene.add_meshes();
+  aircraft->set_id("aircraft");
+  aircraft->set_material_id("livery");
+  AddAircraft(aircraft);
+  for (const v1::Mesh& mesh : scene.meshes()) {
+    v1::Object* object = scene.add_objects();
+    object->set_mesh_id(mesh.id());
+    if (mesh.id() != "aircraft") continue;
+    object->set_name(kDemoAircraft);
+    *object->mutable_transform() = DemoAircraftAt(0);
+  }
   return scene;
 }
 
@@ -170,6 +224,16 @@ v1::Scene BuildDemoScene() {
 v1::Scene MakeDemoScene() {
   static const v1::Scene* const demo = new v1::Scene(BuildDemoScene());
   return *demo;
+}
+
+v1::Transform DemoAircraftAt(double seconds) {
+  // Lined up on the runway's centreline 150 m past the threshold (z = 200), 370 m ahead of the
+  // camera, then rolling for take-off at 2 m/s^2. The wheels stand just above the paint (y = 0.1):
+  // gear legs through the runway's layers would make cells of interpenetrating pieces.
+  v1::Transform t;
+  t.mutable_translation()->set_y(0.15);
+  t.mutable_translation()->set_z(50 - seconds * seconds);
+  return t;
 }
 
 Camera DemoCamera() {

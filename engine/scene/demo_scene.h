@@ -9,6 +9,11 @@
 namespace aperture {
 
 v1::Scene MakeDemoScene();
+
+// The demo's moving object: a twin-jet lined up on the runway (object name "aircraft").
+inline constexpr char kDemoAircraft[] = "aircraft";
+// Its transform `seconds` into its take-off roll (0: where the scene puts it).
+v1::Transform DemoAircraftAt(double seconds);
 // On final approach: 14 m up, 220 m before the threshold, looking 5 degrees down.
 Camera DemoCamera();
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "aperture/v1/scene.pb.h"
 #include "scene/vec.h"
 #include "store/shared_store.h"
 #include "texture/footprint_samplers.h"
@@ -72,11 +73,32 @@ struct CurvedPrimitive {
   TextureAffine texture;  // F2 after the spherical / cylindrical F1
 };
 
+struct ObjectMesh;  // scene/object_placement.h
+
+// Where an object stands: world = linear * local + translation.
+struct ObjectPlacement {
+  Mat3 linear;  // rotation * scale
+  Vec3 translation;
+};
+
+// A named object (the proto Object's name), which a live frame's update may move, show or hide:
+// its polygons are polygons[first, first + count) (none while hidden). Objects are in the order
+// the scene lists them, so are their ranges.
+struct SceneObject {
+  std::string name;
+  size_t first = 0, count = 0;
+  bool visible = true;
+  ObjectPlacement placement;               // the current one (kept while hidden)
+  v1::Transform transform;                 // the same, as the scene or the last update gave it
+  std::shared_ptr<const ObjectMesh> mesh;  // what placing it again needs, shared by copies
+};
+
 struct Scene {
   std::string name;
   std::vector<std::shared_ptr<const SceneTexture>> textures;
   std::vector<Material> materials;
   std::vector<ScenePolygon> polygons;
+  std::vector<SceneObject> objects;     // the named ones only
   std::vector<CurvedPrimitive> curved;  // spheres, then cylinders (raytrace mode only)
   Vec3 sun_direction{0, 1, 0};          // unit, towards the sun
   Rgba sun_color{0, 0, 0, 1};

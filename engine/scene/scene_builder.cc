@@ -5,7 +5,8 @@
 #include <unordered_map>
 
 #include "absl/strings/str_cat.h"
-#include "scene/triangulate.h"
+#include "scene/object_placement.h"
+#include "scene/scene_environment.h"
 #include "store/texture_entries.h"
 #include "texture/packed/apv_file.h"
 #include "texture/packed/packed_sampler.h"
@@ -20,14 +21,6 @@ absl::Status Invalid(const std::string& where, const std::string& what) {
 }
 
 Vec3 FromProto(const v1::Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-absl::StatusOr<Rgba> ColorFromProto(const v1::Color& c, const std::string& where) {
-  const float values[] = {c.r(), c.g(), c.b()};
-  for (float v : values)
-    if (!std::isfinite(v) || v < 0)
-      return Invalid(where, "colour components must be finite and >= 0");
-  return Rgba{c.r(), c.g(), c.b(), 1.0f};
-}
 
 // A packed texture decoded from .apv bytes: in the store when there is one, else in memory.
 absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildPackedTexture(
@@ -107,57 +100,6 @@ absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Textu
   }
   return Invalid(where, "texture has no source (file, encoded or checkerboard)");
 }
-
-// Where no uvs are given: project onto the world axis plane the polygon faces most.
-// Walls use -y as t so that images stand upright.
-Vec2 PlanarProjection(const Vec3& p, const Vec3& n) {
-  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
-  if (ay >= ax && ay >= az) return {p.x, p.z};
-  if (az >= ax) return {p.x, -p.y};
-  return {p.z, -p.y};
-}
-
-// Fits the affine map world -> (s, t) over the polygon's plane from three well-spread vertices.
-void FitMapping(const std::vector<Vec3>& pts, const std::vector<Vec2>& st, const Vec3& normal,
-                Vec3* ss, Vec3* tt, double* s0, double* t0) {
-  size_t i1 = 1, i2 = 2;
-  double best = -1;
-  for (size_t i = 1; i < pts.size(); ++i) {
-    double d = Length(pts[i] - pts[0]);
-    if (d > best) best = d, i1 = i;
-  }
-  best = -1;
-  for (size_t i = 1; i < pts.size(); ++i) {
-    double a = Length(Cross(pts[i1] - pts[0], pts[i] - pts[0]));
-    if (a > best) best = a, i2 = i;
-  }
-  const Vec3 e1 = pts[i1] - pts[0], e2 = pts[i2] - pts[0];
-  // Dual basis within the plane: dot(g1, e1) = 1, dot(g1, e2) = 0, and likewise for g2.
-  const Vec3 c2 = Cross(e2, normal), c1 = Cross(normal, e1);
-  const Vec3 g1 = c2 * (1.0 / Dot(e1, c2)), g2 = c1 * (1.0 / Dot(e2, c1));
-  const double ds1 = st[i1].x - st[0].x, ds2 = st[i2].x - st[0].x;
-  const double dt1 = st[i1].y - st[0].y, dt2 = st[i2].y - st[0].y;
-  *ss = g1 * ds1 + g2 * ds2;
-  *tt = g1 * dt1 + g2 * dt2;
-  *s0 = st[0].x - Dot(*ss, pts[0]);
-  *t0 = st[0].y - Dot(*tt, pts[0]);
-}
-
-// Newell's normal (length = twice the area): robust for any planar polygon, convex or not.
-Vec3 NewellNormal(const std::vector<Vec3>& pts) {
-  Vec3 n;
-  for (size_t i = 0; i < pts.size(); ++i) {
-    const Vec3& a = pts[i];
-    const Vec3& b = pts[(i + 1) % pts.size()];
-    n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-  }
-  return n;
-}
-
-struct ObjectPlacement {
-  Mat3 linear;  // rotation * scale
-  Vec3 translation;
-};
 
 class Builder {
  public:
@@ -252,36 +194,17 @@ class Builder {
   }
 
   absl::Status BuildLights() {
-    if (proto_.has_sun()) {
-      const Vec3 dir = FromProto(proto_.sun().direction());
-      if (!IsFinite(dir)) return Invalid("sun.direction", "is not finite");
-      if (Length(dir) > 0) {
-        scene_.sun_direction = Normalize(dir);
-        auto c = ColorFromProto(proto_.sun().color(), "sun.color");
-        if (!c.ok()) return c.status();
-        scene_.sun_color = *c;
-      }
-    }
+    if (proto_.has_sun())
+      if (auto s = SetSun(proto_.sun(), &scene_); !s.ok()) return s;
     if (proto_.has_ambient()) {
-      auto c = ColorFromProto(proto_.ambient(), "ambient");
-      if (!c.ok()) return c.status();
-      scene_.ambient = *c;
+      if (auto s = SetAmbient(proto_.ambient(), &scene_); !s.ok()) return s;
     } else if (proto_.has_sun()) {
       scene_.ambient = {0, 0, 0, 1};
     }
-    if (proto_.has_fog()) {
-      auto c = ColorFromProto(proto_.fog().color(), "fog.color");
-      if (!c.ok()) return c.status();
-      scene_.fog_color = *c;
-      const double d = proto_.fog().density();
-      if (!std::isfinite(d) || d < 0) return Invalid("fog.density", "must be finite and >= 0");
-      scene_.fog_density = d;
-    }
-    if (proto_.has_sky()) {
-      auto c = ColorFromProto(proto_.sky(), "sky");
-      if (!c.ok()) return c.status();
-      scene_.sky = *c;
-    }
+    if (proto_.has_fog())
+      if (auto s = SetFog(proto_.fog(), &scene_); !s.ok()) return s;
+    if (proto_.has_sky())
+      if (auto s = SetSky(proto_.sky(), &scene_); !s.ok()) return s;
     return absl::OkStatus();
   }
 
@@ -295,11 +218,14 @@ class Builder {
       mesh_index[id] = i;
     }
     if (proto_.objects_size() == 0) {  // no objects: every mesh once, untransformed
-      for (int i = 0; i < proto_.meshes_size(); ++i)
-        if (auto s = PlaceMesh(i, ObjectPlacement{}, "", absl::StrCat("meshes[", i, "]")); !s.ok())
-          return s;
+      for (int i = 0; i < proto_.meshes_size(); ++i) {
+        auto mesh = MakeObjectMesh(i, "", absl::StrCat("meshes[", i, "]"));
+        if (!mesh.ok()) return mesh.status();
+        if (auto s = PlaceMesh(*mesh, ObjectPlacement{}, &scene_.polygons); !s.ok()) return s;
+      }
       return absl::OkStatus();
     }
+    std::unordered_map<std::string, int> object_names;
     for (int i = 0; i < proto_.objects_size(); ++i) {
       const v1::Object& o = proto_.objects(i);
       const std::string where = absl::StrCat("objects[", i, "]");
@@ -307,23 +233,34 @@ class Builder {
       if (it == mesh_index.end())
         return absl::NotFoundError(
             absl::StrCat(where, ": mesh_id '", o.mesh_id(), "' is not a mesh of the scene"));
-      const v1::Transform& t = o.transform();
-      ObjectPlacement placement;
-      const Vec3 scale = t.has_scale() ? FromProto(t.scale()) : Vec3{1, 1, 1};
-      placement.translation = FromProto(t.translation());
-      const double angles[] = {t.yaw_deg(), t.pitch_deg(), t.roll_deg()};
-      for (double a : angles)
-        if (!std::isfinite(a)) return Invalid(where, "transform angles are not finite");
-      if (!IsFinite(placement.translation))
-        return Invalid(where, "transform translation is not finite");
-      if (!IsFinite(scale) || scale.x == 0 || scale.y == 0 || scale.z == 0)
-        return Invalid(where, "transform scale must be finite and non-zero");
-      placement.linear =
-          YawPitchRoll(t.yaw_deg(), t.pitch_deg(), t.roll_deg()) * Mat3::Scale(scale);
-      if (auto s = PlaceMesh(it->second, placement, o.material_id(),
-                             absl::StrCat(where, " mesh '", o.mesh_id(), "'"));
-          !s.ok())
-        return s;
+      if (!o.name().empty() && !object_names.emplace(o.name(), i).second)
+        return Invalid(where, absl::StrCat("duplicate object name '", o.name(), "'"));
+      if (o.hidden() && o.name().empty())
+        return Invalid(where, "a hidden object needs a name (an update shows it)");
+      auto placement = PlacementFromProto(o.transform(), where);
+      if (!placement.ok()) return placement.status();
+      auto mesh = MakeObjectMesh(it->second, o.material_id(),
+                                 absl::StrCat(where, " mesh '", o.mesh_id(), "'"));
+      if (!mesh.ok()) return mesh.status();
+      if (o.name().empty()) {
+        if (auto s = PlaceMesh(*mesh, *placement, &scene_.polygons); !s.ok()) return s;
+        continue;
+      }
+      // Named: placed (and so validated) even when hidden, and kept for updates.
+      std::vector<ScenePolygon> placed;
+      if (auto s = PlaceMesh(*mesh, *placement, &placed); !s.ok()) return s;
+      SceneObject object;
+      object.name = o.name();
+      object.first = scene_.polygons.size();
+      object.visible = !o.hidden();
+      object.placement = *placement;
+      object.transform = o.transform();
+      object.mesh = std::make_shared<const ObjectMesh>(*std::move(mesh));
+      if (object.visible) {
+        object.count = placed.size();
+        for (ScenePolygon& p : placed) scene_.polygons.push_back(std::move(p));
+      }
+      scene_.objects.push_back(std::move(object));
     }
     return absl::OkStatus();
   }
@@ -336,9 +273,12 @@ class Builder {
     return it->second;
   }
 
-  absl::Status PlaceMesh(int mesh, const ObjectPlacement& placement,
-                         const std::string& material_override, const std::string& where_object) {
+  // The polygons of mesh `mesh` in its object's frame, validated, with their materials.
+  absl::StatusOr<ObjectMesh> MakeObjectMesh(int mesh, const std::string& material_override,
+                                            const std::string& where_object) {
     const v1::Mesh& m = proto_.meshes(mesh);
+    ObjectMesh out;
+    out.polygons.reserve(static_cast<size_t>(m.polygons_size()));
     for (int p = 0; p < m.polygons_size(); ++p) {
       const v1::Polygon& poly = m.polygons(p);
       const std::string where = absl::StrCat(where_object, ".polygons[", p, "]");
@@ -347,93 +287,11 @@ class Builder {
                                                               : m.material_id();
       auto material = MaterialIndex(material_id, where);
       if (!material.ok()) return material.status();
-      if (auto s = PlacePolygon(poly, placement, *material, where); !s.ok()) return s;
+      auto local = MakeLocalPolygon(poly, *material, transforms_[*material], where);
+      if (!local.ok()) return local.status();
+      out.polygons.push_back(*std::move(local));
     }
-    return absl::OkStatus();
-  }
-
-  absl::Status PlacePolygon(const v1::Polygon& poly, const ObjectPlacement& placement, int material,
-                            const std::string& where) {
-    if (poly.vertices_size() < 3)
-      return Invalid(
-          where, absl::StrCat("polygon has ", poly.vertices_size(), " vertices, needs at least 3"));
-    if (poly.uvs_size() != 0 && poly.uvs_size() != poly.vertices_size())
-      return Invalid(where, absl::StrCat("polygon has ", poly.uvs_size(), " uvs for ",
-                                         poly.vertices_size(), " vertices"));
-    std::vector<Vec3> local;
-    std::vector<Vec2> uv;
-    for (int i = 0; i < poly.vertices_size(); ++i) {
-      const Vec3 v = FromProto(poly.vertices(i));
-      if (!IsFinite(v))
-        return Invalid(absl::StrCat(where, ".vertices[", i, "]"), "coordinate is NaN or infinite");
-      Vec2 t;
-      if (poly.uvs_size() != 0) {
-        t = {poly.uvs(i).u(), poly.uvs(i).v()};
-        if (!std::isfinite(t.x) || !std::isfinite(t.y))
-          return Invalid(absl::StrCat(where, ".uvs[", i, "]"), "is NaN or infinite");
-      }
-      if (!local.empty() && local.back() == v) continue;  // repeated vertex
-      local.push_back(v);
-      uv.push_back(t);
-    }
-    while (local.size() > 1 && local.front() == local.back()) local.pop_back(), uv.pop_back();
-    if (local.size() < 3) return Invalid(where, "polygon has fewer than 3 distinct vertices");
-
-    std::vector<Vec3> world(local.size());
-    for (size_t i = 0; i < local.size(); ++i)
-      world[i] = placement.linear * local[i] + placement.translation;
-
-    const Vec3 newell = NewellNormal(world);
-    double extent = 0;
-    for (const Vec3& v : world) extent = std::max(extent, Length(v - world[0]));
-    const double twice_area = Length(newell);
-    if (!(twice_area > 1e-12 * extent * extent) || extent == 0)
-      return Invalid(where, "polygon is degenerate (zero area: collinear or coincident vertices)");
-    const Vec3 normal = newell * (1.0 / twice_area);
-    for (const Vec3& v : world)
-      if (std::abs(Dot(normal, v - world[0])) > 1e-6 * extent)
-        return Invalid(where, "polygon is not planar");
-
-    if (poly.uvs_size() == 0) {
-      const Vec3 ln = NewellNormal(local);
-      for (size_t i = 0; i < local.size(); ++i) uv[i] = PlanarProjection(local[i], ln);
-    }
-    // seed 003's F2: rotation, scale (repeats) and shift in the texture plane.
-    const v1::TextureTransform& tt = transforms_[material];
-    const double ru = tt.repeat_u() > 0 ? tt.repeat_u() : 1.0;
-    const double rv = tt.repeat_v() > 0 ? tt.repeat_v() : ru;
-    const double cr = std::cos(Radians(tt.rotation_deg())),
-                 sr = std::sin(Radians(tt.rotation_deg()));
-    for (Vec2& t : uv)
-      t = {(cr * t.x - sr * t.y) / ru + tt.offset_u(), (sr * t.x + cr * t.y) / rv + tt.offset_v()};
-
-    ScenePolygon base;
-    base.normal = normal;
-    base.material = material;
-    FitMapping(world, uv, normal, &base.mapping.su, &base.mapping.sv, &base.mapping.u0,
-               &base.mapping.v0);
-
-    // Convexity and triangulation in the 2D plane the polygon faces most.
-    std::vector<Vec2> flat(world.size());
-    for (size_t i = 0; i < world.size(); ++i) {
-      const double ax = std::abs(normal.x), ay = std::abs(normal.y), az = std::abs(normal.z);
-      flat[i] = (az >= ax && az >= ay) ? Vec2{world[i].x, world[i].y}
-                : (ay >= ax)           ? Vec2{world[i].z, world[i].x}
-                                       : Vec2{world[i].y, world[i].z};
-    }
-    if (IsConvex(flat)) {
-      base.vertices = std::move(world);
-      scene_.polygons.push_back(std::move(base));
-      return absl::OkStatus();
-    }
-    auto triangles = TriangulatePolygon(flat);
-    if (!triangles.ok()) return Invalid(where, std::string(triangles.status().message()));
-    for (const auto& tri : *triangles) {
-      ScenePolygon piece = base;
-      piece.vertices = {world[tri[0]], world[tri[1]], world[tri[2]]};
-      scene_.polygons.push_back(std::move(piece));
-    }
-    return absl::OkStatus();
+    return out;
   }
 
   // Spheres, then cylinders, each with its frame and the material's texture transform as F2.

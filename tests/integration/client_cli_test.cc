@@ -2,12 +2,19 @@
 // one aperture-render writes locally; textures already on the server are not sent again; health,
 // load and sim run end to end; a batch survives a killed server and resumes without rework; a job
 // split with --shard I/N renders each frame in exactly one shard, and --check finds the gaps.
+// Protobuf's headers before OpenImageIO's, whose farmhash.h #undefs the bswap_32 and bswap_64
+// that protobuf's port.h needs.
+// clang-format off
+#include <grpcpp/grpcpp.h>
+#include "aperture/v1/render_service.grpc.pb.h"
+// clang-format on
 #include <OpenImageIO/imagebuf.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -218,6 +225,111 @@ TEST_F(ClientTest, SimStreamsFramesAtARate) {
   EXPECT_THAT(result.out, HasSubstr("\"frames\": 8"));
   EXPECT_THAT(result.out, HasSubstr("\"ok\": 8"));
   EXPECT_THAT(result.out, HasSubstr("\"dropped\": 0"));
+}
+
+// Three channels of a JSON-lines path (a camera and an update on its first line): their last
+// frames side by side are one wide frame, the one a single camera with the whole frustum and the
+// same update renders.
+TEST_F(ClientTest, SimChannelsTileOneWideViewAndFlyAJsonPath) {
+  const std::string path = (dir_ / "path.jsonl").string();
+  std::ofstream(path) << "# a camera behind the aircraft, which turns\n"
+                      << R"({"camera": {"position": {"x": 3, "y": 9, "z": 130}, "pitchDeg": -4},)"
+                      << R"( "update": {"objects": [{"name": "aircraft", "transform": )"
+                      << R"({"translation": {"z": 60}, "yawDeg": 30}}]}})"
+                      << "\n"
+                      << "\n"
+                      << R"({"update": {"sky": {"r": 0.9, "g": 0.5, "b": 0.2}}})"
+                      << "\n";
+  const std::filesystem::path last = dir_ / "last";
+  const CommandResult result =
+      Client({"sim", "--scene=demo", "--path=" + path, "--channels=3", "--rate=4", "--frames=5",
+              "--size=64x40", "--filter=trilinear", "--float_pixels",
+              "--last_frames=" + last.string(), "--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+  EXPECT_THAT(result.out, HasSubstr("\"frames\": 2"));  // the path's two frames
+  EXPECT_THAT(result.out, HasSubstr("\"worst_channel\""));
+  EXPECT_THAT(result.out, HasSubstr("\"channels\": [{"));
+
+  // The same frame from one camera: 3 x 64 pixels wide, its frustum the three channels' union.
+  auto stub = v1::Render::NewStub(
+      grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials()));
+  v1::LoadSceneRequest load;
+  load.set_builtin_scene("demo");
+  v1::LoadSceneResponse loaded;
+  grpc::ClientContext load_context;
+  ASSERT_TRUE(stub->LoadScene(&load_context, load, &loaded).ok());
+  v1::RenderFrameRequest wide;
+  wide.set_scene_id(loaded.scene_id());
+  v1::Camera& camera = *wide.mutable_camera();
+  camera.mutable_position()->set_x(3), camera.mutable_position()->set_y(9);
+  camera.mutable_position()->set_z(130), camera.set_pitch_deg(-4);
+  camera.set_near(loaded.default_camera().near());
+  const double half_height = std::tan(M_PI / 6);            // fov 60
+  const double half_width = 3 * half_height * 64.0 / 40.0;  // three channels of 64 x 40
+  camera.mutable_frustum()->set_left_deg(-std::atan(half_width) * 180 / M_PI);
+  camera.mutable_frustum()->set_right_deg(std::atan(half_width) * 180 / M_PI);
+  camera.mutable_frustum()->set_bottom_deg(-30);
+  camera.mutable_frustum()->set_top_deg(30);
+  wide.mutable_options()->set_width(192);
+  wide.mutable_options()->set_height(40);
+  wide.mutable_options()->set_filter(v1::TEXTURE_FILTER_TRILINEAR);
+  wide.mutable_options()->set_pixel_type(v1::PIXEL_TYPE_FLOAT);
+  v1::ObjectUpdate& turn = *wide.mutable_update()->add_objects();
+  turn.set_name("aircraft");
+  turn.mutable_transform()->mutable_translation()->set_z(60);
+  turn.mutable_transform()->set_yaw_deg(30);
+  wide.mutable_update()->mutable_sky()->set_r(0.9f);
+  wide.mutable_update()->mutable_sky()->set_g(0.5f);
+  wide.mutable_update()->mutable_sky()->set_b(0.2f);
+  v1::RenderFrameResponse response;
+  grpc::ClientContext render_context;
+  ASSERT_TRUE(stub->RenderFrame(&render_context, wide, &response).ok());
+  const std::string wide_file = (dir_ / "wide.exr").string();
+  std::ofstream(wide_file, std::ios::binary) << response.exr();
+  int ww = 0, wh = 0;
+  const std::vector<float> whole = Pixels(wide_file, &ww, &wh);
+  ASSERT_EQ(ww, 192);
+  double worst = 0, sky_red = 0;
+  for (int k = 0; k < 3; ++k) {
+    int w = 0, h = 0;
+    const std::vector<float> part =
+        Pixels((last / ("channel-" + std::to_string(k) + ".exr")).string(), &w, &h);
+    ASSERT_EQ(w, 64);
+    ASSERT_EQ(h, 40);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 4; ++c) {
+          const float a = part[(static_cast<size_t>(y) * w + x) * 4 + c];
+          const float b = whole[(static_cast<size_t>(y) * ww + k * w + x) * 4 + c];
+          worst = std::max(worst, static_cast<double>(std::abs(a - b)));
+        }
+    sky_red = std::max(sky_red, static_cast<double>(part[0]));
+  }
+  // The same plane through other pixel origins: equal up to rounding.
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_GT(sky_red, 0.5);  // the second line's sky (the demo's is 0.5 red, fogged)
+}
+
+// The path file docs/SERVICE.md shows: every frame rendered, the fog and the aircraft moving.
+TEST_F(ClientTest, SimFliesTheDocumentedExamplePath) {
+  const CommandResult result = Client(
+      {"sim", "--scene=demo", std::string("--path=") + APERTURE_EXAMPLES_DIR + "/taxi-in-fog.jsonl",
+       "--rate=20", "--size=32x20", "--filter=trilinear", "--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+  EXPECT_THAT(result.out, HasSubstr("\"frames\": 7"));
+  EXPECT_THAT(result.out, HasSubstr("\"dropped\": 0"));
+}
+
+TEST_F(ClientTest, SimPathErrorsNameTheFileAndLine) {
+  const std::string path = (dir_ / "bad.jsonl").string();
+  std::ofstream(path) << "0,14,420,0,-5,0\n"
+                      << R"({"update": {"objects": [{"nmae": "aircraft"}]}})"
+                      << "\n";
+  const CommandResult result =
+      Client({"sim", "--scene=demo", "--path=" + path, "--frames=5", "--size=32x20"});
+  EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
+  EXPECT_THAT(result.err, HasSubstr("bad.jsonl:2: "));
+  EXPECT_THAT(result.err, HasSubstr("nmae"));
 }
 
 size_t CountFrames(const std::filesystem::path& dir) {

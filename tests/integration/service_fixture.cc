@@ -1,5 +1,7 @@
 #include "integration/service_fixture.h"
 
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 #include <grpcpp/grpcpp.h>
 
 #include <cmath>
@@ -119,6 +121,31 @@ v1::GetServerInfoResponse ServiceTest::Info() {
   v1::GetServerInfoResponse response;
   EXPECT_TRUE(stub_->GetServerInfo(&context, {}, &response).ok());
   return response;
+}
+
+std::vector<v1::RenderFrameResponse> ServiceTest::ReadAllAnswers(
+    grpc::ClientReaderWriter<v1::RenderFrameRequest, v1::RenderFrameResponse>& stream) {
+  std::vector<v1::RenderFrameResponse> frames;
+  v1::RenderFrameResponse response;
+  while (stream.Read(&response)) frames.push_back(response);
+  return frames;
+}
+
+std::vector<float> ServiceTest::Pixels(const v1::RenderFrameResponse& response) {
+  OIIO::Filesystem::IOMemReader memory(response.exr().data(), response.exr().size());
+  OIIO::ImageSpec config;
+  OIIO::Filesystem::IOProxy* proxy = &memory;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto in = OIIO::ImageInput::open("frame.exr", &config);
+  if (!in) {
+    ADD_FAILURE() << "cannot read the frame's EXR (" << response.exr().size()
+                  << " bytes): " << OIIO::geterror();
+    return {};
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return {};
+  return pixels;
 }
 
 }  // namespace aperture::testing

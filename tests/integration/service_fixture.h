@@ -33,6 +33,11 @@ class ServiceTest : public ::testing::Test {
   grpc::Status Render(const v1::RenderFrameRequest& request, double seconds,
                       v1::RenderFrameResponse* response = nullptr);
   v1::GetServerInfoResponse Info();
+  // Every answer of a stream whose writes are done, in the order they came.
+  static std::vector<v1::RenderFrameResponse> ReadAllAnswers(
+      grpc::ClientReaderWriter<v1::RenderFrameRequest, v1::RenderFrameResponse>& stream);
+  // The RGBA pixels of an answer's EXR, read back by OpenImageIO (empty if it cannot be read).
+  static std::vector<float> Pixels(const v1::RenderFrameResponse& response);
 
   static std::unique_ptr<ServerProcess> shared_server_;
   std::unique_ptr<ServerProcess> own_server_;

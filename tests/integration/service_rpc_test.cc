@@ -321,15 +321,6 @@ TEST_F(ServiceTest, OversizedMessageIsRefused) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
 }
 
-// Every answer of a stream whose writes are done, in the order they came.
-std::vector<v1::RenderFrameResponse> ReadAllAnswers(
-    grpc::ClientReaderWriter<v1::RenderFrameRequest, v1::RenderFrameResponse>& stream) {
-  std::vector<v1::RenderFrameResponse> frames;
-  v1::RenderFrameResponse response;
-  while (stream.Read(&response)) frames.push_back(response);
-  return frames;
-}
-
 // One request at a time (the host waits for each frame): every camera is rendered, in order,
 // and a bad one fails alone.
 TEST_F(ServiceTest, RenderStreamAnswersEveryCameraInOrder) {

@@ -1,0 +1,263 @@
+// Per-frame updates (issue 20): an updated scene holds exactly what a fresh build of the moved
+// scene holds, bad updates change nothing, and merged updates equal the updates applied in turn.
+#include "scene/scene_update.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "render/frame_renderer.h"
+#include "scene/demo_scene.h"
+#include "scene/scene_builder.h"
+
+namespace aperture {
+namespace {
+
+v1::Object* Aircraft(v1::Scene& proto) {
+  for (v1::Object& o : *proto.mutable_objects())
+    if (o.name() == kDemoAircraft) return &o;
+  return nullptr;
+}
+
+bool SamePolygon(const ScenePolygon& a, const ScenePolygon& b) {
+  if (a.vertices.size() != b.vertices.size() || a.material != b.material) return false;
+  for (size_t i = 0; i < a.vertices.size(); ++i)
+    if (!(a.vertices[i] == b.vertices[i])) return false;
+  const TextureMapping &ma = a.mapping, &mb = b.mapping;
+  return a.normal == b.normal && ma.su == mb.su && ma.sv == mb.sv && ma.u0 == mb.u0 &&
+         ma.v0 == mb.v0;
+}
+
+// Bit for bit: polygons, named objects' ranges and the environment.
+void ExpectSameScene(const Scene& a, const Scene& b) {
+  ASSERT_EQ(a.polygons.size(), b.polygons.size());
+  for (size_t i = 0; i < a.polygons.size(); ++i)
+    ASSERT_TRUE(SamePolygon(a.polygons[i], b.polygons[i])) << "polygon " << i;
+  ASSERT_EQ(a.objects.size(), b.objects.size());
+  for (size_t i = 0; i < a.objects.size(); ++i) {
+    EXPECT_EQ(a.objects[i].first, b.objects[i].first);
+    EXPECT_EQ(a.objects[i].count, b.objects[i].count);
+    EXPECT_EQ(a.objects[i].visible, b.objects[i].visible);
+  }
+  EXPECT_TRUE(a.sun_direction == b.sun_direction);
+  EXPECT_EQ(a.fog_density, b.fog_density);
+  EXPECT_EQ(std::memcmp(&a.sky, &b.sky, sizeof(Rgba)), 0);
+  EXPECT_EQ(std::memcmp(&a.fog_color, &b.fog_color, sizeof(Rgba)), 0);
+  EXPECT_EQ(std::memcmp(&a.ambient, &b.ambient, sizeof(Rgba)), 0);
+  EXPECT_EQ(std::memcmp(&a.sun_color, &b.sun_color, sizeof(Rgba)), 0);
+}
+
+Scene Build(const v1::Scene& proto) {
+  auto scene = BuildScene(proto);
+  EXPECT_TRUE(scene.ok()) << scene.status();
+  return scene.ok() ? *std::move(scene) : Scene{};
+}
+
+v1::Transform Moved() {
+  v1::Transform t;
+  t.mutable_translation()->set_x(-30.5);
+  t.mutable_translation()->set_y(2);
+  t.mutable_translation()->set_z(-40.25);
+  t.set_yaw_deg(33);
+  t.set_pitch_deg(4);
+  t.set_roll_deg(-7);
+  t.mutable_scale()->set_x(1.5);
+  t.mutable_scale()->set_y(1.25);
+  t.mutable_scale()->set_z(0.75);
+  return t;
+}
+
+TEST(SceneUpdate, DemoObjectsStandWhereTheMeshesAlone) {
+  // The demo lists every mesh as an object (so the aircraft can move): placed by the identity,
+  // the rest of the airfield is the polygons the meshes alone make, bit for bit.
+  v1::Scene with_objects = MakeDemoScene();
+  Aircraft(with_objects)->set_hidden(true);
+  v1::Scene meshes_only = MakeDemoScene();
+  meshes_only.clear_objects();
+  meshes_only.mutable_meshes()->RemoveLast();  // the aircraft
+  const Scene a = Build(with_objects), b = Build(meshes_only);
+  ASSERT_EQ(a.polygons.size(), b.polygons.size());
+  for (size_t i = 0; i < a.polygons.size(); ++i)
+    ASSERT_TRUE(SamePolygon(a.polygons[i], b.polygons[i])) << "polygon " << i;
+}
+
+TEST(SceneUpdate, MovedObjectEqualsAFreshBuildOfTheMovedScene) {
+  v1::Scene proto = MakeDemoScene();
+  Scene live = Build(proto);
+  v1::SceneUpdate update;
+  v1::ObjectUpdate* o = update.add_objects();
+  o->set_name(kDemoAircraft);
+  *o->mutable_transform() = Moved();
+  ASSERT_TRUE(ApplySceneUpdate(update, &live).ok());
+  *Aircraft(proto)->mutable_transform() = Moved();
+  const Scene fresh = Build(proto);
+  ExpectSameScene(live, fresh);
+
+  // And so are the pixels (the aircraft fills part of this view).
+  Camera camera = DemoCamera();
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.shading.override_filter = true;
+  settings.shading.filter = FilterMode::kTrilinear;
+  settings.threads = 1;
+  camera.position = {0, 10, 120};
+  auto a = RenderFrame(live, camera, settings), b = RenderFrame(fresh, camera, settings);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(std::memcmp(a->image.texels().data(), b->image.texels().data(),
+                        a->image.texels().size_bytes()),
+            0);
+  // The move is visible: the same view of the unmoved scene differs.
+  auto before = RenderFrame(Build(MakeDemoScene()), camera, settings);
+  ASSERT_TRUE(before.ok());
+  EXPECT_NE(std::memcmp(a->image.texels().data(), before->image.texels().data(),
+                        a->image.texels().size_bytes()),
+            0);
+}
+
+TEST(SceneUpdate, HideAndShowEqualFreshBuilds) {
+  v1::Scene proto = MakeDemoScene();
+  Scene live = Build(proto);
+  const Scene original = live;
+  v1::SceneUpdate hide;
+  hide.add_objects()->set_name(kDemoAircraft);
+  hide.mutable_objects(0)->set_visible(false);
+  ASSERT_TRUE(ApplySceneUpdate(hide, &live).ok());
+  Aircraft(proto)->set_hidden(true);
+  ExpectSameScene(live, Build(proto));
+  EXPECT_LT(live.polygons.size(), original.polygons.size());
+
+  // Moved while hidden, then shown: where it was moved to.
+  v1::SceneUpdate move;
+  move.add_objects()->set_name(kDemoAircraft);
+  *move.mutable_objects(0)->mutable_transform() = Moved();
+  ASSERT_TRUE(ApplySceneUpdate(move, &live).ok());
+  ExpectSameScene(live, Build(proto));
+  v1::SceneUpdate show;
+  show.add_objects()->set_name(kDemoAircraft);
+  show.mutable_objects(0)->set_visible(true);
+  ASSERT_TRUE(ApplySceneUpdate(show, &live).ok());
+  Aircraft(proto)->set_hidden(false);
+  *Aircraft(proto)->mutable_transform() = Moved();
+  ExpectSameScene(live, Build(proto));
+}
+
+// Two named objects around an unnamed one: ranges shift when the first one's count changes.
+TEST(SceneUpdate, RangesOfLaterObjectsFollowAHiddenObject) {
+  v1::Scene proto;
+  v1::Mesh* mesh = proto.add_meshes();
+  mesh->set_id("l");
+  v1::Polygon* p = mesh->add_polygons();  // an L: concave, triangulated into 4 triangles
+  for (const auto& [x, z] :
+       std::vector<std::pair<double, double>>{{0, 0}, {2, 0}, {2, -1}, {1, -1}, {1, -2}, {0, -2}}) {
+    v1::Vec3* v = p->add_vertices();
+    v->set_x(x), v->set_z(z);
+  }
+  for (const char* name : {"a", "", "b"}) {
+    v1::Object* o = proto.add_objects();
+    o->set_mesh_id("l");
+    o->set_name(name);
+  }
+  proto.mutable_objects(1)->mutable_transform()->mutable_translation()->set_x(5);
+  proto.mutable_objects(2)->mutable_transform()->mutable_translation()->set_x(10);
+  Scene live = Build(proto);
+  ASSERT_EQ(live.objects.size(), 2u);
+  EXPECT_EQ(live.objects[1].first, 8u);
+  v1::SceneUpdate update;
+  update.add_objects()->set_name("a");
+  update.mutable_objects(0)->set_visible(false);
+  update.add_objects()->set_name("b");
+  // The transform replaces the object's whole transform.
+  update.mutable_objects(1)->mutable_transform()->set_yaw_deg(90);
+  ASSERT_TRUE(ApplySceneUpdate(update, &live).ok());
+  proto.mutable_objects(0)->set_hidden(true);
+  proto.mutable_objects(2)->mutable_transform()->mutable_translation()->set_x(0);
+  proto.mutable_objects(2)->mutable_transform()->set_yaw_deg(90);
+  ExpectSameScene(live, Build(proto));
+  EXPECT_EQ(live.objects[1].first, 4u);
+}
+
+TEST(SceneUpdate, EnvironmentEqualsAFreshBuild) {
+  v1::Scene proto = MakeDemoScene();
+  Scene live = Build(proto);
+  v1::SceneUpdate update;
+  update.mutable_sun()->mutable_direction()->set_x(-1);
+  update.mutable_sun()->mutable_direction()->set_y(0.3);
+  update.mutable_sun()->mutable_color()->set_r(1);
+  update.mutable_ambient()->set_b(0.5f);
+  update.mutable_fog()->set_visibility(800);
+  update.mutable_fog()->mutable_color()->set_g(0.7f);
+  update.mutable_sky()->set_r(0.2f);
+  ASSERT_TRUE(ApplySceneUpdate(update, &live).ok());
+  *proto.mutable_sun() = update.sun();
+  *proto.mutable_ambient() = update.ambient();
+  *proto.mutable_fog() = update.fog();
+  *proto.mutable_sky() = update.sky();
+  ExpectSameScene(live, Build(proto));
+  // Visibility is where contrast falls to 5 %.
+  EXPECT_NEAR(std::exp(-live.fog_density * 800), 0.05, 1e-12);
+}
+
+TEST(SceneUpdate, BadUpdatesNameTheFieldAndChangeNothing) {
+  const Scene original = Build(MakeDemoScene());
+  struct Case {
+    const char* what;
+    v1::SceneUpdate update;
+    const char* message;
+  };
+  std::vector<Case> cases;
+  auto object = [](const char* name) {
+    v1::SceneUpdate u;
+    v1::ObjectUpdate* o = u.add_objects();
+    o->set_name(kDemoAircraft);
+    *o->mutable_transform() = Moved();  // a valid first entry: must not be applied either
+    u.add_objects()->set_name(name);
+    return u;
+  };
+  cases.push_back({"unknown name", object("glider"), "update.objects[1] ('glider'): no object"});
+  cases.push_back({"NaN yaw", object(kDemoAircraft), "transform angles are not finite"});
+  cases.back().update.mutable_objects(1)->mutable_transform()->set_yaw_deg(std::nan(""));
+  cases.push_back({"zero scale", object(kDemoAircraft), "scale must be finite and non-zero"});
+  cases.back().update.mutable_objects(1)->mutable_transform()->mutable_scale()->set_x(0);
+  cases.push_back({"both fog", object(kDemoAircraft), "update.fog: set density or visibility"});
+  cases.back().update.mutable_objects()->RemoveLast();
+  cases.back().update.mutable_fog()->set_density(0.01);
+  cases.back().update.mutable_fog()->set_visibility(100);
+  cases.push_back({"negative sky", object(kDemoAircraft), "update.sky: colour components"});
+  cases.back().update.mutable_objects()->RemoveLast();
+  cases.back().update.mutable_sky()->set_r(-1);
+  for (const Case& c : cases) {
+    Scene live = original;
+    const absl::Status check = CheckSceneUpdate(live, c.update);
+    const absl::Status apply = ApplySceneUpdate(c.update, &live);
+    EXPECT_TRUE(absl::IsInvalidArgument(apply)) << c.what << ": " << apply;
+    EXPECT_EQ(check, apply) << c.what;
+    EXPECT_NE(apply.message().find(c.message), std::string::npos) << c.what << ": " << apply;
+    ExpectSameScene(live, original);
+  }
+}
+
+TEST(SceneUpdate, MergedUpdatesEqualTheUpdatesInTurn) {
+  const Scene original = Build(MakeDemoScene());
+  v1::SceneUpdate first, second;
+  first.add_objects()->set_name(kDemoAircraft);
+  *first.mutable_objects(0)->mutable_transform() = Moved();
+  first.mutable_fog()->set_density(0.002);
+  second.add_objects()->set_name(kDemoAircraft);
+  second.mutable_objects(0)->set_visible(false);
+  second.mutable_sky()->set_g(0.1f);
+  Scene in_turn = original;
+  ASSERT_TRUE(ApplySceneUpdate(first, &in_turn).ok());
+  ASSERT_TRUE(ApplySceneUpdate(second, &in_turn).ok());
+  v1::SceneUpdate merged = first;
+  MergeSceneUpdate(second, &merged);
+  EXPECT_EQ(merged.objects_size(), 1);  // one entry per object however many frames merge
+  Scene at_once = original;
+  ASSERT_TRUE(ApplySceneUpdate(merged, &at_once).ok());
+  ExpectSameScene(at_once, in_turn);
+  EXPECT_EQ(at_once.objects.back().placement.translation.x, -30.5);
+}
+
+}  // namespace
+}  // namespace aperture
