@@ -7,8 +7,10 @@
 #include "absl/flags/usage.h"
 #include "commands.h"
 #include "flag_names.h"
+#include "large_buffers.h"
 
 int main(int argc, char** argv) {
+  aperture::KeepLargeBuffersWarm();  // frames' buffers reused warm, not page-faulted afresh
   absl::SetProgramUsageMessage(
       "client of aperture-server.\n"
       "  aperture render --server ADDR --scene demo|FILE.json --camera X,Y,Z,YAW,PITCH,ROLL "

@@ -49,6 +49,9 @@ ABSL_FLAG(bool, check, false,
           "--shard) and list those missing or invalid; exit 0 only when all are valid");
 ABSL_FLAG(int, requests, 0, "load: total requests (0: run for --duration)");
 ABSL_FLAG(double, duration, 10, "load: seconds to run when --requests is 0");
+ABSL_FLAG(int, repeat, 1,
+          "render: request the frame this many times on one connection, a line each (benchmarks); "
+          "the last is written");
 ABSL_FLAG(bool, json, false, "load, sim: print the summary as JSON");
 ABSL_FLAG(double, rate, 30, "sim: frames per second");
 ABSL_FLAG(int, frames, 100, "sim: frames to request");

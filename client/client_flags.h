@@ -32,6 +32,7 @@ ABSL_DECLARE_FLAG(bool, check);
 ABSL_DECLARE_FLAG(bool, contact_sheet);
 ABSL_DECLARE_FLAG(int, requests);
 ABSL_DECLARE_FLAG(double, duration);
+ABSL_DECLARE_FLAG(int, repeat);
 ABSL_DECLARE_FLAG(bool, json);
 ABSL_DECLARE_FLAG(double, rate);
 ABSL_DECLARE_FLAG(int, frames);

@@ -29,6 +29,9 @@ using Clock = std::chrono::steady_clock;
 struct ChannelReport {
   size_t frames = 0, received = 0, dropped = 0, late = 0, skipped = 0;
   LatencySummary latency;
+  // Median latency of the rendered frames among the first and the last fifth of the frames sent:
+  // equal when no backlog builds.
+  double first_fifth_p50 = 0, last_fifth_p50 = 0;
   double achieved_hz = 0;
   grpc::Status status;
   v1::RenderFrameResponse last;  // the last rendered frame (--last_frames)
@@ -62,7 +65,7 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
     stream->WritesDone();
   });
 
-  std::vector<double> latencies;
+  std::vector<double> latencies, first_fifth, last_fifth;
   Clock::time_point last_frame = start;
   v1::RenderFrameResponse response;
   while (stream->Read(&response)) {
@@ -86,7 +89,10 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
       std::lock_guard lock(mutex);
       sent_at = sent[i];
     }
-    latencies.push_back(std::chrono::duration<double, std::milli>(now - sent_at).count());
+    const double ms = std::chrono::duration<double, std::milli>(now - sent_at).count();
+    latencies.push_back(ms);
+    if (i * 5 < path.size()) first_fifth.push_back(ms);
+    if (i * 5 >= path.size() * 4) last_fifth.push_back(ms);
     last_frame = now;
     // A frame is late when it arrives after the end of its own slot.
     if (now > start + slot * static_cast<int64_t>(i + 1)) ++report.late;
@@ -96,6 +102,8 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
   report.status = stream->Finish();
   report.dropped += path.size() - report.received;
   report.latency = Summarize(latencies);
+  report.first_fifth_p50 = Summarize(first_fifth).p50;
+  report.last_fifth_p50 = Summarize(last_fifth).p50;
   // Frames shown per second of the run, from the first slot to the last frame received.
   const double seconds = std::chrono::duration<double>(last_frame - start).count();
   report.achieved_hz = seconds > 0 ? static_cast<double>(report.latency.count) / seconds : 0.0;
@@ -118,9 +126,10 @@ std::string Json(const ChannelReport& r, double rate) {
   return absl::StrFormat(
       "\"frames\": %zu, \"rate_hz\": %.3f, \"achieved_hz\": %.3f, \"ok\": %zu, \"late\": %zu, "
       "\"skipped\": %zu, \"dropped\": %zu, \"latency_ms\": {\"p50\": %.3f, \"p90\": %.3f, "
-      "\"p99\": %.3f, \"max\": %.3f}, \"status\": \"%s\"",
+      "\"p99\": %.3f, \"max\": %.3f}, \"p50_first_fifth_ms\": %.3f, \"p50_last_fifth_ms\": %.3f, "
+      "\"status\": \"%s\"",
       r.frames, rate, r.achieved_hz, r.latency.count, r.late, r.skipped, r.dropped, r.latency.p50,
-      r.latency.p90, r.latency.p99, r.latency.max,
+      r.latency.p90, r.latency.p99, r.latency.max, r.first_fifth_p50, r.last_fifth_p50,
       r.status.ok() ? "OK" : r.status.error_message().c_str());
 }
 

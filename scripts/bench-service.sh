@@ -19,8 +19,17 @@
 #             5 Hz, MOVING_FRAMES frames (default 30) from one camera, with the aircraft moved by
 #             a SceneUpdate every frame against no update, ROUNDS rounds interleaved; per frame
 #             the server's update + setup + raster ms (median of each run), and the ratio.
-# Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|node|sim|moving|all]
-#        (default all)
+#   floors    a 1920x1080 demo frame's delivery against its floors (issue 20): `aperture render
+#             --compression none --repeat 3` (half, the third frame of a warm connection), encode
+#             ms + transport ms (round trip - the server's total) against memcpy + loopback TCP of the same bytes (scripts/bench_floors.py),
+#             ROUNDS rounds interleaved, and the ratio of the medians.
+#   overload  a simulator host offering 2x and 4x the sustained rate (OVERLOAD_HZ_720P, default
+#             20, and OVERLOAD_HZ_1080P, default 10) for OVERLOAD_S seconds (default 10): p99
+#             latency against two frame times of the sustained rate, the median latency of the
+#             first and the last fifth of the frames (one camera, the aircraft taxiing: the same
+#             work in every frame), skipped frames.
+# Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|node|sim|moving|floors|
+#                                  overload|all]   (default all)
 # Environment: LOAD_S (default 60), SOAK_MIN (default 5), ROUNDS (default 5), NODE_S (default 10),
 # BEFORE_DIR (unset).
 set -euo pipefail
@@ -262,8 +271,69 @@ moving() {
     awk '{v[NR] = $1} END {printf "moving / static, median of %d rounds: %s\n", NR, v[int((NR + 1) / 2)]}'
 }
 
+median() { sort -n | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+
+floors() {
+  echo "== floors: demo 1920x1080 half, compression none, $rounds rounds"
+  start_server "$work/store-floors"
+  "$client_bin" render --server "$address" --scene demo --size 64x64 -o "$work/warm.exr" >/dev/null
+  : >"$work/delivery"
+  : >"$work/floor"
+  for round in $(seq 1 "$rounds"); do
+    local line bytes encode total trip
+    # The third frame on one connection: a live channel's connection is warm (gRPC's flow-control
+    # windows have grown; the first frame of a fresh connection pays their ramp).
+    line=$("$client_bin" render --server "$address" --scene demo --size 1920x1080 \
+      --compression none --repeat 3 -o "$work/f.exr" | grep -E '^frame|^wrote' | tail -2)
+    encode=$(echo "$line" | ms_of encode)
+    total=$(echo "$line" | ms_of server)
+    trip=$(echo "$line" | ms_of "round trip")
+    bytes=$(echo "$line" | sed -nE 's/.*\(([0-9]+) bytes\).*/\1/p')
+    local delivery
+    delivery=$(awk -v e="$encode" -v t="$total" -v r="$trip" 'BEGIN {print e + r - t}')
+    local floor
+    floor=$(python3 scripts/bench_floors.py "$bytes" --rounds 3 |
+      awk '{print $2 + $4}')
+    echo "$delivery" >>"$work/delivery"
+    echo "$floor" >>"$work/floor"
+    echo "round $round: $bytes bytes; encode $encode ms + transport $(awk -v t="$total" -v r="$trip" 'BEGIN {print r - t}') ms = $delivery ms; floor (memcpy + loopback) $floor ms"
+  done
+  stop_server
+  awk -v d="$(median <"$work/delivery")" -v f="$(median <"$work/floor")" 'BEGIN {
+    printf "median encode + transport %.2f ms, floor %.2f ms: %.2fx the floor\n", d, f, d / f }'
+}
+
+overload() {
+  local seconds="${OVERLOAD_S:-10}"
+  echo "== overload: demo on RenderStream, server --threads 2, $seconds s per rate"
+  for spec in "1280x720 ${OVERLOAD_HZ_720P:-20}" "1920x1080 ${OVERLOAD_HZ_1080P:-10}"; do
+    set -- $spec
+    local size="$1" sustained="$2"
+    for factor in 2 4; do
+      local rate=$((sustained * factor))
+      # One camera, the aircraft taxiing slowly: the same work in every frame, so the first and
+      # the last fifth differ only if a backlog builds.
+      : >"$work/overload.jsonl"
+      for i in $(seq 0 $((rate * seconds - 1))); do
+        awk -v i="$i" 'BEGIN {printf "{\"camera\": {\"position\": {\"x\": 0, \"y\": 14, \"z\": 420}, \"pitchDeg\": -5}, \"update\": {\"objects\": [{\"name\": \"aircraft\", \"transform\": {\"translation\": {\"y\": 0.15, \"z\": %.3f}}}]}}\n", 50 - 0.01 * i}' >>"$work/overload.jsonl"
+      done
+      start_server "$work/store-overload" --max-queue 64
+      "$client_bin" render --server "$address" --scene demo --size "$size" -o "$work/warm.exr" \
+        >/dev/null
+      "$client_bin" sim --server "$address" --scene demo --size "$size" --rate "$rate" \
+        --frames $((rate * seconds)) --path "$work/overload.jsonl" --json >"$work/overload.json" ||
+        true
+      stop_server
+      local budget
+      budget=$(awk -v r="$sustained" 'BEGIN {printf "%.0f", 2000 / r}')
+      echo "$size offered $rate Hz (${factor}x $sustained Hz; p99 bar $budget ms): $(cat "$work/overload.json")"
+    done
+  done
+}
+
 case "$what" in
-  overhead | restart | load | soak | split | node | sim | moving) "$what" ;;
-  all) overhead; restart; load; soak; split; node; sim; moving ;;
-  *) echo "usage: $0 [overhead|restart|load|soak|split|node|sim|moving|all]" >&2; exit 2 ;;
+  overhead | restart | load | soak | split | node | sim | moving | floors | overload) "$what" ;;
+  all) overhead; restart; load; soak; split; node; sim; moving; floors; overload ;;
+  *) echo "usage: $0 [overhead|restart|load|soak|split|node|sim|moving|floors|overload|all]" >&2
+     exit 2 ;;
 esac

@@ -293,9 +293,8 @@ grpc::Status RenderService::RenderStream(
         "status={}{}",
         id, request.frame_index(), Short(request.scene_id()), request.options().width(),
         request.options().height(), ModeName(request.options()), t.update_ms(), t.queue_ms(),
-        t.setup_ms(),
-        t.raster_ms(), t.encode_ms(), MillisecondsSince(frame.received), response.exr().size(),
-        absl::StatusCodeToString(frame.status.code()),
+        t.setup_ms(), t.raster_ms(), t.encode_ms(), MillisecondsSince(frame.received),
+        response.exr().size(), absl::StatusCodeToString(frame.status.code()),
         frame.status.ok() ? "" : absl::StrCat(" error='", frame.status.message(), "'"));
   };
   const LiveStreamCounts counts = LiveStream(context, stream, check, render, answered).Run();

@@ -24,6 +24,7 @@
 #include "absl/flags/usage.h"
 #include "admission.h"
 #include "flag_names.h"
+#include "large_buffers.h"
 #include "render_service.h"
 #include "scene_store.h"
 #include "store/shared_store.h"
@@ -172,6 +173,7 @@ int Run() {
 }  // namespace aperture
 
 int main(int argc, char** argv) {
+  aperture::KeepLargeBuffersWarm();  // frames' buffers reused warm, not page-faulted afresh
   absl::SetProgramUsageMessage(
       "serves aperture.v1.Render over gRPC.\n  aperture-server --listen 127.0.0.1:50051 "
       "--threads 0 --max-queue 16 --max-pixels 16777216 --store DIR");

@@ -25,6 +25,12 @@ struct Sink {
 int64_t WriteToSink(exr_const_context_t, void* user_data, const void* buffer, uint64_t size,
                     uint64_t offset, exr_stream_error_func_ptr_t) {
   std::string& bytes = *static_cast<Sink*>(user_data)->bytes;
+  // The chunks come in file order, at the end: appended, one pass over the frame's bytes (a
+  // resize would zero them first). The header's offset table is written again in place.
+  if (offset == bytes.size()) {
+    bytes.append(static_cast<const char*>(buffer), size);
+    return static_cast<int64_t>(size);
+  }
   if (bytes.size() < offset + size) bytes.resize(offset + size);
   std::memcpy(bytes.data() + offset, buffer, size);
   return static_cast<int64_t>(size);
