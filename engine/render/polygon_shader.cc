@@ -78,9 +78,20 @@ void PolygonShader::ShadeBatched(int index, int count, PointAt point_at, Rgba* o
     return;
   }
   constexpr int kBatch = 64;
-  TextureFootprint footprints[kBatch];
+  // Scratch left uninitialised: zeroing it (the members' default initialisers) cost an eighth of
+  // an interior pixel's shading.
+  union Scratch {
+    Scratch() {}
+    TextureFootprint footprints[kBatch];
+  } scratch;
+  union Texels {
+    Texels() {}
+    Rgba texels[kBatch];
+  } sampled;
+  TextureFootprint* footprints = scratch.footprints;
+  Rgba* texels = sampled.texels;
   double inv_depths[kBatch];
-  Rgba texels[kBatch];
+  const bool fog = scene_.fog_density > 0;
   for (int first = 0; first < count; first += kBatch) {
     const int n = std::min(kBatch, count - first);
     for (int i = 0; i < n; ++i) {
@@ -89,9 +100,17 @@ void PolygonShader::ShadeBatched(int index, int count, PointAt point_at, Rgba* o
       footprints[i] = Footprint(p, inv_depths[i], q.x, q.y);
     }
     mat.sampler->SampleMany(footprints, texels, n);
-    for (int i = 0; i < n; ++i) {
-      const Vec2 q = point_at(first + i);
-      out[first + i] = Finish(p, mat.base * texels[i], inv_depths[i], q.x, q.y);
+    if (fog) {
+      for (int i = 0; i < n; ++i) {
+        const Vec2 q = point_at(first + i);
+        out[first + i] = Finish(p, mat.base * texels[i], inv_depths[i], q.x, q.y);
+      }
+      continue;
+    }
+    for (int i = 0; i < n; ++i) {  // Finish without fog, inlined: the same operations
+      Rgba colour = (mat.base * texels[i]) * p.light;
+      colour.a = 1.0f;
+      out[first + i] = colour;
     }
   }
 }

@@ -92,4 +92,16 @@ Rgba MipPyramid::Trilinear(const TextureFootprint& f) const {
   return Bilinear(l0, f.u, f.v) * (1 - t) + Bilinear(l0 + 1, f.u, f.v) * t;
 }
 
+void NearestSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
+  for (int i = 0; i < count; ++i) out[i] = pyramid_.Nearest(in[i].u, in[i].v);
+}
+
+void BilinearSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
+  for (int i = 0; i < count; ++i) out[i] = pyramid_.Bilinear(0, in[i].u, in[i].v);
+}
+
+void TrilinearSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
+  for (int i = 0; i < count; ++i) out[i] = pyramid_.Trilinear(in[i]);
+}
+
 }  // namespace aperture
