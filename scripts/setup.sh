@@ -26,7 +26,8 @@ done
 [ -n "$address" ] || { echo "setup: the server did not start; see out/server.log" >&2; exit 1; }
 build/client/aperture health --server "$address"
 build/client/aperture render --server "$address" --scene demo -o out/demo-service.exr
-# A simulator host for two seconds: newest state wins, the report names late and skipped frames.
+# A simulator host for two seconds: the camera flies in while the demo's aircraft rolls down the
+# runway (a scene update per frame); newest state wins, the report names late and skipped frames.
 build/client/aperture sim --server "$address" --scene demo --size 1280x720 --rate 10 --frames 20
 kill -TERM "$server_pid"
 wait "$server_pid" || true
