@@ -76,6 +76,9 @@ absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update)
       return absl::InvalidArgumentError(
           absl::StrCat(Where(i, o.name()), ": no object of that name in scene '", scene.name,
                        "' (objects are named by Object.name)"));
+    if (!v1::Visibility_IsValid(o.visibility()))
+      return absl::InvalidArgumentError(
+          absl::StrCat(Where(i, o.name()), ": visibility has unknown value ", o.visibility()));
     if (o.has_transform())
       if (auto p = PlacementFromProto(o.transform(), Where(i, o.name())); !p.ok())
         return p.status();
@@ -94,7 +97,8 @@ absl::Status ApplySceneUpdate(const v1::SceneUpdate& update, Scene* scene) {
     const auto index = static_cast<size_t>(ObjectIndex(*scene, o.name()));
     auto [it, inserted] = changes.try_emplace(index);
     if (inserted) it->second.visible = scene->objects[index].visible;
-    if (o.has_visible()) it->second.visible = o.visible();
+    if (o.visibility() != v1::VISIBILITY_UNCHANGED)
+      it->second.visible = o.visibility() == v1::VISIBILITY_SHOWN;
     if (o.has_transform()) {
       auto placement = PlacementFromProto(o.transform(), Where(i, o.name()));
       if (!placement.ok()) return placement.status();
@@ -161,7 +165,7 @@ void MergeSceneUpdate(const v1::SceneUpdate& later, v1::SceneUpdate* earlier) {
     }
     v1::ObjectUpdate& merged = *earlier->mutable_objects(it->second);
     if (o.has_transform()) *merged.mutable_transform() = o.transform();
-    if (o.has_visible()) merged.set_visible(o.visible());
+    if (o.visibility() != v1::VISIBILITY_UNCHANGED) merged.set_visibility(o.visibility());
   }
   if (later.has_sun()) *earlier->mutable_sun() = later.sun();
   if (later.has_ambient()) *earlier->mutable_ambient() = later.ambient();

@@ -102,7 +102,7 @@ TEST_F(LiveUpdateTest, StreamUpdatesEqualAFreshLoadOfTheChangedScene) {
     if (i == 3) {
       v1::ObjectUpdate* o = request.mutable_update()->add_objects();
       o->set_name(kDemoAircraft);
-      o->set_visible(false);
+      o->set_visibility(v1::VISIBILITY_HIDDEN);
     }
     // One at a time, so that none is skipped.
     ASSERT_TRUE(stream->Write(request));
@@ -219,7 +219,7 @@ TEST_F(LiveUpdateTest, RenderFrameAppliesAnUpdateToItsFrameOnly) {
   v1::RenderFrameRequest request = Near(scene_id, 0);
   v1::ObjectUpdate* o = request.mutable_update()->add_objects();
   o->set_name(kDemoAircraft);
-  o->set_visible(false);
+  o->set_visibility(v1::VISIBILITY_HIDDEN);
   v1::RenderFrameResponse with_update, without;
   ASSERT_TRUE(Render(request, 30, &with_update).ok());
   EXPECT_EQ(Pixels(with_update), Fresh(hidden));

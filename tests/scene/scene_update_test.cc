@@ -122,7 +122,7 @@ TEST(SceneUpdate, HideAndShowEqualFreshBuilds) {
   const Scene original = live;
   v1::SceneUpdate hide;
   hide.add_objects()->set_name(kDemoAircraft);
-  hide.mutable_objects(0)->set_visible(false);
+  hide.mutable_objects(0)->set_visibility(v1::VISIBILITY_HIDDEN);
   ASSERT_TRUE(ApplySceneUpdate(hide, &live).ok());
   Aircraft(proto)->set_hidden(true);
   ExpectSameScene(live, Build(proto));
@@ -136,7 +136,7 @@ TEST(SceneUpdate, HideAndShowEqualFreshBuilds) {
   ExpectSameScene(live, Build(proto));
   v1::SceneUpdate show;
   show.add_objects()->set_name(kDemoAircraft);
-  show.mutable_objects(0)->set_visible(true);
+  show.mutable_objects(0)->set_visibility(v1::VISIBILITY_SHOWN);
   ASSERT_TRUE(ApplySceneUpdate(show, &live).ok());
   Aircraft(proto)->set_hidden(false);
   *Aircraft(proto)->mutable_transform() = Moved();
@@ -166,7 +166,7 @@ TEST(SceneUpdate, RangesOfLaterObjectsFollowAHiddenObject) {
   EXPECT_EQ(live.objects[1].first, 8u);
   v1::SceneUpdate update;
   update.add_objects()->set_name("a");
-  update.mutable_objects(0)->set_visible(false);
+  update.mutable_objects(0)->set_visibility(v1::VISIBILITY_HIDDEN);
   update.add_objects()->set_name("b");
   // The transform replaces the object's whole transform.
   update.mutable_objects(1)->mutable_transform()->set_yaw_deg(90);
@@ -220,6 +220,8 @@ TEST(SceneUpdate, BadUpdatesNameTheFieldAndChangeNothing) {
   cases.back().update.mutable_objects(1)->mutable_transform()->set_yaw_deg(std::nan(""));
   cases.push_back({"zero scale", object(kDemoAircraft), "scale must be finite and non-zero"});
   cases.back().update.mutable_objects(1)->mutable_transform()->mutable_scale()->set_x(0);
+  cases.push_back({"bad visibility", object(kDemoAircraft), "visibility has unknown value 7"});
+  cases.back().update.mutable_objects(1)->set_visibility(static_cast<v1::Visibility>(7));
   cases.push_back({"both fog", object(kDemoAircraft), "update.fog: set density or visibility"});
   cases.back().update.mutable_objects()->RemoveLast();
   cases.back().update.mutable_fog()->set_density(0.01);
@@ -245,7 +247,7 @@ TEST(SceneUpdate, MergedUpdatesEqualTheUpdatesInTurn) {
   *first.mutable_objects(0)->mutable_transform() = Moved();
   first.mutable_fog()->set_density(0.002);
   second.add_objects()->set_name(kDemoAircraft);
-  second.mutable_objects(0)->set_visible(false);
+  second.mutable_objects(0)->set_visibility(v1::VISIBILITY_HIDDEN);
   second.mutable_sky()->set_g(0.1f);
   Scene in_turn = original;
   ASSERT_TRUE(ApplySceneUpdate(first, &in_turn).ok());
