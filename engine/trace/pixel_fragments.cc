@@ -90,17 +90,51 @@ void BuildFragments(const std::array<TexPoint, 4>& quad, const FragmentOptions& 
     if (out->area > 0) out->fragments.push_back(box);
     return;
   }
-  // Step 1-2: level k from delta (eq. 9), within the limits.
-  int k = std::min(FragmentLevel(options.delta, out->quad_area, perimeter), options.max_level);
-  while (k > -60 && extent * std::ldexp(1.0, k) > options.max_cells) --k;
-  out->level = k;
-  const double l = std::ldexp(1.0, -k);
-  // Steps 3-7 along each axis; step 8: keep the set of smaller area.
   thread_local std::vector<TexRect> gz;  // scratch, kept between calls
-  const double area_x = BuildGroups(quad, l, true, &out->fragments);
-  const double area_z = BuildGroups(quad, l, false, &gz);
-  out->columns = area_x <= area_z;
+  if (options.rule == FragmentLevelRule::kEquationNine) {
+    // Step 1-2: level k from delta (eq. 9), within the limits.
+    int k = std::min(FragmentLevel(options.delta, out->quad_area, perimeter), options.max_level);
+    while (k > -60 && extent * std::ldexp(1.0, k) > options.max_cells) --k;
+    out->level = k;
+    const double l = std::ldexp(1.0, -k);
+    // Steps 3-7 along each axis; step 8: keep the set of smaller area.
+    const double area_x = BuildGroups(quad, l, true, &out->fragments);
+    const double area_z = BuildGroups(quad, l, false, &gz);
+    out->columns = area_x <= area_z;
+    out->area = out->columns ? area_x : area_z;
+    if (!out->columns) out->fragments.swap(gz);
+    return;
+  }
+  // Per axis: the coarsest level whose bound keeps delta (see FragmentLevelRule), refined while
+  // the set built exceeds it, within the limits.
+  const double bound = out->quad_area * (1 + options.delta);
+  auto build = [&](bool along_x, std::vector<TexRect>* set, int* level) {
+    const double along = along_x ? x1 - x0 : z1 - z0, across = along_x ? z1 - z0 : x1 - x0;
+    int k =
+        std::min(static_cast<int>(std::ceil(-std::log2(options.delta * out->quad_area / across))),
+                 options.max_level);
+    while (k > -60 && along * std::ldexp(1.0, k) > options.max_cells) --k;
+    double area = BuildGroups(quad, std::ldexp(1.0, -k), along_x, set);
+    while (area > bound && k < options.max_level &&
+           along * std::ldexp(1.0, k + 1) <= options.max_cells) {
+      ++k;
+      area = BuildGroups(quad, std::ldexp(1.0, -k), along_x, set);
+    }
+    *level = k;
+    return area;
+  };
+  int level_x = 0, level_z = 0;
+  const double area_x = build(true, &out->fragments, &level_x);
+  const double area_z = build(false, &gz, &level_z);
+  const size_t nx = out->fragments.size(), nz = gz.size();
+  // A set within the bound (the other capped by max_cells); both within it, the fewer fragments
+  // (then the smaller area); neither (both capped), the smaller area.
+  const bool within_x = area_x <= bound, within_z = area_z <= bound;
+  out->columns = within_x != within_z   ? within_x
+                 : within_x && nx != nz ? nx < nz
+                                        : area_x <= area_z;
   out->area = out->columns ? area_x : area_z;
+  out->level = out->columns ? level_x : level_z;
   if (!out->columns) out->fragments.swap(gz);
 }
 

@@ -22,10 +22,24 @@ struct TexRect {
   double Area() const { return (x1 - x0) * (z1 - z0); }
 };
 
+// How the grid level is chosen.
+enum class FragmentLevelRule {
+  // Per axis, from a bound that holds: a column's rectangle exceeds the quad's part in it by at
+  // most l times the z-variation of the quad's boundary in that column, so the columns (Gx) of a
+  // convex quad exceed it by at most l Z (Z its extent along z) and l <= delta S / Z keeps the
+  // relative error within delta; likewise l <= delta S / X for the rows (Gz). The set is checked
+  // and refined one level while it is not. A long, thin quad along an axis gets about 1 / delta
+  // fragments however long it is, where eq. 9 (which bounds by P / 2S) gives one per l of its
+  // length (a deviation from seed 003, measured in docs/BENCHMARKS.md, issue 21).
+  kPerAxisBound,
+  kEquationNine,  // seed 003, eq. 9: one level for both axes from delta S / P
+};
+
 struct FragmentOptions {
   double delta = 0.1;    // allowed relative area error of the cover (seed 003, eq. 5)
   int max_level = 30;    // the finest grid, 2^-30 repeats
   int max_cells = 1024;  // grid columns (rows) per quad at most: coarser levels beyond that
+  FragmentLevelRule rule = FragmentLevelRule::kPerAxisBound;
 };
 
 struct FragmentSet {
@@ -33,7 +47,7 @@ struct FragmentSet {
   double area = 0;                 // S_fragments: their total area
   double quad_area = 0;            // S_quad (shoelace)
   double quad_perimeter = 0;       // P_quad
-  int level = 0;                   // k
+  int level = 0;                   // k of the kept set
   bool columns = true;             // Gx (grouped by grid column) kept, else Gz (rows)
 };
 
@@ -42,12 +56,14 @@ struct FragmentSet {
 int FragmentLevel(double delta, double quad_area, double quad_perimeter);
 
 // Covers the quad a, b, c, d (in order around it, either orientation) with fragments, as seed 003
-// lays out: level k (eq. 9, clamped by `options`), the edges' crossings with the lines x = const
-// (list Lx, with a, b, c, d) and z = const (list Lz), each list sorted, grouped by grid column
-// (row), each group's bounding rectangle a fragment: sets Gx and Gz; the one with the smaller
-// total area is kept. A point on a grid line belongs to both cells it separates, so each group's
-// rectangle bounds the quad's part in its column and the set covers the quad. A degenerate quad
-// (zero area) gets its bounding box as one fragment.
+// lays out: level k (by `options.rule`, clamped by `options`), the edges' crossings with the lines
+// x = const (list Lx, with a, b, c, d) and z = const (list Lz), each list sorted, grouped by grid
+// column (row), each group's bounding rectangle a fragment: sets Gx and Gz; the one with the
+// smaller total area is kept. A point on a grid line belongs to both cells it separates, so each
+// group's rectangle bounds the quad's part in its column and the set covers the quad. With eq. 9
+// the set of smaller area is kept; with the per-axis rule (each set at its own level) the one of
+// fewer fragments, then smaller area. A degenerate quad (zero area) gets its bounding box as one
+// fragment.
 void BuildFragments(const std::array<TexPoint, 4>& quad, const FragmentOptions& options,
                     FragmentSet* out);
 
