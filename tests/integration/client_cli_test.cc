@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "integration/server_process.h"
+#include "integration/service_fixture.h"
 
 namespace aperture::testing {
 namespace {
@@ -253,11 +254,8 @@ TEST_F(ClientTest, SimChannelsTileOneWideViewAndFlyAJsonPath) {
   // The same frame from one camera: 3 x 64 pixels wide, its frustum the three channels' union.
   auto stub = v1::Render::NewStub(
       grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials()));
-  v1::LoadSceneRequest load;
-  load.set_builtin_scene("demo");
-  v1::LoadSceneResponse loaded;
-  grpc::ClientContext load_context;
-  ASSERT_TRUE(stub->LoadScene(&load_context, load, &loaded).ok());
+  const v1::LoadSceneResponse loaded = LoadBuiltinScene(*stub, "demo");
+  ASSERT_FALSE(loaded.scene_id().empty());
   v1::RenderFrameRequest wide;
   wide.set_scene_id(loaded.scene_id());
   v1::Camera& camera = *wide.mutable_camera();

@@ -14,6 +14,17 @@ namespace aperture::testing {
 
 std::unique_ptr<ServerProcess> ServiceTest::shared_server_;
 
+v1::LoadSceneResponse LoadBuiltinScene(v1::Render::Stub& stub, const std::string& name) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+  v1::LoadSceneRequest request;
+  request.set_builtin_scene(name);
+  v1::LoadSceneResponse response;
+  const grpc::Status status = stub.LoadScene(&context, request, &response);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return response;
+}
+
 void ServiceTest::StartServer(const std::vector<std::string>& args) {
   std::string error;
   std::unique_ptr<ServerProcess>& owner = args.empty() ? shared_server_ : own_server_;

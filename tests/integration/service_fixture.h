@@ -13,6 +13,9 @@
 
 namespace aperture::testing {
 
+// LoadScene of a built-in scene ("demo", ...) on `stub`; fails the test if it is refused.
+v1::LoadSceneResponse LoadBuiltinScene(v1::Render::Stub& stub, const std::string& name);
+
 class ServiceTest : public ::testing::Test {
  protected:
   // Starts aperture-server with these extra flags; fails the test if it does not come up.

@@ -12,6 +12,7 @@
 
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "integration/server_process.h"
+#include "integration/service_fixture.h"
 // After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.
 #include <OpenImageIO/imagebuf.h>
 
@@ -87,13 +88,8 @@ TEST_F(SplitRenderTest, PlanRegionsTilesTheFrameAndChecksItsInput) {
   grpc::ChannelArguments args;
   auto stub = v1::Render::NewStub(
       grpc::CreateCustomChannel(a_->address(), grpc::InsecureChannelCredentials(), args));
-  v1::LoadSceneRequest load;
-  load.set_builtin_scene("demo");
-  v1::LoadSceneResponse loaded;
-  {
-    grpc::ClientContext context;
-    ASSERT_TRUE(stub->LoadScene(&context, load, &loaded).ok());
-  }
+  const v1::LoadSceneResponse loaded = LoadBuiltinScene(*stub, "demo");
+  ASSERT_FALSE(loaded.scene_id().empty());
   v1::PlanRegionsRequest request;
   request.set_scene_id(loaded.scene_id());
   *request.mutable_camera() = loaded.default_camera();
