@@ -5,13 +5,15 @@
 
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
+#include "cli_usage.h"
 #include "commands.h"
 #include "flag_names.h"
 #include "large_buffers.h"
 
 int main(int argc, char** argv) {
   aperture::KeepLargeBuffersWarm();  // frames' buffers reused warm, not page-faulted afresh
-  absl::SetProgramUsageMessage(
+  aperture::HandleHelpAndVersion(
+      argc, argv, "aperture",
       "client of aperture-server.\n"
       "  aperture render --server ADDR --scene demo|FILE.json --camera X,Y,Z,YAW,PITCH,ROLL "
       "--size WxH -o frame.exr\n"
@@ -23,7 +25,9 @@ int main(int argc, char** argv) {
       "[--shard I/N] [--nocontact_sheet]\n"
       "  aperture batch JOB.json --check -o DIR [--shard I/N]: every frame present and valid?\n"
       "  aperture health --server ADDR\n"
-      "  aperture info --server ADDR");
+      "  aperture info --server ADDR\n"
+      "  aperture COMMAND --help: the flags of one command",
+      /*has_commands=*/true);
   aperture::DashedFlagNames dashed(argc, argv);
   std::vector<char*> args = absl::ParseCommandLine(dashed.argc(), dashed.argv());
   const std::string command = args.size() > 1 ? args[1] : "";

@@ -23,6 +23,7 @@
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
 #include "admission.h"
+#include "cli_usage.h"
 #include "flag_names.h"
 #include "large_buffers.h"
 #include "render_service.h"
@@ -174,7 +175,8 @@ int Run() {
 
 int main(int argc, char** argv) {
   aperture::KeepLargeBuffersWarm();  // frames' buffers reused warm, not page-faulted afresh
-  absl::SetProgramUsageMessage(
+  aperture::HandleHelpAndVersion(
+      argc, argv, "aperture-server",
       "serves aperture.v1.Render over gRPC.\n  aperture-server --listen 127.0.0.1:50051 "
       "--threads 0 --max-queue 16 --max-pixels 16777216 --store DIR");
   aperture::DashedFlagNames args(argc, argv);

@@ -9,8 +9,10 @@
 #include "absl/flags/usage.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "cli_usage.h"
 #include "cost/calibration.h"
 #include "cost/frame_statistics.h"
+#include "flag_names.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -302,9 +304,11 @@ int Run() {
 }  // namespace aperture
 
 int main(int argc, char** argv) {
-  absl::SetProgramUsageMessage(
+  aperture::HandleHelpAndVersion(
+      argc, argv, "aperture-render",
       "renders one frame locally.\n  aperture-render --scene demo|FILE.json --camera "
       "X,Y,Z,YAW,PITCH,ROLL --fov 60 --size 1920x1080 --aa box2 -o frame.exr");
-  absl::ParseCommandLine(argc, argv);
+  aperture::DashedFlagNames args(argc, argv);  // --zip-level as --zip_level
+  absl::ParseCommandLine(args.argc(), args.argv());
   return aperture::Run();
 }

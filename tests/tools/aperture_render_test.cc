@@ -1,7 +1,6 @@
 // aperture-render as a user runs it: a real process, real files.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
@@ -10,23 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "support/run_process.h"
+
 namespace {
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = aperture::testing::ProcessResult;
 
 Result RunRender(const std::string& args) {
-  const std::string command = std::string(APERTURE_RENDER_BIN) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buffer;
-  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) r.output += buffer.data();
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return aperture::testing::RunProcess(std::string(APERTURE_RENDER_BIN) + " " + args);
 }
 
 class RenderCli : public ::testing::Test {

@@ -1,0 +1,51 @@
+// Every binary answers --help with its own flags and --version with the project's version, exit 0
+// (absl's own --help exits 1 and printed "No flags matched." for these binaries).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "support/run_process.h"
+
+namespace aperture::testing {
+namespace {
+
+struct Binary {
+  const char* path;
+  const char* name;
+  const char* flag;  // one of its own flags the help must list
+};
+
+const Binary kBinaries[] = {{APERTURE_RENDER_BIN, "aperture-render", "--zip-level"},
+                            {APERTURE_SERVER_BIN, "aperture-server", "--max-queue"},
+                            {APERTURE_CLIENT_BIN, "aperture", "--concurrency"}};
+
+TEST(Help, EveryBinaryListsItsOwnFlagsAndExitsZero) {
+  for (const Binary& b : kBinaries) {
+    for (const char* ask : {"--help", "-h"}) {
+      const ProcessResult r = RunProcess(std::string(b.path) + " " + ask);
+      EXPECT_EQ(r.exit_code, 0) << b.name << " " << ask << ": " << r.output;
+      EXPECT_NE(r.output.find(std::string(b.name) + ": "), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find(b.flag), std::string::npos) << b.name << ": " << r.output;
+      EXPECT_EQ(r.output.find("No flags matched"), std::string::npos) << r.output;
+      EXPECT_EQ(r.output.find("--flagfile"), std::string::npos) << "absl's own flags listed";
+    }
+    const ProcessResult v = RunProcess(std::string(b.path) + " --version");
+    EXPECT_EQ(v.exit_code, 0) << b.name;
+    EXPECT_EQ(v.output, std::string(b.name) + " " + APERTURE_VERSION + "\n");
+  }
+}
+
+TEST(Help, AClientCommandListsItsFlagsOnly) {
+  const ProcessResult sim = RunProcess(std::string(APERTURE_CLIENT_BIN) + " sim --help");
+  EXPECT_EQ(sim.exit_code, 0) << sim.output;
+  const size_t at = sim.output.find("flags of 'sim':");
+  ASSERT_NE(at, std::string::npos) << sim.output;
+  const std::string flags = sim.output.substr(at);  // after the usage lines of every command
+  EXPECT_NE(flags.find("--channels"), std::string::npos);
+  EXPECT_NE(flags.find("--server"), std::string::npos);         // common to all
+  EXPECT_EQ(flags.find("--concurrency"), std::string::npos);    // load and batch only
+  EXPECT_EQ(flags.find("--contact-sheet"), std::string::npos);  // batch only
+}
+
+}  // namespace
+}  // namespace aperture::testing
