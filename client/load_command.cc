@@ -85,7 +85,7 @@ int RunLoad() {
                 s.p99, s.max, s.mean);
     for (const auto& [code, n] : errors) std::printf("errors %s: %d\n", code.c_str(), n);
   }
-  return 0;
+  return failed == 0 ? 0 : 1;  // a load run with failed requests is a failure (scripts, CI)
 }
 
 }  // namespace aperture

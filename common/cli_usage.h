@@ -1,12 +1,14 @@
 // --help and --version the way a command-line user expects, for every binary: the program's own
 // flags (those defined in this project's sources, not absl's), each with its help and default,
-// on stdout, exit 0; `aperture COMMAND --help` lists the flags of that command. absl's own --help
-// exits 1 and lists only flags defined in a file named like the binary ("No flags matched.").
+// on stdout, exit 0; `aperture COMMAND --help` lists the flags of that command; an unknown flag
+// is a usage error, exit 2. absl's own --help exits 1 and lists only flags defined in a file named
+// like the binary ("No flags matched."), and its parser exits 1 on an unknown flag.
 // Header-only and absl-only, so the client (which links no engine code), the server and the tools
 // share it.
 #pragma once
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -38,6 +40,29 @@ inline std::vector<std::string> CommandsOf(absl::string_view help) {
   return commands;
 }
 
+// The flag an argument names ("--max-queue=4" -> "max_queue"), or "" for a value or a position.
+inline std::string FlagNameOf(absl::string_view arg) {
+  if (arg.size() < 2 || arg[0] != '-') return "";
+  absl::string_view name = arg.substr(arg[1] == '-' ? 2 : 1);
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return "";  // "-1"
+  name = name.substr(0, name.find('='));
+  std::string underscored(name);
+  std::replace(underscored.begin(), underscored.end(), '-', '_');
+  return underscored;
+}
+
+inline bool IsKnownFlag(const std::string& name) {
+  // absl's usage flags (--help*, --version, --only_check_args) are not in its registry.
+  if (absl::StartsWith(name, "help") || name == "h" || name == "version" ||
+      name == "only_check_args")
+    return true;
+  if (absl::FindCommandLineFlag(name) != nullptr) return true;
+  // --noname for a boolean --name.
+  if (!absl::StartsWith(name, "no")) return false;
+  const absl::CommandLineFlag* flag = absl::FindCommandLineFlag(name.substr(2));
+  return flag != nullptr && flag->IsOfType<bool>();
+}
+
 inline bool IsHelp(absl::string_view arg) {
   return arg == "--help" || arg == "-help" || arg == "-h" || arg == "--helpfull" ||
          arg == "-helpfull" || arg == "--helpshort";
@@ -46,9 +71,10 @@ inline bool IsHelp(absl::string_view arg) {
 }  // namespace cli_usage_internal
 
 // Call first in main. Sets the usage message and --version's text (the project's version from
-// CMake); when the arguments ask for help, prints it and exits 0. `command`: for a program with
-// commands (`aperture sim --help`), the first argument that is not a flag, whose flags are listed
-// (those whose help starts "sim:" or "load, sim:", and the common ones).
+// CMake); exits 2 naming an unknown flag; when the arguments ask for help, prints it and exits 0.
+// `command`: for a program with commands (`aperture sim --help`), the first argument that is not a
+// flag, whose flags are listed (those whose help starts "sim:" or "load, sim:", and the common
+// ones).
 inline void HandleHelpAndVersion(int argc, char** argv, const char* program, const char* usage,
                                  bool has_commands = false) {
   absl::SetProgramUsageMessage(usage);
@@ -65,6 +91,13 @@ inline void HandleHelpAndVersion(int argc, char** argv, const char* program, con
     if (arg == "--") break;
     if (cli_usage_internal::IsHelp(arg)) help = true;
     if (has_commands && command.empty() && !absl::StartsWith(arg, "-")) command = std::string(arg);
+    // A usage error exits 2 (absl's parser would exit 1 on an unknown flag).
+    const std::string name = cli_usage_internal::FlagNameOf(arg);
+    if (!name.empty() && !cli_usage_internal::IsKnownFlag(name)) {
+      std::fprintf(stderr, "%s: unknown flag '%s' (--help lists the flags)\n", program,
+                   std::string(arg).c_str());
+      std::exit(2);
+    }
   }
   if (!help) return;
 

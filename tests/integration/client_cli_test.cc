@@ -218,6 +218,14 @@ TEST_F(ClientTest, LoadReportsThroughputAndLatency) {
   EXPECT_THAT(result.out, HasSubstr("\"p99\""));
 }
 
+TEST_F(ClientTest, LoadExitsOneWhenRequestsFailed) {
+  // 9000 x 9000 is over the server's --max-pixels: every request is refused.
+  const CommandResult result = Client({"load", "--scene=demo", "--concurrency=1", "--requests=2",
+                                       "--size=9000x9000", "--json"});
+  EXPECT_EQ(result.exit_code, 1) << result.out << result.err;
+  EXPECT_THAT(result.out, HasSubstr("\"failed\": 2"));
+}
+
 TEST_F(ClientTest, SimStreamsFramesAtARate) {
   const CommandResult result =
       Client({"sim", "--scene=" + WriteGroundScene(dir_), "--camera=0,1.7,0,0,-10,0", "--rate=20",

@@ -35,6 +35,19 @@ TEST(Help, EveryBinaryListsItsOwnFlagsAndExitsZero) {
   }
 }
 
+TEST(Help, AnUnknownFlagIsAUsageErrorNamingIt) {
+  for (const Binary& b : kBinaries) {
+    const ProcessResult r = RunProcess(std::string(b.path) + " --frobnicate=3");
+    EXPECT_EQ(r.exit_code, 2) << b.name << ": " << r.output;
+    EXPECT_NE(r.output.find("unknown flag '--frobnicate=3'"), std::string::npos) << r.output;
+  }
+  // Values that start with '-' and negated booleans are not unknown flags.
+  const ProcessResult ok = RunProcess(std::string(APERTURE_RENDER_BIN) +
+                                      " --camera 0,14,420,0,-5,0 --near 0.5 --nopreview --size "
+                                      "8x8 --filter trilinear -o /dev/null --store none");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
 TEST(Help, AClientCommandListsItsFlagsOnly) {
   const ProcessResult sim = RunProcess(std::string(APERTURE_CLIENT_BIN) + " sim --help");
   EXPECT_EQ(sim.exit_code, 0) << sim.output;
