@@ -5,6 +5,7 @@
 #include <grpcpp/health_check_service_interface.h>
 #include <malloc.h>
 #include <signal.h>
+#include <spdlog/cfg/env.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
@@ -188,5 +189,6 @@ int main(int argc, char** argv) {
   mallopt(M_ARENA_MAX, std::max(2, absl::GetFlag(FLAGS_threads)));
   // Logs go to stderr; stdout carries only the "listening on" line.
   spdlog::set_default_logger(spdlog::stderr_color_mt("aperture-server"));
+  spdlog::cfg::load_env_levels();  // SPDLOG_LEVEL=warn quiets the per-request lines
   return aperture::Run();
 }

@@ -1,4 +1,8 @@
 // aperture-render: renders one frame locally and writes it as OpenEXR (plus a PNG preview).
+#include <spdlog/cfg/env.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -308,7 +312,11 @@ int main(int argc, char** argv) {
       argc, argv, "aperture-render",
       "renders one frame locally.\n  aperture-render --scene demo|FILE.json --camera "
       "X,Y,Z,YAW,PITCH,ROLL --fov 60 --size 1920x1080 --aa box2 -o frame.exr");
-  aperture::DashedFlagNames args(argc, argv);  // --zip-level as --zip_level
+  aperture::DashedFlagNames args(argc, argv);
+  // Engine log lines (tables built, stores opened) on stderr, stdout kept for the frame's report;
+  // the level from SPDLOG_LEVEL (e.g. SPDLOG_LEVEL=warn).
+  spdlog::set_default_logger(spdlog::stderr_color_mt("aperture-render"));
+  spdlog::cfg::load_env_levels();  // --zip-level as --zip_level
   absl::ParseCommandLine(args.argc(), args.argv());
   return aperture::Run();
 }

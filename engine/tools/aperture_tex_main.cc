@@ -1,4 +1,8 @@
 // aperture-tex: texture tools (prefiltered tables, packed vector textures, benchmarks).
+#include <spdlog/cfg/env.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -33,6 +37,10 @@ int Usage(FILE* out) {
 
 int main(int argc, char** argv) {
   using namespace aperture;
+  // Engine log lines (tables built, stores opened) on stderr, stdout kept for the tool's own
+  // report; the level from SPDLOG_LEVEL (e.g. SPDLOG_LEVEL=warn).
+  spdlog::set_default_logger(spdlog::stderr_color_mt("aperture-tex"));
+  spdlog::cfg::load_env_levels();
   if (argc < 2) return Usage(stderr);
   const std::string command = argv[1];
   if (command == "help" || command == "--help" || command == "-h") return Usage(stdout);
