@@ -44,6 +44,10 @@ int main(int argc, char** argv) {
   if (argc < 2) return Usage(stderr);
   const std::string command = argv[1];
   if (command == "help" || command == "--help" || command == "-h") return Usage(stdout);
+  if (command == "--version") {
+    std::printf("aperture-tex %s\n", APERTURE_VERSION);
+    return 0;
+  }
   // `info` is shared: a file's magic tells which family describes it; each family's `info`
   // returns 3 for "not mine" so the next one can try.
   int last = -1;

@@ -35,6 +35,15 @@ TEST(Help, EveryBinaryListsItsOwnFlagsAndExitsZero) {
   }
 }
 
+TEST(Help, TheTextureToolHasItsOwnHelpAndTheVersion) {
+  const ProcessResult help = RunProcess(std::string(APERTURE_TEX_BIN) + " --help");
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  EXPECT_NE(help.output.find("bake"), std::string::npos) << help.output;
+  const ProcessResult v = RunProcess(std::string(APERTURE_TEX_BIN) + " --version");
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_EQ(v.output, std::string("aperture-tex ") + APERTURE_VERSION + "\n");
+}
+
 TEST(Help, AnUnknownFlagIsAUsageErrorNamingIt) {
   for (const Binary& b : kBinaries) {
     const ProcessResult r = RunProcess(std::string(b.path) + " --frobnicate=3");
