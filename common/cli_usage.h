@@ -63,9 +63,10 @@ inline bool IsKnownFlag(const std::string& name) {
   return flag != nullptr && flag->IsOfType<bool>();
 }
 
+// --helpfull stays absl's: every flag linked in, absl's own included (deploy's manifest test reads
+// the flags' names and kinds from it).
 inline bool IsHelp(absl::string_view arg) {
-  return arg == "--help" || arg == "-help" || arg == "-h" || arg == "--helpfull" ||
-         arg == "-helpfull" || arg == "--helpshort";
+  return arg == "--help" || arg == "-help" || arg == "-h" || arg == "--helpshort";
 }
 
 }  // namespace cli_usage_internal
