@@ -29,6 +29,12 @@ struct ObjectMesh {
   std::vector<LocalPolygon> polygons;
 };
 
+// Where an object stands: world = linear * local + translation.
+struct ObjectPlacement {
+  Mat3 linear;  // rotation * scale
+  Vec3 translation;
+};
+
 // The placement of a proto transform (yaw, pitch, roll, then scale; unset scale: 1, 1, 1), or an
 // error naming `where` for non-finite values or a zero scale.
 absl::StatusOr<ObjectPlacement> PlacementFromProto(const v1::Transform& t,

@@ -75,12 +75,6 @@ struct CurvedPrimitive {
 
 struct ObjectMesh;  // scene/object_placement.h
 
-// Where an object stands: world = linear * local + translation.
-struct ObjectPlacement {
-  Mat3 linear;  // rotation * scale
-  Vec3 translation;
-};
-
 // A named object (the proto Object's name), which a live frame's update may move, show or hide:
 // its polygons are polygons[first, first + count) (none while hidden). Objects are in the order
 // the scene lists them, so are their ranges.
@@ -88,8 +82,7 @@ struct SceneObject {
   std::string name;
   size_t first = 0, count = 0;
   bool visible = true;
-  ObjectPlacement placement;               // the current one (kept while hidden)
-  v1::Transform transform;                 // the same, as the scene or the last update gave it
+  v1::Transform transform;                 // the scene's or the last update's (kept while hidden)
   std::shared_ptr<const ObjectMesh> mesh;  // what placing it again needs, shared by copies
 };
 

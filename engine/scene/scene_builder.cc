@@ -253,7 +253,6 @@ class Builder {
       object.name = o.name();
       object.first = scene_.polygons.size();
       object.visible = !o.hidden();
-      object.placement = *placement;
       object.transform = o.transform();
       object.mesh = std::make_shared<const ObjectMesh>(*std::move(mesh));
       if (object.visible) {

@@ -35,12 +35,12 @@ absl::Status SetEnvironment(const v1::SceneUpdate& update, Scene* scene) {
   return s.ok() ? s : Prefixed(s, "update.");
 }
 
-// What an update makes of one object: its final visibility and placement, and the polygons that
+// What an update makes of one object: its final visibility and transform, and the polygons that
 // replace its range (unset: the range stays as it is).
 struct ObjectChange {
   bool visible = true;
-  std::optional<ObjectPlacement> placement;  // set by the update's last transform for it
-  const v1::Transform* transform = nullptr;  // that transform
+  const v1::Transform* transform = nullptr;  // the update's last transform for it, if any
+  int entry = 0;                             // the update entry that named it last (errors)
   std::optional<std::vector<ScenePolygon>> polygons;
 };
 
@@ -64,11 +64,6 @@ void ReplaceRange(size_t index, std::vector<ScenePolygon> polygons, Scene* scene
 
 }  // namespace
 
-const SceneObject* FindObject(const Scene& scene, const std::string& name) {
-  const int i = ObjectIndex(scene, name);
-  return i < 0 ? nullptr : &scene.objects[static_cast<size_t>(i)];
-}
-
 absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update) {
   for (int i = 0; i < update.objects_size(); ++i) {
     const v1::ObjectUpdate& o = update.objects(i);
@@ -88,68 +83,51 @@ absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update)
 }
 
 absl::Status ApplySceneUpdate(const v1::SceneUpdate& update, Scene* scene) {
+  // Checked first: names, transforms and the environment's values cannot fail below.
   if (auto s = CheckSceneUpdate(*scene, update); !s.ok()) return s;
   // The final state of each object the update names (its last transform and visibility win).
   absl::flat_hash_map<size_t, ObjectChange> changes;
-  absl::flat_hash_map<size_t, int> last_mention;  // for errors: the update entry
   for (int i = 0; i < update.objects_size(); ++i) {
     const v1::ObjectUpdate& o = update.objects(i);
     const auto index = static_cast<size_t>(ObjectIndex(*scene, o.name()));
     auto [it, inserted] = changes.try_emplace(index);
-    if (inserted) it->second.visible = scene->objects[index].visible;
+    ObjectChange& change = it->second;
+    if (inserted) change.visible = scene->objects[index].visible;
     if (o.visibility() != v1::VISIBILITY_UNCHANGED)
-      it->second.visible = o.visibility() == v1::VISIBILITY_SHOWN;
-    if (o.has_transform()) {
-      auto placement = PlacementFromProto(o.transform(), Where(i, o.name()));
-      if (!placement.ok()) return placement.status();
-      it->second.placement = *placement;
-      it->second.transform = &o.transform();
-    }
-    last_mention[index] = i;
+      change.visible = o.visibility() == v1::VISIBILITY_SHOWN;
+    if (o.has_transform()) change.transform = &o.transform();
+    change.entry = i;
   }
-  // Every change is computed before any is made, so an object that cannot be placed (its
-  // polygons degenerate under a new scale) leaves the scene as it was.
+  // Every object's polygons are placed before any is changed, so an object that cannot be placed
+  // (its polygons degenerate under a new scale) leaves the scene as it was.
   for (auto& [index, change] : changes) {
     const SceneObject& object = scene->objects[index];
     if (!change.visible) {
       if (object.visible) change.polygons.emplace();  // hidden: its range empties
       continue;
     }
-    if (!change.placement && object.visible) continue;  // shown already, not moved
+    if (!change.transform && object.visible) continue;  // shown already, not moved
+    const std::string where = Where(change.entry, update.objects(change.entry).name());
+    // A shown object without a new transform stands where its last one put it.
+    auto placement =
+        PlacementFromProto(change.transform ? *change.transform : object.transform, where);
+    if (!placement.ok()) return placement.status();
     std::vector<ScenePolygon> placed;
     placed.reserve(object.mesh->polygons.size());
-    const ObjectPlacement& at = change.placement ? *change.placement : object.placement;
-    if (auto s = PlaceMesh(*object.mesh, at, &placed); !s.ok()) {
-      const int i = last_mention[index];
-      return Prefixed(s, absl::StrCat(Where(i, update.objects(i).name()), ": "));
-    }
+    if (auto s = PlaceMesh(*object.mesh, *placement, &placed); !s.ok())
+      return Prefixed(s, where + ": ");
     change.polygons = std::move(placed);
   }
-  Scene environment;
-  environment.sun_direction = scene->sun_direction;
-  environment.sun_color = scene->sun_color;
-  environment.ambient = scene->ambient;
-  environment.fog_color = scene->fog_color;
-  environment.fog_density = scene->fog_density;
-  environment.sky = scene->sky;
-  if (auto s = SetEnvironment(update, &environment); !s.ok()) return s;
 
   // Commit: a moved object that keeps its polygon count is overwritten in place; otherwise its
   // range is replaced and the later objects' ranges shift.
   for (auto& [index, change] : changes) {
     SceneObject& object = scene->objects[index];
-    if (change.placement)
-      object.placement = *change.placement, object.transform = *change.transform;
+    if (change.transform) object.transform = *change.transform;
     if (change.polygons) ReplaceRange(index, *std::move(change.polygons), scene);
     object.visible = change.visible;
   }
-  scene->sun_direction = environment.sun_direction;
-  scene->sun_color = environment.sun_color;
-  scene->ambient = environment.ambient;
-  scene->fog_color = environment.fog_color;
-  scene->fog_density = environment.fog_density;
-  scene->sky = environment.sky;
-  return absl::OkStatus();
+  return SetEnvironment(update, scene);  // checked above: it cannot fail
 }
 
 void MergeSceneUpdate(const v1::SceneUpdate& later, v1::SceneUpdate* earlier) {

@@ -24,7 +24,4 @@ absl::Status ApplySceneUpdate(const v1::SceneUpdate& update, Scene* scene);
 // one where it sets it.
 void MergeSceneUpdate(const v1::SceneUpdate& later, v1::SceneUpdate* earlier);
 
-// A scene's named object by name, or null.
-const SceneObject* FindObject(const Scene& scene, const std::string& name);
-
 }  // namespace aperture

@@ -258,7 +258,7 @@ TEST(SceneUpdate, MergedUpdatesEqualTheUpdatesInTurn) {
   Scene at_once = original;
   ASSERT_TRUE(ApplySceneUpdate(merged, &at_once).ok());
   ExpectSameScene(at_once, in_turn);
-  EXPECT_EQ(at_once.objects.back().placement.translation.x, -30.5);
+  EXPECT_EQ(at_once.objects.back().transform.translation().x(), -30.5);
 }
 
 }  // namespace
