@@ -215,10 +215,9 @@ int RunBatch(const std::string& job_path) {
   // gRPC's round_robin policy spreads the frames over the servers; a failed frame is retried,
   // and the policy sends the retry to the next server.
   grpc::ChannelArguments args;
-  args.SetMaxReceiveMessageSize(-1);
   args.SetLoadBalancingPolicyName("round_robin");
-  auto stub = v1::Render::NewStub(grpc::CreateCustomChannel(
-      absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), ClientCredentials(), args));
+  auto stub =
+      v1::Render::NewStub(MakeChannel(absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), args));
 
   const size_t frames = owned.size();
   const uint32_t width = base->options().width(), height = base->options().height();

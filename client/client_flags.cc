@@ -6,6 +6,13 @@ ABSL_FLAG(std::string, server, "127.0.0.1:50051", "server address HOST:PORT");
 ABSL_FLAG(std::string, tls_ca, "",
           "PEM file of the certificate authority (or the server's self-signed certificate) to "
           "trust; set: connect with TLS, else plaintext");
+ABSL_FLAG(std::string, tls_cert, "",
+          "PEM certificate of this client, for a server that requires client certificates "
+          "(--tls-client-ca); needs --tls-ca and --tls-key");
+ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls-cert");
+ABSL_FLAG(std::string, token_file, "",
+          "file whose first line is the bearer token for a server started with --auth-tokens "
+          "(default: the APERTURE_TOKEN environment variable, if set)");
 ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
           "batch: servers HOST:PORT,... (gRPC round_robin over them); a host name stands for all "
           "of its IPv4 addresses (a headless Service: every pod behind it)");

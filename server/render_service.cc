@@ -34,16 +34,28 @@ const char* ModeName(const v1::RenderOptions& options) {
 
 RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures,
                              SceneStore& scenes, AdmissionControl& admission,
-                             tbb::task_arena& arena)
+                             tbb::task_arena& arena, const AuthTokens* auth)
     : limits_(limits),
+      auth_(auth),
       textures_(textures),
       scenes_(scenes),
       admission_(admission),
       arena_(arena),
       traced_(kTracedScenes, textures.shared()) {}
 
-grpc::Status RenderService::HasTexture(grpc::ServerContext*, const v1::HasTextureRequest* request,
+absl::Status RenderService::Authorize(const grpc::ServerContext& context, const char* rpc) {
+  if (auth_ == nullptr) return absl::OkStatus();
+  absl::Status status = auth_->Check(context);
+  if (!status.ok())
+    spdlog::warn("rpc={} peer={} status=UNAUTHENTICATED error='{}'", rpc, context.peer(),
+                 std::string(status.message()));
+  return status;
+}
+
+grpc::Status RenderService::HasTexture(grpc::ServerContext* context,
+                                       const v1::HasTextureRequest* request,
                                        v1::HasTextureResponse* response) {
+  if (absl::Status auth = Authorize(*context, "HasTexture"); !auth.ok()) return ToGrpcStatus(auth);
   if (!IsSha256Hex(request->sha256()))
     return ToGrpcStatus(absl::InvalidArgumentError("sha256 must be 64 lowercase hex digits"));
   response->set_stored(textures_.Has(request->sha256()));
@@ -53,6 +65,8 @@ grpc::Status RenderService::HasTexture(grpc::ServerContext*, const v1::HasTextur
 grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
                                           grpc::ServerReader<v1::UploadTextureRequest>* reader,
                                           v1::UploadTextureResponse* response) {
+  if (absl::Status auth = Authorize(*context, "UploadTexture"); !auth.ok())
+    return ToGrpcStatus(auth);
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
   auto finish = [&](const absl::Status& status, const std::string& sha256, bool skipped) {
@@ -107,6 +121,7 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
 grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
                                       const v1::LoadSceneRequest* request,
                                       v1::LoadSceneResponse* response) {
+  if (absl::Status auth = Authorize(*context, "LoadScene"); !auth.ok()) return ToGrpcStatus(auth);
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
   // A request loaded before (a built-in scene by name, a farm job's scene per frame) is answered
@@ -244,6 +259,7 @@ absl::Status RenderService::RenderOne(grpc::ServerContext* context,
 grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
                                         const v1::RenderFrameRequest* request,
                                         v1::RenderFrameResponse* response) {
+  if (absl::Status auth = Authorize(*context, "RenderFrame"); !auth.ok()) return ToGrpcStatus(auth);
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
   absl::Status status = RenderOne(context, *request, response);
@@ -265,6 +281,8 @@ grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
 grpc::Status RenderService::RenderStream(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream) {
+  if (absl::Status auth = Authorize(*context, "RenderStream"); !auth.ok())
+    return ToGrpcStatus(auth);
   const uint64_t id = next_request_id_++;
   const auto stream_start = Clock::now();
   // The stream's scene state: updates apply from their frame on, for this stream only.
@@ -310,6 +328,7 @@ grpc::Status RenderService::RenderStream(
 grpc::Status RenderService::PlanRegions(grpc::ServerContext* context,
                                         const v1::PlanRegionsRequest* request,
                                         v1::PlanRegionsResponse* response) {
+  if (absl::Status auth = Authorize(*context, "PlanRegions"); !auth.ok()) return ToGrpcStatus(auth);
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
   std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
@@ -327,9 +346,12 @@ grpc::Status RenderService::PlanRegions(grpc::ServerContext* context,
   return ToGrpcStatus(status);
 }
 
-grpc::Status RenderService::GetServerInfo(grpc::ServerContext*, const v1::GetServerInfoRequest*,
+grpc::Status RenderService::GetServerInfo(grpc::ServerContext* context,
+                                          const v1::GetServerInfoRequest*,
                                           v1::GetServerInfoResponse* response) {
-  response->set_version("0.1.0");
+  if (absl::Status auth = Authorize(*context, "GetServerInfo"); !auth.ok())
+    return ToGrpcStatus(auth);
+  response->set_version(APERTURE_VERSION);  // CMake's project version
   response->set_threads(static_cast<uint32_t>(limits_.threads));
   response->set_max_queue(static_cast<uint32_t>(limits_.max_queue));
   response->set_concurrent_frames(static_cast<uint32_t>(limits_.concurrent_frames));

@@ -10,6 +10,7 @@
 
 #include "admission.h"
 #include "aperture/v1/render_service.grpc.pb.h"
+#include "auth_tokens.h"
 #include "live_scene.h"
 #include "live_stream.h"
 #include "scene_store.h"
@@ -30,7 +31,8 @@ struct ServiceLimits {
 class RenderService final : public v1::Render::Service {
  public:
   RenderService(const ServiceLimits& limits, TextureStore& textures, SceneStore& scenes,
-                AdmissionControl& admission, tbb::task_arena& arena);
+                AdmissionControl& admission, tbb::task_arena& arena,
+                const AuthTokens* auth = nullptr);  // null: no authentication
 
   grpc::Status HasTexture(grpc::ServerContext* context, const v1::HasTextureRequest* request,
                           v1::HasTextureResponse* response) override;
@@ -61,7 +63,11 @@ class RenderService final : public v1::Render::Service {
   absl::Status RenderOne(grpc::ServerContext* context, const v1::RenderFrameRequest& request,
                          v1::RenderFrameResponse* response);
 
+  // OK, or UNAUTHENTICATED (logged with the peer, never the token) when tokens are required.
+  absl::Status Authorize(const grpc::ServerContext& context, const char* rpc);
+
   const ServiceLimits limits_;
+  const AuthTokens* const auth_;
   TextureStore& textures_;
   SceneStore& scenes_;
   AdmissionControl& admission_;

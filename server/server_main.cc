@@ -24,6 +24,7 @@
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
 #include "admission.h"
+#include "auth_tokens.h"
 #include "cli_usage.h"
 #include "flag_names.h"
 #include "large_buffers.h"
@@ -48,6 +49,15 @@ ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
 ABSL_FLAG(std::string, tls_cert, "",
           "PEM certificate chain; with --tls-key the server accepts only TLS connections");
 ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls-cert");
+ABSL_FLAG(std::string, tls_client_ca, "",
+          "PEM CA certificates: with --tls-cert/--tls-key, clients must present a certificate "
+          "signed by one of them (mutual TLS)");
+ABSL_FLAG(std::string, auth_tokens, "",
+          "file of accepted bearer tokens, one per line ('#' comments), read again on SIGHUP: "
+          "every RPC but health then needs 'authorization: Bearer <token>' metadata");
+ABSL_FLAG(bool, insecure_listen_any, false,
+          "allow --listen on an address other machines reach without --auth-tokens or "
+          "--tls-client-ca (anyone who connects may upload, load and render)");
 ABSL_FLAG(double, grace_s, 10,
           "on SIGTERM: seconds in-flight frames get to finish before they "
           "are cancelled");
@@ -55,11 +65,19 @@ ABSL_FLAG(double, grace_s, 10,
 namespace aperture {
 namespace {
 
-// TLS when both --tls-cert and --tls-key are given, plaintext when neither; null (after logging
-// why) when only one is, or a file cannot be read.
+// TLS when both --tls-cert and --tls-key are given (requiring client certificates signed by
+// --tls-client-ca when that is given), plaintext when neither; null (after logging why) when only
+// one is, or a file cannot be read.
 std::shared_ptr<grpc::ServerCredentials> ServerCredentials() {
   const std::string cert = absl::GetFlag(FLAGS_tls_cert), key = absl::GetFlag(FLAGS_tls_key);
-  if (cert.empty() && key.empty()) return grpc::InsecureServerCredentials();
+  const std::string client_ca = absl::GetFlag(FLAGS_tls_client_ca);
+  if (cert.empty() && key.empty()) {
+    if (!client_ca.empty()) {
+      spdlog::error("--tls-client-ca needs --tls-cert and --tls-key (mutual TLS is TLS)");
+      return nullptr;
+    }
+    return grpc::InsecureServerCredentials();
+  }
   if (cert.empty() || key.empty()) {
     spdlog::error("--tls-cert and --tls-key go together; give both or neither");
     return nullptr;
@@ -77,7 +95,23 @@ std::shared_ptr<grpc::ServerCredentials> ServerCredentials() {
     spdlog::error("cannot read --tls-key {} or --tls-cert {}", key, cert);
     return nullptr;
   }
+  if (!client_ca.empty()) {
+    options.pem_root_certs = read(client_ca);
+    if (options.pem_root_certs.empty()) {
+      spdlog::error("cannot read --tls-client-ca {}", client_ca);
+      return nullptr;
+    }
+    options.client_certificate_request = GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
+  }
   return grpc::SslServerCredentials(options);
+}
+
+// Loopback addresses only this machine reaches: without authentication the server listens on
+// nothing else unless --insecure-listen-any says so.
+bool IsLoopbackHost(std::string host) {
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']')
+    host = host.substr(1, host.size() - 2);
+  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
 }
 
 int Run() {
@@ -86,6 +120,7 @@ int Run() {
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGHUP);  // reloads --auth-tokens
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   ServiceLimits limits;
@@ -112,10 +147,30 @@ int Run() {
     }
     shared_store = *std::move(opened);
   }
+  std::unique_ptr<AuthTokens> auth;
+  if (const std::string path = absl::GetFlag(FLAGS_auth_tokens); !path.empty()) {
+    auto loaded = AuthTokens::Load(path);
+    if (!loaded.ok()) {
+      spdlog::error("{}", std::string(loaded.status().message()));
+      return 2;
+    }
+    auth = *std::move(loaded);
+  }
+  const std::string listen = absl::GetFlag(FLAGS_listen);
+  const std::string host = listen.substr(0, listen.rfind(':'));
+  const bool mutual_tls = !absl::GetFlag(FLAGS_tls_client_ca).empty();
+  if (!auth && !mutual_tls && !IsLoopbackHost(host) && !absl::GetFlag(FLAGS_insecure_listen_any)) {
+    spdlog::error(
+        "--listen {}: other machines reach this address, and no client would need to "
+        "authenticate; give --auth-tokens FILE (or --tls-client-ca), or --insecure-listen-any "
+        "on a network you trust",
+        listen);
+    return 2;
+  }
   TextureStore textures(shared_store);
   SceneStore scenes(static_cast<size_t>(std::max(1, absl::GetFlag(FLAGS_max_scenes))));
   AdmissionControl admission(limits.concurrent_frames, limits.max_queue);
-  RenderService service(limits, textures, scenes, admission, arena);
+  RenderService service(limits, textures, scenes, admission, arena, auth.get());
 
   const std::shared_ptr<grpc::ServerCredentials> credentials = ServerCredentials();
   if (!credentials) return 2;
@@ -123,30 +178,44 @@ int Run() {
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(absl::GetFlag(FLAGS_listen), credentials, &port);
+  builder.AddListeningPort(listen, credentials, &port);
   builder.SetMaxReceiveMessageSize(static_cast<int>(limits.max_message_bytes));
   builder.SetMaxSendMessageSize(-1);  // frames: 3840x2160 float RGBA is ~130 MB uncompressed
   builder.RegisterService(&service);
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {
-    spdlog::error("cannot listen on {}", absl::GetFlag(FLAGS_listen));
+    spdlog::error("cannot listen on {}", listen);
     return 2;
   }
-  const std::string host =
-      absl::GetFlag(FLAGS_listen).substr(0, absl::GetFlag(FLAGS_listen).rfind(':'));
   // The first line on stdout is for scripts and tests that asked for port 0.
   std::printf("listening on %s:%d\n", host.c_str(), port);
   std::fflush(stdout);
   spdlog::info(
       "aperture-server listening on {}:{} threads={} concurrent_frames={} max_queue={} "
-      "max_pixels={} store='{}' tls={}",
+      "max_pixels={} store='{}' tls={} auth={}",
       host, port, limits.threads, limits.concurrent_frames, limits.max_queue, limits.max_pixels,
-      absl::GetFlag(FLAGS_store), absl::GetFlag(FLAGS_tls_cert).empty() ? "off" : "on");
+      absl::GetFlag(FLAGS_store),
+      absl::GetFlag(FLAGS_tls_cert).empty() ? "off" : (mutual_tls ? "mutual" : "on"),
+      auth                   ? "bearer tokens (" + auth->path() + ")"
+      : mutual_tls           ? "client certificates"
+      : IsLoopbackHost(host) ? "none (loopback only)"
+                             : "NONE (--insecure-listen-any: anyone who connects is served)");
   server->GetHealthCheckService()->SetServingStatus(true);
 
   std::thread signal_waiter([&] {
     int signal = 0;
-    sigwait(&signals, &signal);
+    while (sigwait(&signals, &signal) == 0 && signal == SIGHUP) {
+      if (!auth) {
+        spdlog::info("SIGHUP: no --auth-tokens to reload");
+        continue;
+      }
+      auto reloaded = auth->Reload();
+      if (reloaded.ok())
+        spdlog::info("SIGHUP: {} tokens accepted from {}", *reloaded, auth->path());
+      else
+        spdlog::error("SIGHUP: {}; the tokens accepted before stay",
+                      std::string(reloaded.status().message()));
+    }
     const double grace = absl::GetFlag(FLAGS_grace_s);
     spdlog::info("signal {}: shutting down; {} frames rendering, {} queued, grace {} s", signal,
                  admission.running(), admission.queued(), grace);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "integration/server_process.h"
@@ -60,6 +61,53 @@ TEST_F(TlsTest, AServerWithACertificateAnswersOnlyOverTls) {
   // A plaintext client gets nowhere.
   const CommandResult plain = Client("health", server->address(), {"--deadline-s=3"});
   EXPECT_NE(plain.exit_code, 0);
+}
+
+// Mutual TLS (issue 23, part 1): with --tls-client-ca the server serves only clients whose
+// certificate that CA signed.
+TEST_F(TlsTest, WithAClientCaOnlyClientsWithASignedCertificateAreServed) {
+  auto run = [&](std::vector<std::string> argv) {
+    const CommandResult result = RunCommand(argv, 60);
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+  };
+  auto path = [&](const std::string& name) { return (dir_ / name).string(); };
+  run({"/usr/bin/openssl", "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-days", "1", "-subj",
+       "/CN=aperture-test-ca", "-keyout", path("ca.key"), "-out", path("ca.pem")});
+  std::ofstream(path("server.ext")) << "subjectAltName=IP:127.0.0.1,DNS:localhost\n";
+  std::ofstream(path("client.ext")) << "extendedKeyUsage=clientAuth\n";
+  for (const std::string who : {"server", "client"}) {
+    run({"/usr/bin/openssl", "req", "-newkey", "rsa:2048", "-nodes", "-subj", "/CN=" + who,
+         "-keyout", path(who + ".key"), "-out", path(who + ".csr")});
+    run({"/usr/bin/openssl", "x509", "-req", "-in", path(who + ".csr"), "-CA", path("ca.pem"),
+         "-CAkey", path("ca.key"), "-CAcreateserial", "-days", "1", "-extfile", path(who + ".ext"),
+         "-out", path(who + ".pem")});
+  }
+  std::string error;
+  auto server =
+      ServerProcess::Start({"--tls-cert=" + path("server.pem"), "--tls-key=" + path("server.key"),
+                            "--tls-client-ca=" + path("ca.pem")},
+                           &error);
+  ASSERT_NE(server, nullptr) << error;
+  const std::string ca = "--tls-ca=" + path("ca.pem");
+
+  const CommandResult signed_client =
+      Client("info", server->address(),
+             {ca, "--tls-cert=" + path("client.pem"), "--tls-key=" + path("client.key")});
+  EXPECT_EQ(signed_client.exit_code, 0) << signed_client.err;
+
+  // TLS without a client certificate, and a certificate no trusted CA signed, are refused.
+  const CommandResult no_certificate = Client("info", server->address(), {ca, "--deadline-s=5"});
+  EXPECT_NE(no_certificate.exit_code, 0);
+  const CommandResult self_signed = Client(
+      "info", server->address(),
+      {ca, "--deadline-s=5", "--tls-cert=" + path("cert.pem"), "--tls-key=" + path("key.pem")});
+  EXPECT_NE(self_signed.exit_code, 0);
+
+  const CommandResult half = RunCommand({APERTURE_SERVER_BIN, "--listen=127.0.0.1:0",
+                                         "--store=none", "--tls-client-ca=" + path("ca.pem")},
+                                        20);
+  EXPECT_EQ(half.exit_code, 2);
+  EXPECT_THAT(half.err, HasSubstr("--tls-client-ca needs --tls-cert and --tls-key"));
 }
 
 TEST_F(TlsTest, HalfATlsConfigurationOrAnUnreadableCaIsAClearError) {
