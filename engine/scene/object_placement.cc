@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "scene/simple_polygon.h"
 #include "scene/triangulate.h"
 
 namespace aperture {
@@ -130,6 +131,18 @@ absl::Status PlacePolygon(const LocalPolygon& poly, const ObjectPlacement& place
   for (size_t i = 0; i < local.size(); ++i)
     world[i] = placement.linear * local[i] + placement.translation;
 
+  // Far enough for any simulated world, near enough that products of coordinates (areas,
+  // normals) stay far from overflow and a camera-relative vertex keeps micrometres (the spacing
+  // of doubles at 1e8 is 1.5e-8).
+  constexpr double kMaxCoordinate = 1e8;
+  for (size_t i = 0; i < world.size(); ++i)
+    if (!(std::abs(world[i].x) <= kMaxCoordinate && std::abs(world[i].y) <= kMaxCoordinate &&
+          std::abs(world[i].z) <= kMaxCoordinate))
+      return Invalid(
+          poly.where,
+          absl::StrCat("vertex ", i, " is at (", world[i].x, ", ", world[i].y, ", ", world[i].z,
+                       ") m after its object's transform: coordinates are limited "
+                       "to +-1e8 m"));
   const Vec3 newell = NewellNormal(world);
   double extent = 0;
   for (const Vec3& v : world) extent = std::max(extent, Length(v - world[0]));
@@ -156,7 +169,12 @@ absl::Status PlacePolygon(const LocalPolygon& poly, const ObjectPlacement& place
               : (ay >= ax)           ? Vec2{world[i].z, world[i].x}
                                      : Vec2{world[i].y, world[i].z};
   }
-  if (IsConvex(flat)) {
+  // A convex polygon is simple; any other is checked before it is cut into triangles.
+  const bool convex = IsConvex(flat);
+  if (!convex)
+    if (auto simple = CheckSimplePolygon(flat); !simple.ok())
+      return Invalid(poly.where, std::string(simple.message()));
+  if (convex) {
     base.vertices = std::move(world);
     out->push_back(std::move(base));
     return absl::OkStatus();

@@ -294,10 +294,18 @@ double SignedArea(const std::vector<Vec2>& poly) {
 bool IsConvex(const std::vector<Vec2>& poly) {
   const size_t n = poly.size();
   const double sign = SignedArea(poly) >= 0 ? 1.0 : -1.0;
+  // Every turn the same way, and once round in all: a pentagram turns the same way at every
+  // vertex but goes round twice (4 pi of turning), and is not convex (nor simple).
+  double turning = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (sign * Orient(poly[i], poly[(i + 1) % n], poly[(i + 2) % n]) < 0) return false;
+    const Vec2 &a = poly[i], &b = poly[(i + 1) % n], &c = poly[(i + 2) % n];
+    const double cross = Orient(a, b, c);
+    if (sign * cross < 0) return false;
+    const double dot = (b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y);
+    if (cross == 0 && dot < 0) return false;  // folds back on itself
+    turning += std::atan2(sign * cross, dot);
   }
-  return true;
+  return std::abs(turning - 2 * M_PI) < 1e-6;
 }
 
 absl::StatusOr<std::vector<std::array<int, 3>>> TriangulatePolygon(const std::vector<Vec2>& input) {

@@ -13,6 +13,7 @@ namespace aperture {
 // Signed area of a 2D polygon (positive when counter-clockwise).
 double SignedArea(const std::vector<Vec2>& polygon);
 
+// Convex and simple: every turn the same way (or straight on) and one turn round in all.
 bool IsConvex(const std::vector<Vec2>& polygon);
 
 // Triangles as counter-clockwise vertex index triples of a simple polygon given in 2D (either

@@ -78,6 +78,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"not planar", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
                    {"x": 0}, {"x": 1}, {"x": 1, "z": 1}, {"y": 1, "z": 1}]}]}]})",
                  "not planar"},
+        // Issue 23, part 6: a pentagram turns left at every vertex but crosses itself.
+        BadScene{"pentagram", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
+                   {"x": 1, "z": 0}, {"x": -0.809017, "z": 0.587785},
+                   {"x": 0.309017, "z": -0.951057}, {"x": 0.309017, "z": 0.951057},
+                   {"x": -0.809017, "z": -0.587785}]}]}]})",
+                 "meshes[0].polygons[0]: polygon is self-intersecting: edges"},
+        BadScene{"uneven bow tie", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
+                   {"x": 0}, {"x": 3, "z": 2}, {"x": 3}, {"z": 1}]}]}]})",
+                 "self-intersecting"},
+        BadScene{"huge coordinate", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
+                   {"x": 0}, {"x": 1e300}, {"y": 1}]}]}]})",
+                 "coordinates are limited to +-1e8 m"},
         BadScene{"missing texture file",
                  R"({"textures": [{"id": "t", "file": "no_such_file.png"}]})", "does not exist"},
         BadScene{"texture without source", R"({"textures": [{"id": "t"}]})", "no source"},
