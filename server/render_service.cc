@@ -127,6 +127,7 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
   // A request loaded before (a built-in scene by name, a farm job's scene per frame) is answered
   // from the scene store: the same request bytes are the same scene.
   const std::string scene_id = SceneRequestId(*request);
+  StopCheck stop(context);  // the call's deadline and cancellation, asked while building
   absl::StatusOr<LoadedScene> loaded;
   LoadedScene cached{scene_id, nullptr, std::nullopt};
   cached.scene = scenes_.Find(scene_id, &cached.default_camera);
@@ -134,7 +135,10 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
   if (reused)
     loaded = std::move(cached);
   else
-    loaded = BuildSceneFromRequest(*request, textures_);
+    loaded = BuildSceneFromRequest(*request, textures_, limits_.scene, [&] { return stop(); });
+  if (absl::IsCancelled(loaded.status()) && std::chrono::system_clock::now() > context->deadline())
+    loaded = absl::DeadlineExceededError(
+        "the call's deadline passed while the scene was built; nothing was kept");
   if (loaded.ok()) {
     if (!reused) scenes_.Put(loaded->id, loaded->scene, loaded->default_camera);
     response->set_scene_id(loaded->id);

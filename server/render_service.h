@@ -13,6 +13,7 @@
 #include "auth_tokens.h"
 #include "live_scene.h"
 #include "live_stream.h"
+#include "scene/scene_builder.h"
 #include "scene_store.h"
 #include "texture_store.h"
 #include "traced_scene_cache.h"
@@ -26,6 +27,7 @@ struct ServiceLimits {
   int threads = 1;
   int concurrent_frames = 2;
   int max_queue = 16;
+  SceneLimits scene;  // what one LoadScene may ask for
 };
 
 class RenderService final : public v1::Render::Service {

@@ -30,7 +30,9 @@ std::string SceneRequestId(const v1::LoadSceneRequest& request) {
 }
 
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
-                                                  const TextureStore& textures) {
+                                                  const TextureStore& textures,
+                                                  const SceneLimits& limits,
+                                                  std::function<bool()> stop) {
   v1::Scene scene = request.scene();
   std::optional<v1::Camera> default_camera;
   if (!request.builtin_scene().empty()) {
@@ -44,6 +46,11 @@ absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& re
     scene = std::move(builtin->scene);
     default_camera = CameraToProto(builtin->camera);
   }
+  // Before any texture is fetched (each is copied into the scene): the engine checks the rest.
+  if (limits.textures > 0 && static_cast<uint64_t>(scene.textures_size()) > limits.textures)
+    return absl::InvalidArgumentError(absl::StrCat("scene.textures: the scene has ",
+                                                   scene.textures_size(), ", above the limit of ",
+                                                   limits.textures, " textures per scene"));
   std::set<std::string> referenced;
   for (int i = 0; i < scene.textures_size(); ++i) {
     v1::Texture& texture = *scene.mutable_textures(i);
@@ -76,6 +83,8 @@ absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& re
   // Tables of aniso materials and decoded packed textures go to (or come from) the shared store.
   SceneBuildOptions options;
   options.store = textures.shared();
+  options.limits = limits;
+  options.stop = std::move(stop);
   auto built = BuildScene(scene, options);
   if (!built.ok()) return built.status();
   return LoadedScene{SceneRequestId(request), std::make_shared<const Scene>(*std::move(built)),

@@ -3,6 +3,7 @@
 // engine validates and builds it.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 #include "absl/status/statusor.h"
 #include "aperture/v1/render_service.pb.h"
 #include "scene/scene.h"
+#include "scene/scene_builder.h"
 #include "texture_store.h"
 
 namespace aperture {
@@ -24,7 +26,11 @@ struct LoadedScene {
 // content hash, so the same id always means the same scene.
 std::string SceneRequestId(const v1::LoadSceneRequest& request);
 
+// `limits` bound what the scene may hold; `stop` (a deadline, a cancelled call) stops the build
+// with Cancelled.
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
-                                                  const TextureStore& textures);
+                                                  const TextureStore& textures,
+                                                  const SceneLimits& limits = {},
+                                                  std::function<bool()> stop = nullptr);
 
 }  // namespace aperture

@@ -41,6 +41,10 @@ ABSL_FLAG(int, max_queue, 16, "frames waiting for a turn; past it RESOURCE_EXHAU
 ABSL_FLAG(uint64_t, max_pixels, 4096ull * 4096, "largest frame, width x height");
 ABSL_FLAG(int, max_message_mb, 64, "largest request message (scenes, chunks), MiB");
 ABSL_FLAG(int, max_texture_mb, 256, "largest uploaded texture, MiB");
+ABSL_FLAG(uint64_t, max_scene_polygons, 4000000,
+          "largest scene: its objects times their meshes' polygons (before triangulation)");
+ABSL_FLAG(uint64_t, max_polygon_vertices, 1000000, "most vertices of one polygon");
+ABSL_FLAG(uint64_t, max_scene_textures, 256, "most textures of one scene");
 ABSL_FLAG(int, max_scenes, 64, "scenes kept loaded; past it the least recently used is dropped");
 ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
           "shared texture store: a directory (under /dev/shm: POSIX shared memory) holding "
@@ -131,6 +135,9 @@ int Run() {
   limits.max_pixels = absl::GetFlag(FLAGS_max_pixels);
   limits.max_message_bytes = uint64_t(std::max(1, absl::GetFlag(FLAGS_max_message_mb))) << 20;
   limits.max_texture_bytes = uint64_t(std::max(1, absl::GetFlag(FLAGS_max_texture_mb))) << 20;
+  limits.scene.polygons = absl::GetFlag(FLAGS_max_scene_polygons);
+  limits.scene.vertices_per_polygon = absl::GetFlag(FLAGS_max_polygon_vertices);
+  limits.scene.textures = absl::GetFlag(FLAGS_max_scene_textures);
 
   tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                   static_cast<size_t>(limits.threads));

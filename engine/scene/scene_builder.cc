@@ -108,6 +108,7 @@ class Builder {
 
   absl::StatusOr<Scene> Build() {
     scene_.name = proto_.name();
+    if (auto s = CheckLimits(); !s.ok()) return s;
     if (auto s = BuildTextures(); !s.ok()) return s;
     if (auto s = BuildMaterials(); !s.ok()) return s;
     if (auto s = PrepareAnisoTables(); !s.ok()) return s;
@@ -118,8 +119,50 @@ class Builder {
   }
 
  private:
+  bool Stopped() const { return options_.stop && options_.stop(); }
+  static absl::Status StoppedError() {
+    return absl::CancelledError("the scene load was stopped (deadline or cancellation)");
+  }
+
+  // The request against options_.limits, from its counts alone: nothing decoded or built yet.
+  absl::Status CheckLimits() const {
+    const SceneLimits& limits = options_.limits;
+    if (limits.textures > 0 && static_cast<uint64_t>(proto_.textures_size()) > limits.textures)
+      return absl::InvalidArgumentError(
+          absl::StrCat("textures: the scene has ", proto_.textures_size(), ", above the limit of ",
+                       limits.textures, " textures per scene"));
+    std::unordered_map<std::string, uint64_t> mesh_polygons;
+    for (int i = 0; i < proto_.meshes_size(); ++i) {
+      const v1::Mesh& mesh = proto_.meshes(i);
+      mesh_polygons[mesh.id()] = static_cast<uint64_t>(mesh.polygons_size());
+      if (limits.vertices_per_polygon == 0) continue;
+      for (int j = 0; j < mesh.polygons_size(); ++j)
+        if (static_cast<uint64_t>(mesh.polygons(j).vertices_size()) > limits.vertices_per_polygon)
+          return Invalid(
+              absl::StrCat("meshes[", i, "] ('", mesh.id(), "').polygons[", j, "]"),
+              absl::StrCat(mesh.polygons(j).vertices_size(), " vertices, above the limit of ",
+                           limits.vertices_per_polygon, " vertices per polygon"));
+    }
+    if (limits.polygons == 0) return absl::OkStatus();
+    uint64_t polygons = 0;
+    if (proto_.objects_size() == 0) {
+      for (const auto& [id, count] : mesh_polygons) polygons += count;
+    } else {
+      for (const v1::Object& o : proto_.objects()) {
+        auto it = mesh_polygons.find(o.mesh_id());
+        if (it != mesh_polygons.end()) polygons += it->second;
+      }
+    }
+    if (polygons > limits.polygons)
+      return absl::InvalidArgumentError(absl::StrCat("meshes, objects: the scene places ", polygons,
+                                                     " polygons, above the limit of ",
+                                                     limits.polygons, " polygons per scene"));
+    return absl::OkStatus();
+  }
+
   absl::Status BuildTextures() {
     for (int i = 0; i < proto_.textures_size(); ++i) {
+      if (Stopped()) return StoppedError();
       const v1::Texture& t = proto_.textures(i);
       const std::string where = absl::StrCat("textures[", i, "] ('", t.id(), "')");
       if (t.id().empty()) return Invalid(where, "texture id is empty");
@@ -185,10 +228,12 @@ class Builder {
       if (m.filter != FilterMode::kAniso || m.texture < 0) continue;
       const SceneTexture& texture = *scene_.textures[static_cast<size_t>(m.texture)];
       if (!texture.footprint) continue;  // packed textures have no table
-      if (auto s = texture.footprint->PrepareAniso(); !s.ok())
+      if (auto s = texture.footprint->PrepareAniso(options_.stop); !s.ok()) {
+        if (absl::IsCancelled(s)) return StoppedError();
         return absl::Status(
             s.code(), absl::StrCat("materials ('", m.id, "'): aniso table of texture '", texture.id,
                                    "': ", s.message()));
+      }
     }
     return absl::OkStatus();
   }
@@ -219,6 +264,7 @@ class Builder {
     }
     if (proto_.objects_size() == 0) {  // no objects: every mesh once, untransformed
       for (int i = 0; i < proto_.meshes_size(); ++i) {
+        if (Stopped()) return StoppedError();
         auto mesh = MakeObjectMesh(i, "", absl::StrCat("meshes[", i, "]"));
         if (!mesh.ok()) return mesh.status();
         if (auto s = PlaceMesh(*mesh, ObjectPlacement{}, &scene_.polygons); !s.ok()) return s;
@@ -227,6 +273,7 @@ class Builder {
     }
     std::unordered_map<std::string, int> object_names;
     for (int i = 0; i < proto_.objects_size(); ++i) {
+      if ((i & 255) == 0 && Stopped()) return StoppedError();
       const v1::Object& o = proto_.objects(i);
       const std::string where = absl::StrCat("objects[", i, "]");
       auto it = mesh_index.find(o.mesh_id());

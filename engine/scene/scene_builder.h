@@ -2,6 +2,8 @@
 // one in the error), loads textures, applies object transforms, triangulates concave polygons.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,11 +16,23 @@
 
 namespace aperture {
 
+// What one scene may hold (issue 23, part 4); 0: no limit. Checked on the request before
+// anything is decoded or built; an excess is InvalidArgument naming the limit.
+struct SceneLimits {
+  uint64_t polygons = 0;  // objects times their meshes' polygons (before triangulation)
+  uint64_t vertices_per_polygon = 0;
+  uint64_t textures = 0;
+};
+
 struct SceneBuildOptions {
   std::string base_dir;  // relative texture paths are resolved against this folder
   // When set, seed 000 tables and decoded packed textures come from (and go to) this store, and
   // the tables of materials filtered `aniso` are prepared while the scene is built.
   std::shared_ptr<const SharedStore> store;
+  SceneLimits limits;
+  // Asked between textures, objects and groups of table copies; true: the build stops with
+  // Cancelled (the caller knows whether a deadline or the client stopped it).
+  std::function<bool()> stop;
 };
 
 // The engine's filter for a proto filter value; nullopt for TEXTURE_FILTER_DEFAULT and for

@@ -63,10 +63,12 @@ std::string PackedTextureKey(std::span<const uint8_t> apv_bytes) {
 }
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
-    const SharedStore& store, const Image& base) {
+    const SharedStore& store, const Image& base, const std::function<bool()>& stop) {
   auto entry = store.GetOrBuild(PrefilteredTableKey(base), EntryKind::kPrefilteredTable,
                                 [&]() -> absl::StatusOr<std::vector<std::byte>> {
-                                  auto block = BuildPrefilteredTable(base);
+                                  TableBuildOptions options;
+                                  options.stop = stop;
+                                  auto block = BuildPrefilteredTable(base, options);
                                   if (!block.ok()) return block.status();
                                   return std::move(block->bytes);
                                 });

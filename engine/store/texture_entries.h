@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -23,8 +24,9 @@ std::string PackedTextureKey(std::span<const uint8_t> apv_bytes);
 
 // The table of `base` (a 2^n x 2^n image), built with BuildPrefilteredTable when the store has
 // none; the payload is a block PrefilteredTable::View accepts.
+// `stop`, when given, can stop the build (Cancelled; nothing is published).
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
-    const SharedStore& store, const Image& base);
+    const SharedStore& store, const Image& base, const std::function<bool()>& stop = nullptr);
 
 // The summed-area tables of `base` (`channels` = 3 or 4), built when the store has none; the
 // payload is a block SummedAreaTable::View accepts.

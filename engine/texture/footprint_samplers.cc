@@ -15,15 +15,18 @@ namespace aperture {
 
 FootprintSamplers::~FootprintSamplers() = default;
 
-absl::Status FootprintSamplers::PrepareAniso() const {
-  std::call_once(aniso_once_, [&] {
+absl::Status FootprintSamplers::PrepareAniso(const std::function<bool()>& stop) const {
+  if (aniso_done_.load(std::memory_order_acquire)) return aniso_status_;
+  std::lock_guard<std::mutex> lock(aniso_mutex_);
+  if (aniso_done_.load(std::memory_order_relaxed)) return aniso_status_;
+  {
     const auto start = std::chrono::steady_clock::now();
     // Isolated: while waiting for its own parallel loops this thread must not pick up an outer
     // task that could ask for the same table.
     tbb::this_task_arena::isolate([&] {
       std::span<const std::byte> bytes;
       if (store_) {
-        auto entry = GetOrBuildPrefilteredTable(*store_, base_);
+        auto entry = GetOrBuildPrefilteredTable(*store_, base_, stop);
         if (!entry.ok()) {
           aniso_status_ = entry.status();
           return;
@@ -31,7 +34,9 @@ absl::Status FootprintSamplers::PrepareAniso() const {
         bytes = (*entry)->payload();
         table_bytes_ = *std::move(entry);
       } else {
-        auto block = BuildPrefilteredTable(base_);
+        TableBuildOptions options;
+        options.stop = stop;
+        auto block = BuildPrefilteredTable(base_, options);
         if (!block.ok()) {
           aniso_status_ = block.status();
           return;
@@ -54,9 +59,16 @@ absl::Status FootprintSamplers::PrepareAniso() const {
                    base_.width(), base_.height(), ms, bytes.size(),
                    store_ ? ", built or mapped from the shared store" : "");
     });
+    // A stopped build is not an answer: the next caller builds again.
+    if (absl::IsCancelled(aniso_status_)) {
+      const absl::Status stopped = aniso_status_;
+      aniso_status_ = absl::OkStatus();
+      return stopped;
+    }
     if (!aniso_status_.ok())
       spdlog::error("aniso filter unavailable, using trilinear: {}", aniso_status_.ToString());
-  });
+  }
+  aniso_done_.store(true, std::memory_order_release);
   return aniso_status_;
 }
 

@@ -4,6 +4,8 @@
 // taken from it (built there once for every process on the machine) and used in place.
 #pragma once
 
+#include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 
@@ -22,8 +24,9 @@ class FootprintSamplers {
       : base_(base), store_(std::move(store)) {}
   ~FootprintSamplers();
 
-  // Builds (or attaches) the aniso table now; the error when that fails.
-  absl::Status PrepareAniso() const;
+  // Builds (or attaches) the aniso table now; the error when that fails. `stop` can stop a
+  // build part-way (Cancelled; a later call builds again).
+  absl::Status PrepareAniso(const std::function<bool()>& stop = nullptr) const;
 
   // The sampler for kAniso, kOiio or kReference; `fallback` (trilinear) when building the
   // table or the OpenImageIO copy fails (logged) or for any other mode.
@@ -32,7 +35,9 @@ class FootprintSamplers {
  private:
   const Image& base_;
   std::shared_ptr<const SharedStore> store_;
-  mutable std::once_flag aniso_once_, oiio_once_, reference_once_;
+  mutable std::once_flag oiio_once_, reference_once_;
+  mutable std::mutex aniso_mutex_;
+  mutable std::atomic<bool> aniso_done_{false};
   mutable absl::Status aniso_status_;
   mutable std::shared_ptr<const void> table_bytes_;  // a StoreEntry or a TableBlock
   mutable std::unique_ptr<TextureSampler> aniso_, oiio_, reference_;

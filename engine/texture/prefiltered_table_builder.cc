@@ -339,6 +339,7 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
   std::byte* base = block.bytes.data();
   uint8_t* texels = reinterpret_cast<uint8_t*>(base);
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  bool stopped = false;
   arena.execute([&] {
     tbb::parallel_for(0, N, [&](int y) {  // the base copy: the texture itself
       for (int x = 0; x < N; ++x)
@@ -357,6 +358,10 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
     double total_work = 0, work_done = 0;
     for (size_t d = 1; d < dir.size(); ++d) total_work += work_of(dir[d]);
     for (size_t d = 1; d < dir.size();) {
+      if (options.stop && options.stop()) {
+        stopped = true;
+        return;
+      }
       const CopyEntry& first = dir[d];
       const int j = first.log2_l, i = first.log2_ratio;
       if (j != filtered_j) {
@@ -403,6 +408,9 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
       if (options.progress) options.progress(d == dir.size() ? 1.0 : work_done / total_work);
     }
   });
+  if (stopped)
+    return absl::CancelledError(
+        absl::StrCat("the seed 000 table of a ", N, "x", N, " texture was stopped part-built"));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   h.build_milliseconds = static_cast<uint32_t>(std::lround(seconds * 1000.0));

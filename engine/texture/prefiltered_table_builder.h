@@ -19,6 +19,9 @@ struct TableBuildOptions {
   int threads = 0;  // 0: all cores (the caller's task arena otherwise)
   // Called from the building thread with the fraction of the work done, increasing, last 1.
   std::function<void(double)> progress;
+  // Asked between groups of copies (a few per second at most); true: the build stops and
+  // returns Cancelled (a load whose client gave up does not build on for half a minute).
+  std::function<bool()> stop;
 };
 
 // Images that are not square powers of two are resampled to the next power of two of their

@@ -27,5 +27,19 @@ TEST(FootprintSamplers, BuildsEachModeOnceAndFallsBackForTheOthers) {
     EXPECT_EQ(&samplers.Get(mode, trilinear), &trilinear);
 }
 
+// Issue 23, part 4: a load whose deadline passes stops the table build; the stop is no answer,
+// so the next caller (with no stop) builds the table after all.
+TEST(FootprintSamplers, AStoppedTableBuildIsCancelledAndBuiltByTheNextCaller) {
+  const MipPyramid pyramid(Image(256, 256, Rgba{0.5f, 0.5f, 0.5f, 1}));
+  const FootprintSamplers samplers(pyramid.level(0), nullptr);
+  int asked = 0;
+  const absl::Status stopped = samplers.PrepareAniso([&] { return ++asked >= 3; });
+  EXPECT_TRUE(absl::IsCancelled(stopped)) << stopped;
+  EXPECT_EQ(asked, 3);  // asked between groups of copies, and stopped at the first "yes"
+  EXPECT_TRUE(samplers.PrepareAniso().ok());
+  const TrilinearSampler trilinear(pyramid);
+  EXPECT_NE(&samplers.Get(FilterMode::kAniso, trilinear), &trilinear);
+}
+
 }  // namespace
 }  // namespace aperture

@@ -1,0 +1,140 @@
+// What a hostile or careless client may make the server do (issue 23): scene loads bounded by
+// their deadline and by the limits on polygons, vertices and textures; self-intersecting
+// polygons refused. Real servers on loopback, real gRPC calls.
+#include <gmock/gmock.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "integration/service_fixture.h"
+
+namespace aperture::testing {
+namespace {
+
+using ::testing::HasSubstr;
+using Clock = std::chrono::steady_clock;
+
+class HostileClientTest : public ServiceTest {
+ protected:
+  grpc::Status Load(const v1::Scene& scene, double seconds, v1::LoadSceneResponse* response) {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() +
+                         std::chrono::microseconds(static_cast<int64_t>(seconds * 1e6)));
+    v1::LoadSceneRequest request;
+    *request.mutable_scene() = scene;
+    return stub_->LoadScene(&context, request, response);
+  }
+};
+
+// One ground polygon of `n` vertices, a star (concave) in the x-z plane.
+void AddStar(v1::Scene& scene, int n, const std::string& material) {
+  v1::Mesh& mesh = *scene.add_meshes();
+  mesh.set_id("star");
+  mesh.set_material_id(material);
+  v1::Polygon& poly = *mesh.add_polygons();
+  for (int i = 0; i < n; ++i) {
+    const double a = -2 * M_PI * (i + 0.5) / n, r = i % 2 == 0 ? 100 : 60 + (i % 7);
+    v1::Vec3& v = *poly.add_vertices();
+    v.set_x(r * std::cos(a));
+    v.set_z(r * std::sin(a));
+  }
+}
+
+TEST_F(HostileClientTest, ASceneLoadStopsAtItsDeadlineAndFreesTheServer) {
+  StartServer({"--max-message-mb=64"});
+  // 200,000 vertices on a 2048 x 2048 texture filtered aniso: seed 000's table alone takes
+  // several seconds to build.
+  v1::Scene scene;
+  scene.set_name("slow to load");
+  v1::Texture& texture = *scene.add_textures();
+  texture.set_id("checks");
+  texture.mutable_checkerboard()->set_size(2048);
+  v1::Material& material = *scene.add_materials();
+  material.set_id("ground");
+  material.set_texture_id("checks");
+  material.set_filter(v1::TEXTURE_FILTER_ANISO);
+  AddStar(scene, 200000, "ground");
+
+  const auto start = Clock::now();
+  v1::LoadSceneResponse response;
+  const grpc::Status status = Load(scene, 1.0, &response);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED) << status.error_message();
+  EXPECT_LT(seconds, 1.5);
+
+  // The server stopped building: a frame right after is answered at once, and the log says
+  // the load ended (not merely the client).
+  const auto after = Clock::now();
+  const std::string id = LoadBuiltinScene(*stub_, "triangles").scene_id();
+  EXPECT_TRUE(Render(FrameRequest(id, 64, 48), 5).ok());
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - after).count(), 2.0);
+  for (int i = 0; i < 300 && server_->Log().find("status=DEADLINE_EXCEEDED") == std::string::npos;
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // The server's own figure: how long the load ran before it stopped.
+  const std::string log = server_->Log();
+  const size_t line = log.find("name='slow to load'");
+  ASSERT_NE(line, std::string::npos) << log;
+  const size_t ms = log.find("ms=", line);
+  ASSERT_NE(ms, std::string::npos) << log;
+  EXPECT_LT(std::stod(log.substr(ms + 3)), 1500) << log.substr(line, 200);
+  EXPECT_THAT(log.substr(line, 200), HasSubstr("status=DEADLINE_EXCEEDED"));
+}
+
+TEST_F(HostileClientTest, LimitsOnPolygonsVerticesAndTexturesNameTheLimit) {
+  StartServer({"--max-scene-polygons=100", "--max-polygon-vertices=50", "--max-scene-textures=2"});
+  v1::LoadSceneResponse response;
+
+  v1::Scene many_vertices;
+  AddStar(many_vertices, 60, "");
+  grpc::Status status = Load(many_vertices, 10, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("60 vertices, above the limit of 50"));
+
+  v1::Scene many_objects;
+  AddStar(many_objects, 40, "");
+  for (int i = 0; i < 101; ++i) many_objects.add_objects()->set_mesh_id("star");
+  status = Load(many_objects, 10, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("101 polygons, above the limit of 100"));
+
+  v1::Scene many_textures;
+  for (int i = 0; i < 3; ++i) {
+    v1::Texture& t = *many_textures.add_textures();
+    t.set_id(std::string(1, static_cast<char>('a' + i)));
+    t.mutable_checkerboard()->set_size(8);
+  }
+  status = Load(many_textures, 10, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("above the limit of 2 textures per scene"));
+
+  // Within every limit, the same server loads it.
+  v1::Scene fits;
+  AddStar(fits, 50, "");
+  EXPECT_TRUE(Load(fits, 10, &response).ok());
+}
+
+TEST_F(HostileClientTest, APentagramIsRefusedNamingThePolygon) {
+  StartServer();
+  v1::Scene scene;
+  v1::Mesh& mesh = *scene.add_meshes();
+  mesh.set_id("star");
+  v1::Polygon& poly = *mesh.add_polygons();
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2 * M_PI * (2 * k) / 5;
+    v1::Vec3& v = *poly.add_vertices();
+    v.set_x(std::cos(a));
+    v.set_z(std::sin(a));
+  }
+  v1::LoadSceneResponse response;
+  const grpc::Status status = Load(scene, 10, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("meshes[0].polygons[0]"));
+  EXPECT_THAT(status.error_message(), HasSubstr("self-intersecting"));
+}
+
+}  // namespace
+}  // namespace aperture::testing
