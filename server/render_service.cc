@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
 #include "frame_request.h"
+#include "log_text.h"
 #include "region_plan_request.h"
 #include "render/frame_renderer.h"
 #include "scene_request.h"
@@ -41,14 +42,17 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
       scenes_(scenes),
       admission_(admission),
       arena_(arena),
-      traced_(kTracedScenes, textures.shared()) {}
+      traced_(kTracedScenes, textures.shared()),
+      uploads_in_flight_("uploads in flight (--max-upload-inflight-mb)",
+                         limits.max_upload_inflight_bytes),
+      upload_watchdog_(limits.upload_idle) {}
 
 absl::Status RenderService::Authorize(const grpc::ServerContext& context, const char* rpc) {
   if (auth_ == nullptr) return absl::OkStatus();
   absl::Status status = auth_->Check(context);
   if (!status.ok())
     spdlog::warn("rpc={} peer={} status=UNAUTHENTICATED error='{}'", rpc, context.peer(),
-                 std::string(status.message()));
+                 LogText(status.message()));
   return status;
 }
 
@@ -72,9 +76,10 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
   auto finish = [&](const absl::Status& status, const std::string& sha256, bool skipped) {
     spdlog::info(
         "req={} rpc=UploadTexture peer={} sha256={} bytes={} skipped={} ms={:.2f} "
-        "status={}",
-        id, context->peer(), Short(sha256), response->size(), skipped, MillisecondsSince(start),
-        absl::StatusCodeToString(status.code()));
+        "status={}{}",
+        id, context->peer(), LogText(Short(sha256)), response->size(), skipped,
+        MillisecondsSince(start), absl::StatusCodeToString(status.code()),
+        status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'"));
     return ToGrpcStatus(status);
   };
   v1::UploadTextureRequest message;
@@ -97,9 +102,14 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
     return finish(absl::OkStatus(), sha256, true);
   }
   const uint64_t total = message.total_size();
+  // The announced bytes are reserved before they are allocated, and held while they stream.
+  auto reservation = uploads_in_flight_.Reserve(total);
+  if (!reservation.ok()) return finish(reservation.status(), sha256, false);
+  const std::unique_ptr<IdleWatchdog::Watch> watch = upload_watchdog_.Start(context);
   std::string content;
   content.reserve(total);
   do {
+    watch->Touch();
     if (message.chunk().size() > kMaxChunkBytes)
       return finish(absl::InvalidArgumentError(
                         absl::StrCat("chunk of ", message.chunk().size(), " bytes exceeds 1 MiB")),
@@ -110,6 +120,12 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
           sha256, false);
     content += message.chunk();
   } while (reader->Read(&message));
+  if (watch->Expired())
+    return finish(absl::DeadlineExceededError(absl::StrCat(
+                      "upload idle for ", upload_watchdog_.idle_limit().count() / 1000.0,
+                      " s after ", content.size(), " of ", total,
+                      " bytes; cancelled and its bytes freed (--upload-idle-s)")),
+                  sha256, false);
   if (content.size() != total || content.empty())
     return finish(absl::InvalidArgumentError(absl::StrCat("total_size: announced ", total,
                                                           " bytes, received ", content.size())),
@@ -153,13 +169,13 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
       named.set_hidden(!object.visible);
     }
   }
-  spdlog::info("req={} rpc=LoadScene peer={} scene={}{} name='{}' ms={:.2f} status={}{}", id,
-               context->peer(), loaded.ok() ? Short(loaded->id) : "-",
-               reused ? " (loaded before)" : "",
-               request->builtin_scene().empty() ? request->scene().name()
-                                                : "builtin:" + request->builtin_scene(),
-               MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),
-               loaded.ok() ? "" : absl::StrCat(" error='", loaded.status().message(), "'"));
+  spdlog::info(
+      "req={} rpc=LoadScene peer={} scene={}{} name='{}' ms={:.2f} status={}{}", id,
+      context->peer(), loaded.ok() ? Short(loaded->id) : "-", reused ? " (loaded before)" : "",
+      LogText(request->builtin_scene().empty() ? request->scene().name()
+                                               : "builtin:" + request->builtin_scene()),
+      MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),
+      loaded.ok() ? "" : absl::StrCat(" error='", LogText(loaded.status().message()), "'"));
   return ToGrpcStatus(loaded.status());
 }
 
@@ -273,11 +289,11 @@ grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
       "req={} rpc=RenderFrame peer={} scene={} size={}x{} mode={} queue_ms={:.2f} "
       "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
       "status={}{}",
-      id, context->peer(), Short(request->scene_id()), request->options().width(),
+      id, context->peer(), LogText(Short(request->scene_id())), request->options().width(),
       request->options().height(), ModeName(request->options()), t.queue_ms(), t.setup_ms(),
       t.raster_ms(), t.encode_ms(), MillisecondsSince(start), response->exr().size(),
       absl::StatusCodeToString(status.code()),
-      status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
+      status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'"));
   if (!status.ok()) response->Clear();
   return ToGrpcStatus(status);
 }
@@ -313,11 +329,11 @@ grpc::Status RenderService::RenderStream(
         "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} update_ms={:.3f} queue_ms={:.2f} "
         "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
         "status={}{}",
-        id, request.frame_index(), Short(request.scene_id()), request.options().width(),
+        id, request.frame_index(), LogText(Short(request.scene_id())), request.options().width(),
         request.options().height(), ModeName(request.options()), t.update_ms(), t.queue_ms(),
         t.setup_ms(), t.raster_ms(), t.encode_ms(), MillisecondsSince(frame.received),
         response.exr().size(), absl::StatusCodeToString(frame.status.code()),
-        frame.status.ok() ? "" : absl::StrCat(" error='", frame.status.message(), "'"));
+        frame.status.ok() ? "" : absl::StrCat(" error='", LogText(frame.status.message()), "'"));
   };
   const LiveStreamCounts counts = LiveStream(context, stream, check, render, answered).Run();
   const bool cancelled = context->IsCancelled();
@@ -342,10 +358,10 @@ grpc::Status RenderService::PlanRegions(grpc::ServerContext* context,
                                                "' is not loaded (LoadScene first)"));
   spdlog::info(
       "req={} rpc=PlanRegions peer={} scene={} size={}x{} regions={} ms={:.2f} status={}{}", id,
-      context->peer(), Short(request->scene_id()), request->options().width(),
+      context->peer(), LogText(Short(request->scene_id())), request->options().width(),
       request->options().height(), request->regions(), MillisecondsSince(start),
       absl::StatusCodeToString(status.code()),
-      status.ok() ? "" : absl::StrCat(" error='", status.message(), "'"));
+      status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'"));
   if (!status.ok()) response->Clear();
   return ToGrpcStatus(status);
 }

@@ -11,6 +11,8 @@
 #include "admission.h"
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "auth_tokens.h"
+#include "byte_budget.h"
+#include "idle_watchdog.h"
 #include "live_scene.h"
 #include "live_stream.h"
 #include "scene/scene_builder.h"
@@ -27,7 +29,9 @@ struct ServiceLimits {
   int threads = 1;
   int concurrent_frames = 2;
   int max_queue = 16;
-  SceneLimits scene;  // what one LoadScene may ask for
+  SceneLimits scene;                                // what one LoadScene may ask for
+  uint64_t max_upload_inflight_bytes = 1ull << 30;  // announced sizes of uploads streaming now
+  std::chrono::milliseconds upload_idle{30000};     // an upload silent this long is cancelled
 };
 
 class RenderService final : public v1::Render::Service {
@@ -80,6 +84,8 @@ class RenderService final : public v1::Render::Service {
   // Raytraced scenes' BVH and tables (about 100 MB per 1024² raster texture): the last few.
   static constexpr size_t kTracedScenes = 4;
   TracedSceneCache traced_;
+  ByteBudget uploads_in_flight_;
+  IdleWatchdog upload_watchdog_;
 };
 
 }  // namespace aperture

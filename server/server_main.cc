@@ -41,6 +41,10 @@ ABSL_FLAG(int, max_queue, 16, "frames waiting for a turn; past it RESOURCE_EXHAU
 ABSL_FLAG(uint64_t, max_pixels, 4096ull * 4096, "largest frame, width x height");
 ABSL_FLAG(int, max_message_mb, 64, "largest request message (scenes, chunks), MiB");
 ABSL_FLAG(int, max_texture_mb, 256, "largest uploaded texture, MiB");
+ABSL_FLAG(int, max_upload_inflight_mb, 1024,
+          "announced bytes of all uploads streaming at once, MiB; past it RESOURCE_EXHAUSTED");
+ABSL_FLAG(double, upload_idle_s, 30,
+          "an upload stream that sends nothing for this long is cancelled and its bytes freed");
 ABSL_FLAG(uint64_t, max_scene_polygons, 4000000,
           "largest scene: its objects times their meshes' polygons (before triangulation)");
 ABSL_FLAG(uint64_t, max_polygon_vertices, 1000000, "most vertices of one polygon");
@@ -135,6 +139,10 @@ int Run() {
   limits.max_pixels = absl::GetFlag(FLAGS_max_pixels);
   limits.max_message_bytes = uint64_t(std::max(1, absl::GetFlag(FLAGS_max_message_mb))) << 20;
   limits.max_texture_bytes = uint64_t(std::max(1, absl::GetFlag(FLAGS_max_texture_mb))) << 20;
+  limits.max_upload_inflight_bytes =
+      uint64_t(std::max(1, absl::GetFlag(FLAGS_max_upload_inflight_mb))) << 20;
+  limits.upload_idle = std::chrono::milliseconds(
+      static_cast<int64_t>(std::max(0.05, absl::GetFlag(FLAGS_upload_idle_s)) * 1000));
   limits.scene.polygons = absl::GetFlag(FLAGS_max_scene_polygons);
   limits.scene.vertices_per_polygon = absl::GetFlag(FLAGS_max_polygon_vertices);
   limits.scene.textures = absl::GetFlag(FLAGS_max_scene_textures);

@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
+#include "scene/encoded_texture.h"
 
 namespace aperture {
 
@@ -22,6 +23,13 @@ absl::Status TextureStore::Put(const std::string& sha256, std::string bytes) {
   if (const std::string actual = Sha256Hex(bytes); actual != sha256)
     return absl::InvalidArgumentError(
         absl::StrCat("sha256: the content hashes to ", actual, ", not ", sha256));
+  // Kept only when it is a texture the engine takes: a raster image whose header OpenImageIO
+  // reads within the texture limits, or a valid packed texture.
+  if (auto texture = InspectEncodedTexture(
+          std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+      !texture.ok())
+    return absl::InvalidArgumentError(
+        absl::StrCat("upload is not a texture the server can use: ", texture.status().message()));
   if (shared_) {
     // Published whole or not at all (engine/store): a crash mid-upload leaves nothing usable.
     auto entry = shared_->Put(KeyOf(sha256), EntryKind::kBlob, std::as_bytes(std::span(bytes)));

@@ -21,7 +21,8 @@ class TextureStore {
   explicit TextureStore(std::shared_ptr<const SharedStore> shared = nullptr);
 
   bool Has(const std::string& sha256) const;
-  // Verifies that `bytes` hash to `sha256`, then keeps them.
+  // Verifies that `bytes` hash to `sha256` and are a texture (an image header within the limits,
+  // or a valid .apv), then keeps them.
   absl::Status Put(const std::string& sha256, std::string bytes);
   absl::StatusOr<std::shared_ptr<const std::string>> Get(const std::string& sha256) const;
   // Uploads this process holds in memory or has mapped from the shared store.

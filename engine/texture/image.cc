@@ -25,14 +25,36 @@ const char* FormatNameForMagic(std::span<const uint8_t> b) {
   return nullptr;
 }
 
-absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
-  const OIIO::ImageSpec& spec = in->spec();
+absl::Status CheckSpec(const OIIO::ImageSpec& spec, const std::string& what) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     return absl::InvalidArgumentError(absl::StrCat(what, ": image has no pixels"));
   if (int64_t{spec.width} * spec.height > kMaxImageTexels)
     return absl::InvalidArgumentError(absl::StrCat(
         what, ": image is ", spec.width, "x", spec.height, ", above the limit of ", kMaxImageTexels,
         " texels (8192 x 8192) for a raster texture; pack palette maps as .apv"));
+  return absl::OkStatus();
+}
+
+// An encoded image in memory opened for reading (its header read), or why not.
+absl::StatusOr<std::unique_ptr<OIIO::ImageInput>> OpenInMemory(
+    std::span<const uint8_t> bytes, OIIO::Filesystem::IOMemReader& reader) {
+  const char* name = FormatNameForMagic(bytes);
+  if (name == nullptr)
+    return absl::InvalidArgumentError(
+        "encoded texture is not PNG, JPEG, EXR or TIFF (unknown magic bytes)");
+  OIIO::ImageSpec config;
+  void* proxy = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto in = OIIO::ImageInput::open(name, &config, &reader);
+  if (!in)
+    return absl::InvalidArgumentError(
+        absl::StrCat("cannot decode encoded texture: ", OIIO::geterror()));
+  return in;
+}
+
+absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
+  const OIIO::ImageSpec& spec = in->spec();
+  if (auto s = CheckSpec(spec, what); !s.ok()) return s;
   const int channels = spec.nchannels;
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
@@ -76,19 +98,19 @@ absl::StatusOr<Image> LoadImageFile(const std::string& path) {
 }
 
 absl::StatusOr<Image> DecodeImage(std::span<const uint8_t> bytes) {
-  const char* name = FormatNameForMagic(bytes);
-  if (name == nullptr)
-    return absl::InvalidArgumentError(
-        "encoded texture is not PNG, JPEG, EXR or TIFF (unknown magic bytes)");
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  OIIO::ImageSpec config;
-  void* proxy = &reader;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  auto in = OIIO::ImageInput::open(name, &config, &reader);
-  if (!in)
-    return absl::InvalidArgumentError(
-        absl::StrCat("cannot decode encoded texture: ", OIIO::geterror()));
-  return ReadFrom(in.get(), "encoded texture");
+  auto in = OpenInMemory(bytes, reader);
+  if (!in.ok()) return in.status();
+  return ReadFrom(in->get(), "encoded texture");
+}
+
+absl::StatusOr<ImageHeader> ReadImageHeader(std::span<const uint8_t> bytes) {
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  auto in = OpenInMemory(bytes, reader);
+  if (!in.ok()) return in.status();
+  const OIIO::ImageSpec& spec = (*in)->spec();
+  if (auto s = CheckSpec(spec, "encoded texture"); !s.ok()) return s;
+  return ImageHeader{spec.width, spec.height, spec.nchannels, (*in)->format_name()};
 }
 
 Image MakeCheckerboard(int size, int cells, Rgba a, Rgba b) {

@@ -71,6 +71,15 @@ absl::StatusOr<Image> LoadImageFile(const std::string& path);
 // The same for an encoded image held in memory (PNG, JPEG, EXR, TIFF, ...).
 absl::StatusOr<Image> DecodeImage(std::span<const uint8_t> bytes);
 
+struct ImageHeader {
+  int width = 0, height = 0, channels = 0;
+  std::string format;  // OpenImageIO's name: "png", "openexr", ...
+};
+// The header of an encoded image, read without its pixels, with DecodeImage's checks (a known
+// format, pixels present, at most kMaxImageTexels): what an upload or a scene's memory estimate
+// needs to know before anything is decoded.
+absl::StatusOr<ImageHeader> ReadImageHeader(std::span<const uint8_t> bytes);
+
 // `cells` x `cells` squares on a `size` x `size` image; the top-left square has colour `a`.
 Image MakeCheckerboard(int size, int cells, Rgba a, Rgba b);
 

@@ -220,8 +220,8 @@ TEST_F(ClientTest, LoadReportsThroughputAndLatency) {
 
 TEST_F(ClientTest, LoadExitsOneWhenRequestsFailed) {
   // 9000 x 9000 is over the server's --max-pixels: every request is refused.
-  const CommandResult result = Client({"load", "--scene=demo", "--concurrency=1", "--requests=2",
-                                       "--size=9000x9000", "--json"});
+  const CommandResult result = Client(
+      {"load", "--scene=demo", "--concurrency=1", "--requests=2", "--size=9000x9000", "--json"});
   EXPECT_EQ(result.exit_code, 1) << result.out << result.err;
   EXPECT_THAT(result.out, HasSubstr("\"failed\": 2"));
 }

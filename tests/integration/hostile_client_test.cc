@@ -4,11 +4,14 @@
 #include <gmock/gmock.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
+#include "content_hash.h"
 #include "integration/service_fixture.h"
 
 namespace aperture::testing {
@@ -134,6 +137,104 @@ TEST_F(HostileClientTest, APentagramIsRefusedNamingThePolygon) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(status.error_message(), HasSubstr("meshes[0].polygons[0]"));
   EXPECT_THAT(status.error_message(), HasSubstr("self-intersecting"));
+}
+
+// A PNG whose header declares `width` x `height` but whose data is a few bytes: the shape of a
+// decompression bomb (the header is all OpenImageIO reads first).
+std::string PngDeclaring(uint32_t width, uint32_t height) {
+  auto be32 = [](uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  auto chunk = [&](const std::string& type, const std::string& data) {
+    const std::string body = type + data;
+    const uint32_t crc = static_cast<uint32_t>(
+        crc32(0, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+    return be32(static_cast<uint32_t>(data.size())) + body + be32(crc);
+  };
+  const std::string ihdr = be32(width) + be32(height) + std::string{8, 2, 0, 0, 0};  // 8-bit RGB
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
+         chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + chunk("IEND", "");
+}
+
+// An upload stream: the first message announces `total` bytes and carries `chunk`.
+struct OpenUpload {
+  grpc::ClientContext context;
+  v1::UploadTextureResponse response;
+  std::unique_ptr<grpc::ClientWriter<v1::UploadTextureRequest>> writer;
+};
+
+std::unique_ptr<OpenUpload> StartUpload(v1::Render::Stub& stub, const std::string& sha256,
+                                        uint64_t total, const std::string& chunk) {
+  auto upload = std::make_unique<OpenUpload>();
+  upload->context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+  upload->writer = stub.UploadTexture(&upload->context, &upload->response);
+  v1::UploadTextureRequest message;
+  message.set_sha256(sha256);
+  message.set_total_size(total);
+  message.set_chunk(chunk);
+  upload->writer->Write(message);
+  return upload;
+}
+
+grpc::Status UploadWhole(v1::Render::Stub& stub, const std::string& bytes) {
+  auto upload = StartUpload(stub, Sha256Hex(bytes), bytes.size(), bytes);
+  upload->writer->WritesDone();
+  return upload->writer->Finish();
+}
+
+TEST_F(HostileClientTest, UploadsThatAreNoTextureAreRefusedAndNotKept) {
+  StartServer();
+  const std::string passwd = "root:x:0:0:root:/root:/bin/bash\n";
+  grpc::Status status = UploadWhole(*stub_, passwd);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("not a texture"));
+
+  // A PNG declaring 16384 x 16384 texels is refused from its header alone.
+  const std::string bomb = PngDeclaring(16384, 16384);
+  ASSERT_LT(bomb.size(), 100u);
+  status = UploadWhole(*stub_, bomb);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("16384x16384, above the limit"));
+
+  for (const std::string& refused : {passwd, bomb}) {
+    grpc::ClientContext context;
+    v1::HasTextureRequest request;
+    request.set_sha256(Sha256Hex(refused));
+    v1::HasTextureResponse response;
+    ASSERT_TRUE(stub_->HasTexture(&context, request, &response).ok());
+    EXPECT_FALSE(response.stored());
+  }
+  EXPECT_TRUE(UploadWhole(*stub_, NoisePng(32, 32, 5)).ok());
+}
+
+TEST_F(HostileClientTest, AStalledUploadIsCancelledAndItsBytesFreed) {
+  StartServer({"--upload-idle-s=0.5", "--max-upload-inflight-mb=12"});
+  const std::string png = NoisePng(64, 64, 6);
+  // Announces 10 MiB, sends a few bytes, then nothing.
+  const auto start = Clock::now();
+  auto stalled = StartUpload(*stub_, Sha256Hex("stalled"), 10 << 20, png.substr(0, 100));
+
+  // Meanwhile the budget holds the announced bytes: a second 10 MiB upload does not fit.
+  auto second = StartUpload(*stub_, Sha256Hex("second"), 10 << 20, png.substr(0, 100));
+  grpc::Status status = second->writer->Finish();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(status.error_message(), HasSubstr("uploads in flight (--max-upload-inflight-mb)"));
+
+  status = stalled->writer->Finish();  // returns when the server cancels the stream
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  EXPECT_FALSE(status.ok());
+  EXPECT_LT(seconds, 3.0);
+  EXPECT_GT(seconds, 0.4);
+
+  // Its reservation is back: 10 MiB announced again get past the budget (and, being no texture,
+  // are then refused for that).
+  const std::string junk(10 << 20, 'j');
+  status = UploadWhole(*stub_, junk);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << status.error_message();
+  for (int i = 0; i < 100 && server_->Log().find("upload idle") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_THAT(server_->Log(), HasSubstr("upload idle for 0.5 s after 100 of 10485760 bytes"));
 }
 
 }  // namespace

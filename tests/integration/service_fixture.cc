@@ -3,8 +3,12 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <grpcpp/grpcpp.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <utility>
 
 #include "scene/demo_scene.h"
@@ -140,6 +144,27 @@ std::vector<v1::RenderFrameResponse> ServiceTest::ReadAllAnswers(
   v1::RenderFrameResponse response;
   while (stream.Read(&response)) frames.push_back(response);
   return frames;
+}
+
+std::string NoisePng(int width, int height, uint32_t seed) {
+  std::vector<uint8_t> texels(static_cast<size_t>(width) * height * 3);
+  uint32_t state = seed * 2654435761u + 1;
+  for (uint8_t& t : texels) {
+    state = state * 1664525u + 1013904223u;
+    t = static_cast<uint8_t>(state >> 24);
+  }
+  const std::string path = ::testing::TempDir() + "aperture_noise_" + std::to_string(getpid()) +
+                           "_" + std::to_string(seed) + ".png";
+  auto out = OIIO::ImageOutput::create(path);
+  EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8)));
+  if (!out) return {};
+  EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texels.data()));
+  out->close();
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  std::remove(path.c_str());
+  return bytes.str();
 }
 
 std::vector<float> ServiceTest::Pixels(const v1::RenderFrameResponse& response) {

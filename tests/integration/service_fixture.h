@@ -16,6 +16,10 @@ namespace aperture::testing {
 // LoadScene of a built-in scene ("demo", ...) on `stub`; fails the test if it is refused.
 v1::LoadSceneResponse LoadBuiltinScene(v1::Render::Stub& stub, const std::string& name);
 
+// A PNG of `width` x `height` RGB noise (about 3 bytes a texel: noise does not compress), written
+// by OpenImageIO: a real texture upload.
+std::string NoisePng(int width, int height, uint32_t seed);
+
 class ServiceTest : public ::testing::Test {
  protected:
   // Starts aperture-server with these extra flags; fails the test if it does not come up.

@@ -106,8 +106,8 @@ TEST_F(ServiceTest, ReflectionListsTheRenderService) {
 TEST_F(ServiceTest, UploadInChunksThenTheSecondUploadIsSkipped) {
   StartServer();
   const uint32_t textures_before = Info().textures();
-  std::string bytes(3 * 1024 * 1024 + 17, '\0');  // several 1 MiB chunks
-  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 7919 % 251);
+  const std::string bytes = NoisePng(1024, 1024, 1);  // several 1 MiB chunks
+  ASSERT_GT(bytes.size(), 3u << 20);
   const std::string sha256 = Sha256Hex(bytes);
   EXPECT_FALSE(HasTexture(*stub_, sha256));
 
@@ -126,7 +126,7 @@ TEST_F(ServiceTest, UploadInChunksThenTheSecondUploadIsSkipped) {
 TEST_F(ServiceTest, StoreDirectoryKeepsTexturesAcrossRestarts) {
   const std::string store = ::testing::TempDir() + "aperture_store_" + std::to_string(getpid());
   std::filesystem::create_directories(store);
-  const std::string bytes = "texture bytes kept across a restart";
+  const std::string bytes = NoisePng(16, 16, 2);  // a texture kept across a restart
   StartServer({"--store=" + store});
   v1::UploadTextureResponse response;
   ASSERT_TRUE(Upload(*stub_, Sha256Hex(bytes), bytes, 1 << 20, &response).ok());
