@@ -47,6 +47,14 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
                          limits.max_upload_inflight_bytes),
       upload_watchdog_(limits.upload_idle) {}
 
+void RenderService::TrimStore() {
+  if (const uint64_t evicted = textures_.Trim(limits_.max_store_bytes); evicted > 0) {
+    store_evicted_ += evicted;
+    spdlog::info("texture store over its budget of {} MiB (--max-store-mb): {} entries evicted",
+                 limits_.max_store_bytes >> 20, evicted);
+  }
+}
+
 absl::Status RenderService::Authorize(const grpc::ServerContext& context, const char* rpc) {
   if (auth_ == nullptr) return absl::OkStatus();
   absl::Status status = auth_->Check(context);
@@ -131,7 +139,9 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
                                                           " bytes, received ", content.size())),
                   sha256, false);
   response->set_size(content.size());
-  return finish(textures_.Put(sha256, std::move(content)), sha256, false);
+  const absl::Status kept = textures_.Put(sha256, std::move(content));
+  if (kept.ok()) TrimStore();
+  return finish(kept, sha256, false);
 }
 
 grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
@@ -148,15 +158,30 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
   LoadedScene cached{scene_id, nullptr, std::nullopt};
   cached.scene = scenes_.Find(scene_id, &cached.default_camera);
   const bool reused = cached.scene != nullptr;
-  if (reused)
-    loaded = std::move(cached);
-  else
-    loaded = BuildSceneFromRequest(*request, textures_, limits_.scene, [&] { return stop(); });
+  if (reused) loaded = std::move(cached);
+  ByteReservation room;  // the scene's estimated bytes in the loaded scenes' budget
+  auto admit = [&](const SceneMemory& memory) -> absl::Status {
+    if (textures_.shared() && memory.table_bytes > limits_.max_store_bytes)
+      return absl::ResourceExhaustedError(
+          absl::StrCat("the scene's seed 000 tables would take ", memory.table_bytes >> 20,
+                       " MiB of the texture store, above its budget of ",
+                       limits_.max_store_bytes >> 20, " MiB (--max-store-mb)"));
+    auto reserved = scenes_.Reserve(memory.total(), memory.ToString());
+    if (!reserved.ok()) return reserved.status();
+    room = *std::move(reserved);
+    return absl::OkStatus();
+  };
+  if (!reused)
+    loaded = BuildSceneFromRequest(
+        *request, textures_, limits_.scene, [&] { return stop(); }, admit);
   if (absl::IsCancelled(loaded.status()) && std::chrono::system_clock::now() > context->deadline())
     loaded = absl::DeadlineExceededError(
         "the call's deadline passed while the scene was built; nothing was kept");
   if (loaded.ok()) {
-    if (!reused) scenes_.Put(loaded->id, loaded->scene, loaded->default_camera);
+    if (!reused) {
+      scenes_.Put(loaded->id, loaded->scene, loaded->default_camera, std::move(room));
+      TrimStore();  // the tables it built may have filled the store
+    }
     response->set_scene_id(loaded->id);
     response->set_polygons(static_cast<uint32_t>(loaded->scene->polygons.size()));
     response->set_textures(static_cast<uint32_t>(loaded->scene->textures.size()));
@@ -245,6 +270,7 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
                : frame->status();
   // Raytrace: setup is the corner rays (plus building the scene's BVH and tables on its first
   // raytraced frame), raster the pixels' fragments and subdivision.
+  if (traced_build_ms > 0) TrimStore();  // its summed-area tables went to the store
   timings.set_setup_ms((*frame)->stats.setup_ms + traced_build_ms);
   timings.set_raster_ms((*frame)->stats.raster_ms);
   ExrOptions exr = job->exr;
@@ -386,6 +412,15 @@ grpc::Status RenderService::GetServerInfo(grpc::ServerContext* context,
   response->set_frames_in_flight(static_cast<uint32_t>(admission_.running()));
   response->set_frames_queued(static_cast<uint32_t>(admission_.queued()));
   response->set_uptime_s(std::chrono::duration<double>(Clock::now() - started_).count());
+  v1::Budgets& budgets = *response->mutable_budgets();
+  budgets.set_scene_bytes(scenes_.bytes());
+  budgets.set_scene_budget_bytes(scenes_.budget());
+  budgets.set_scenes_evicted(scenes_.evicted());
+  budgets.set_upload_bytes_in_flight(uploads_in_flight_.used());
+  budgets.set_upload_budget_bytes(uploads_in_flight_.limit());
+  budgets.set_store_bytes(textures_.bytes());
+  budgets.set_store_budget_bytes(limits_.max_store_bytes);
+  budgets.set_store_entries_evicted(store_evicted_.load());
   if (const auto& store = textures_.shared()) {
     const StoreCounters counters = store->counters();
     v1::StoreInfo& info = *response->mutable_store();

@@ -32,6 +32,7 @@ struct ServiceLimits {
   SceneLimits scene;                                // what one LoadScene may ask for
   uint64_t max_upload_inflight_bytes = 1ull << 30;  // announced sizes of uploads streaming now
   std::chrono::milliseconds upload_idle{30000};     // an upload silent this long is cancelled
+  uint64_t max_store_bytes = 8ull << 30;  // the texture store's entries (or in-memory uploads)
 };
 
 class RenderService final : public v1::Render::Service {
@@ -71,6 +72,8 @@ class RenderService final : public v1::Render::Service {
 
   // OK, or UNAUTHENTICATED (logged with the peer, never the token) when tokens are required.
   absl::Status Authorize(const grpc::ServerContext& context, const char* rpc);
+  // Keeps the texture store within --max-store-mb, least recently used entries first.
+  void TrimStore();
 
   const ServiceLimits limits_;
   const AuthTokens* const auth_;
@@ -81,6 +84,7 @@ class RenderService final : public v1::Render::Service {
   const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   std::atomic<uint64_t> next_request_id_{1};
   std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0}, frames_skipped_{0};
+  std::atomic<uint64_t> store_evicted_{0};
   // Raytraced scenes' BVH and tables (about 100 MB per 1024² raster texture): the last few.
   static constexpr size_t kTracedScenes = 4;
   TracedSceneCache traced_;

@@ -32,7 +32,8 @@ std::string SceneRequestId(const v1::LoadSceneRequest& request) {
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
                                                   const TextureStore& textures,
                                                   const SceneLimits& limits,
-                                                  std::function<bool()> stop) {
+                                                  std::function<bool()> stop,
+                                                  const AdmitScene& admit) {
   v1::Scene scene = request.scene();
   std::optional<v1::Camera> default_camera;
   if (!request.builtin_scene().empty()) {
@@ -80,6 +81,12 @@ absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& re
       return absl::InvalidArgumentError(
           absl::StrCat("texture_sha256['", id, "'] names no texture of the scene"));
 
+  if (admit) {
+    auto memory = EstimateSceneMemory(scene);
+    if (!memory.ok())
+      return absl::InvalidArgumentError(absl::StrCat("scene.", memory.status().message()));
+    if (auto admitted = admit(*memory); !admitted.ok()) return admitted;
+  }
   // Tables of aniso materials and decoded packed textures go to (or come from) the shared store.
   SceneBuildOptions options;
   options.store = textures.shared();

@@ -12,6 +12,7 @@
 #include "aperture/v1/render_service.pb.h"
 #include "scene/scene.h"
 #include "scene/scene_builder.h"
+#include "scene/scene_memory.h"
 #include "texture_store.h"
 
 namespace aperture {
@@ -26,11 +27,16 @@ struct LoadedScene {
 // content hash, so the same id always means the same scene.
 std::string SceneRequestId(const v1::LoadSceneRequest& request);
 
+// Asked with the scene's memory estimate once its textures are resolved, before anything is
+// decoded or built; an error refuses the scene.
+using AdmitScene = std::function<absl::Status(const SceneMemory&)>;
+
 // `limits` bound what the scene may hold; `stop` (a deadline, a cancelled call) stops the build
 // with Cancelled.
 absl::StatusOr<LoadedScene> BuildSceneFromRequest(const v1::LoadSceneRequest& request,
                                                   const TextureStore& textures,
                                                   const SceneLimits& limits = {},
-                                                  std::function<bool()> stop = nullptr);
+                                                  std::function<bool()> stop = nullptr,
+                                                  const AdmitScene& admit = nullptr);
 
 }  // namespace aperture

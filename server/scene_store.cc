@@ -1,16 +1,42 @@
 #include "scene_store.h"
 
+#include "absl/strings/str_cat.h"
+
 namespace aperture {
 
-void SceneStore::Put(const std::string& id, std::shared_ptr<const Scene> scene,
-                     std::optional<v1::Camera> default_camera) {
+bool SceneStore::EvictOne() {
+  auto oldest = scenes_.end();
+  for (auto it = scenes_.begin(); it != scenes_.end(); ++it)
+    if (it->second.scene.use_count() == 1 &&  // no frame, stream or load holds it
+        (oldest == scenes_.end() || it->second.last_use < oldest->second.last_use))
+      oldest = it;
+  if (oldest == scenes_.end()) return false;
+  scenes_.erase(oldest);  // returns its bytes to the budget
+  ++evicted_;
+  return true;
+}
+
+absl::StatusOr<ByteReservation> SceneStore::Reserve(uint64_t bytes, const std::string& what) {
   std::lock_guard lock(mutex_);
-  scenes_[id] = {std::move(scene), std::move(default_camera), ++clock_};
+  while (true) {
+    auto room = budget_.Reserve(bytes);
+    if (room.ok()) return room;
+    if (bytes > budget_.limit() || !EvictOne())
+      return absl::ResourceExhaustedError(
+          absl::StrCat("the scene would hold about ", what, ": ", room.status().message()));
+  }
+}
+
+void SceneStore::Put(const std::string& id, std::shared_ptr<const Scene> scene,
+                     std::optional<v1::Camera> default_camera, ByteReservation room) {
+  std::lock_guard lock(mutex_);
+  scenes_[id] = {std::move(scene), std::move(default_camera), ++clock_, std::move(room)};
   while (scenes_.size() > capacity_) {
     auto oldest = scenes_.begin();
     for (auto it = scenes_.begin(); it != scenes_.end(); ++it)
       if (it->second.last_use < oldest->second.last_use) oldest = it;
     scenes_.erase(oldest);
+    ++evicted_;
   }
 }
 
@@ -27,6 +53,11 @@ std::shared_ptr<const Scene> SceneStore::Find(const std::string& id,
 size_t SceneStore::size() const {
   std::lock_guard lock(mutex_);
   return scenes_.size();
+}
+
+uint64_t SceneStore::evicted() const {
+  std::lock_guard lock(mutex_);
+  return evicted_;
 }
 
 }  // namespace aperture

@@ -8,9 +8,11 @@
 #include <spdlog/cfg/env.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <sys/statvfs.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -49,6 +51,13 @@ ABSL_FLAG(uint64_t, max_scene_polygons, 4000000,
           "largest scene: its objects times their meshes' polygons (before triangulation)");
 ABSL_FLAG(uint64_t, max_polygon_vertices, 1000000, "most vertices of one polygon");
 ABSL_FLAG(uint64_t, max_scene_textures, 256, "most textures of one scene");
+ABSL_FLAG(uint64_t, max_scenes_mb, 0,
+          "bytes all loaded scenes may hold (decoded textures, aniso tables, polygons, as "
+          "estimated before a scene is built), MiB; 0: a quarter of the machine's memory");
+ABSL_FLAG(uint64_t, max_store_mb, 0,
+          "bytes the texture store may hold (uploads, tables, packed textures; with --store none "
+          "the uploads in memory), MiB; past it the least recently used entries are evicted; 0: "
+          "half the store's file system (an eighth of the machine's memory with --store none)");
 ABSL_FLAG(int, max_scenes, 64, "scenes kept loaded; past it the least recently used is dropped");
 ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
           "shared texture store: a directory (under /dev/shm: POSIX shared memory) holding "
@@ -182,8 +191,24 @@ int Run() {
         listen);
     return 2;
   }
+  const uint64_t memory_bytes = static_cast<uint64_t>(sysconf(_SC_PHYS_PAGES)) *
+                                static_cast<uint64_t>(sysconf(_SC_PAGE_SIZE));
+  const uint64_t scenes_budget = absl::GetFlag(FLAGS_max_scenes_mb) > 0
+                                     ? absl::GetFlag(FLAGS_max_scenes_mb) << 20
+                                     : memory_bytes / 4;
+  limits.max_store_bytes = absl::GetFlag(FLAGS_max_store_mb) << 20;
+  if (limits.max_store_bytes == 0) {
+    struct statvfs fs {};
+    limits.max_store_bytes = shared_store && statvfs(shared_store->directory().c_str(), &fs) == 0
+                                 ? static_cast<uint64_t>(fs.f_blocks) * fs.f_frsize / 2
+                                 : memory_bytes / 8;
+  }
   TextureStore textures(shared_store);
-  SceneStore scenes(static_cast<size_t>(std::max(1, absl::GetFlag(FLAGS_max_scenes))));
+  // A store left over its budget (by a process with a larger one) is trimmed at start.
+  if (const uint64_t evicted = textures.Trim(limits.max_store_bytes); evicted > 0)
+    spdlog::info("texture store over --max-store-mb at start: {} entries evicted", evicted);
+  SceneStore scenes(static_cast<size_t>(std::max(1, absl::GetFlag(FLAGS_max_scenes))),
+                    scenes_budget);
   AdmissionControl admission(limits.concurrent_frames, limits.max_queue);
   RenderService service(limits, textures, scenes, admission, arena, auth.get());
 
@@ -207,9 +232,9 @@ int Run() {
   std::fflush(stdout);
   spdlog::info(
       "aperture-server listening on {}:{} threads={} concurrent_frames={} max_queue={} "
-      "max_pixels={} store='{}' tls={} auth={}",
+      "max_pixels={} store='{}' store_budget_mb={} scenes_budget_mb={} tls={} auth={}",
       host, port, limits.threads, limits.concurrent_frames, limits.max_queue, limits.max_pixels,
-      absl::GetFlag(FLAGS_store),
+      absl::GetFlag(FLAGS_store), limits.max_store_bytes >> 20, scenes.budget() >> 20,
       absl::GetFlag(FLAGS_tls_cert).empty() ? "off" : (mutual_tls ? "mutual" : "on"),
       auth                   ? "bearer tokens (" + auth->path() + ")"
       : mutual_tls           ? "client certificates"

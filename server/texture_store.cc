@@ -41,7 +41,7 @@ absl::Status TextureStore::Put(const std::string& sha256, std::string bytes) {
   if (shared_)
     known_.insert(sha256);
   else
-    textures_[sha256] = std::make_shared<const std::string>(std::move(bytes));
+    textures_[sha256] = {std::make_shared<const std::string>(std::move(bytes)), ++clock_};
   return absl::OkStatus();
 }
 
@@ -49,7 +49,10 @@ absl::StatusOr<std::shared_ptr<const std::string>> TextureStore::Get(
     const std::string& sha256) const {
   {
     std::lock_guard lock(mutex_);
-    if (auto it = textures_.find(sha256); it != textures_.end()) return it->second;
+    if (auto it = textures_.find(sha256); it != textures_.end()) {
+      it->second.last_use = ++clock_;
+      return it->second.bytes;
+    }
   }
   if (shared_ && IsSha256Hex(sha256)) {
     // The entry's own checksum was verified when it was mapped.
@@ -73,6 +76,39 @@ absl::StatusOr<std::shared_ptr<const std::string>> TextureStore::Get(
 size_t TextureStore::size() const {
   std::lock_guard lock(mutex_);
   return textures_.size() + known_.size();
+}
+
+uint64_t TextureStore::bytes() const {
+  if (shared_) return shared_->TotalBytes();
+  std::lock_guard lock(mutex_);
+  uint64_t total = 0;
+  for (const auto& [sha256, upload] : textures_) total += upload.bytes->size();
+  return total;
+}
+
+uint64_t TextureStore::Trim(uint64_t budget_bytes) {
+  if (shared_) {
+    const StoreTrim trim = shared_->Trim(budget_bytes);
+    if (trim.entries_evicted > 0) {
+      std::lock_guard lock(mutex_);
+      std::erase_if(known_, [&](const std::string& sha256) {
+        return !shared_->Has(KeyOf(sha256), EntryKind::kBlob);
+      });
+    }
+    return trim.entries_evicted;
+  }
+  std::lock_guard lock(mutex_);
+  uint64_t total = 0, evicted = 0;
+  for (const auto& [sha256, upload] : textures_) total += upload.bytes->size();
+  while (total > budget_bytes && !textures_.empty()) {
+    auto oldest = textures_.begin();
+    for (auto it = textures_.begin(); it != textures_.end(); ++it)
+      if (it->second.last_use < oldest->second.last_use) oldest = it;
+    total -= oldest->second.bytes->size();
+    textures_.erase(oldest);
+    ++evicted;
+  }
+  return evicted;
 }
 
 }  // namespace aperture

@@ -27,6 +27,12 @@ class TextureStore {
   absl::StatusOr<std::shared_ptr<const std::string>> Get(const std::string& sha256) const;
   // Uploads this process holds in memory or has mapped from the shared store.
   size_t size() const;
+  // Bytes the store takes: the shared directory's entry files (uploads, tables, packed
+  // textures), or the uploads held in memory without one.
+  uint64_t bytes() const;
+  // Evicts least recently used uploads (and, in the shared store, tables) until bytes() is at
+  // most `budget_bytes`; returns how many entries went. Scenes built from them keep their pixels.
+  uint64_t Trim(uint64_t budget_bytes);
   const std::shared_ptr<const SharedStore>& shared() const { return shared_; }
 
  private:
@@ -34,8 +40,13 @@ class TextureStore {
 
   std::shared_ptr<const SharedStore> shared_;
   mutable std::mutex mutex_;
-  mutable std::map<std::string, std::shared_ptr<const std::string>> textures_;  // memory only
-  mutable std::set<std::string> known_;  // uploads seen in the shared store
+  struct MemoryUpload {
+    std::shared_ptr<const std::string> bytes;
+    uint64_t last_use = 0;
+  };
+  mutable uint64_t clock_ = 0;
+  mutable std::map<std::string, MemoryUpload> textures_;  // memory only
+  mutable std::set<std::string> known_;                   // uploads seen in the shared store
 };
 
 }  // namespace aperture

@@ -47,4 +47,14 @@ absl::StatusOr<EncodedTextureInfo> InspectEncodedTexture(std::span<const uint8_t
                            static_cast<uint32_t>(header->height));
 }
 
+absl::StatusOr<EncodedTextureInfo> EstimateEncodedTexture(std::span<const uint8_t> bytes) {
+  if (packed::LooksLikeApv(bytes)) {
+    EncodedTextureInfo info;
+    info.packed = true;
+    info.texture_bytes = bytes.size();
+    return info;
+  }
+  return InspectEncodedTexture(bytes);
+}
+
 }  // namespace aperture

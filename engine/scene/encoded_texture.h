@@ -27,4 +27,8 @@ absl::StatusOr<EncodedTextureInfo> InspectEncodedTexture(std::span<const uint8_t
 // The same figures for a raster of `width` x `height` texels (a decoded image, a checkerboard).
 EncodedTextureInfo RasterTextureCost(uint32_t width, uint32_t height);
 
+// The figures alone, as cheaply as they can be had: a raster image's header, or a packed
+// texture's own size (it is held about as encoded); for estimates, not for validation.
+absl::StatusOr<EncodedTextureInfo> EstimateEncodedTexture(std::span<const uint8_t> bytes);
+
 }  // namespace aperture

@@ -1,11 +1,14 @@
 #include "store/shared_store.h"
 
+#include <fcntl.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 
 #include "absl/strings/match.h"
@@ -54,6 +57,16 @@ std::string SharedStore::EntryPath(const std::string& key) const {
   return (fs::path(directory_) / absl::StrCat(key, kEntrySuffix)).string();
 }
 
+// Each use marks the file used now: Trim evicts the least recently used first. The time is given,
+// not left to the kernel, whose file times advance by clock ticks (a use right after another
+// entry's publication would tie with it).
+void SharedStore::MarkUsed(const std::string& path) {
+  timespec now[2];
+  ::clock_gettime(CLOCK_REALTIME, &now[0]);
+  now[1] = now[0];
+  ::utimensat(AT_FDCWD, path.c_str(), now, 0);
+}
+
 std::shared_ptr<const StoreEntry> SharedStore::Cached(const std::string& key) const {
   std::lock_guard lock(mutex_);
   auto it = mapped_.find(key);
@@ -84,14 +97,17 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::Attach(const std:
                                                                       EntryKind kind) const {
   if (!IsValidKey(key))
     return absl::InvalidArgumentError(absl::StrCat("bad store key '", key, "'"));
+  auto mark_used = [&] { MarkUsed(EntryPath(key)); };
   if (auto cached = Cached(key)) {
     if (cached->kind() != kind)
       return absl::FailedPreconditionError(
           absl::StrCat("store entry ", key, " holds a ", EntryKindName(cached->kind())));
+    mark_used();
     return cached;
   }
   auto entry = MapFile(EntryPath(key), key, kind);
   if (!entry.ok()) return entry.status();
+  mark_used();
   attached_.fetch_add(1, std::memory_order_relaxed);
   Remember(*entry);
   return *entry;
@@ -128,6 +144,7 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
     return status;
   auto published = MapFile(path, key, kind);
   if (!published.ok()) return published.status();
+  MarkUsed(path);
   built_.fetch_add(1, std::memory_order_relaxed);
   Remember(*published);
   return *published;
@@ -160,6 +177,60 @@ void SharedStore::SweepTemporaries(const std::string& only_key) const {
                                  /*wait=*/false);
     if (lock.ok()) fs::remove(item.path(), error);  // its builder died mid-build
   }
+}
+
+uint64_t SharedStore::TotalBytes() const {
+  uint64_t total = 0;
+  std::error_code error;
+  for (const auto& item : fs::directory_iterator(directory_, error)) {
+    const std::string name = item.path().filename().string();
+    if (absl::EndsWith(name, kEntrySuffix) || name.find(kTemporaryInfix) != std::string::npos) {
+      const uint64_t bytes = item.is_regular_file(error) ? item.file_size(error) : 0;
+      if (!error) total += bytes;
+    }
+  }
+  return total;
+}
+
+StoreTrim SharedStore::Trim(uint64_t budget_bytes) const {
+  struct Candidate {
+    fs::file_time_type used;
+    uint64_t bytes;
+    fs::path path;
+    std::string key;
+  };
+  StoreTrim trim;
+  std::vector<Candidate> published;
+  std::error_code error;
+  for (const auto& item : fs::directory_iterator(directory_, error)) {
+    const std::string name = item.path().filename().string();
+    std::error_code item_error;
+    const uint64_t bytes = item.is_regular_file(item_error) ? item.file_size(item_error) : 0;
+    if (item_error) continue;  // deleted meanwhile by another process
+    if (name.find(kTemporaryInfix) != std::string::npos) {
+      trim.bytes_before += bytes;
+    } else if (absl::EndsWith(name, kEntrySuffix)) {
+      trim.bytes_before += bytes;
+      const auto used = item.last_write_time(item_error);
+      if (!item_error)
+        published.push_back(
+            {used, bytes, item.path(), name.substr(0, name.size() - std::strlen(kEntrySuffix))});
+    }
+  }
+  trim.bytes_after = trim.bytes_before;
+  if (trim.bytes_before <= budget_bytes) return trim;
+  std::sort(published.begin(), published.end(),
+            [](const Candidate& a, const Candidate& b) { return a.used < b.used; });
+  for (const Candidate& c : published) {
+    if (trim.bytes_after <= budget_bytes) break;
+    if (!fs::remove(c.path, error) || error) continue;  // gone already, or not ours to delete
+    trim.bytes_after -= c.bytes;
+    ++trim.entries_evicted;
+    std::lock_guard lock(mutex_);
+    mapped_.erase(c.key);
+  }
+  evicted_.fetch_add(trim.entries_evicted, std::memory_order_relaxed);
+  return trim;
 }
 
 std::vector<StoreEntryInfo> SharedStore::List() const {
@@ -201,7 +272,7 @@ std::vector<StoreEntryInfo> SharedStore::List() const {
 }
 
 StoreCounters SharedStore::counters() const {
-  return {attached_.load(), built_.load(), rejected_.load()};
+  return {attached_.load(), built_.load(), rejected_.load(), evicted_.load()};
 }
 
 }  // namespace aperture

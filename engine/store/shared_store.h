@@ -60,10 +60,17 @@ struct StoreEntryInfo {
   std::string state;  // "complete", "building", or why the entry is unusable
 };
 
+// What Trim did.
+struct StoreTrim {
+  uint64_t bytes_before = 0, bytes_after = 0;
+  uint64_t entries_evicted = 0;
+};
+
 struct StoreCounters {
   uint64_t attached = 0;  // entries mapped as they were (built before, maybe by another process)
   uint64_t built = 0;     // entries this process built and published
   uint64_t rejected = 0;  // half-written or corrupt entries found, never used (then rebuilt)
+  uint64_t evicted = 0;   // entries this process deleted to keep the store within its budget
 };
 
 class SharedStore {
@@ -95,6 +102,14 @@ class SharedStore {
 
   bool Has(const std::string& key, EntryKind kind) const;
   std::vector<StoreEntryInfo> List() const;
+
+  // Bytes of the directory's entry files (published and being built).
+  uint64_t TotalBytes() const;
+  // Deletes published entries, least recently used first (each Attach marks its file used, so the
+  // order holds across processes), until the entry files take at most `budget_bytes`. A process
+  // that has an entry mapped keeps it valid (the pages live until it unmaps them); this process
+  // forgets its mapping, so the memory goes when its last user does. Entries being built stay.
+  StoreTrim Trim(uint64_t budget_bytes) const;
   StoreCounters counters() const;
 
  private:
@@ -108,13 +123,14 @@ class SharedStore {
                        uint64_t build_microseconds) const;
   void SweepTemporaries(const std::string& only_key) const;
   std::shared_ptr<const StoreEntry> Cached(const std::string& key) const;
+  static void MarkUsed(const std::string& path);
   void Remember(const std::shared_ptr<const StoreEntry>& entry) const;
 
   std::string directory_;
   mutable std::mutex mutex_;
   // One mapping per key and process: attaching twice costs nothing and checksums once.
   mutable std::map<std::string, std::shared_ptr<const StoreEntry>, std::less<>> mapped_;
-  mutable std::atomic<uint64_t> attached_{0}, built_{0}, rejected_{0};
+  mutable std::atomic<uint64_t> attached_{0}, built_{0}, rejected_{0}, evicted_{0};
 };
 
 }  // namespace aperture

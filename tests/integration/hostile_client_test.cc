@@ -30,6 +30,7 @@ class HostileClientTest : public ServiceTest {
     *request.mutable_scene() = scene;
     return stub_->LoadScene(&context, request, response);
   }
+  void CheckStoreBudget(const std::vector<std::string>& pngs);
 };
 
 // One ground polygon of `n` vertices, a star (concave) in the x-z plane.
@@ -177,8 +178,15 @@ std::unique_ptr<OpenUpload> StartUpload(v1::Render::Stub& stub, const std::strin
   return upload;
 }
 
+// In chunks of 1 MiB, the most one message may carry.
 grpc::Status UploadWhole(v1::Render::Stub& stub, const std::string& bytes) {
-  auto upload = StartUpload(stub, Sha256Hex(bytes), bytes.size(), bytes);
+  constexpr size_t kChunk = 1 << 20;
+  auto upload = StartUpload(stub, Sha256Hex(bytes), bytes.size(), bytes.substr(0, kChunk));
+  for (size_t offset = kChunk; offset < bytes.size(); offset += kChunk) {
+    v1::UploadTextureRequest message;
+    message.set_chunk(bytes.substr(offset, kChunk));
+    if (!upload->writer->Write(message)) break;
+  }
   upload->writer->WritesDone();
   return upload->writer->Finish();
 }
@@ -235,6 +243,114 @@ TEST_F(HostileClientTest, AStalledUploadIsCancelledAndItsBytesFreed) {
   for (int i = 0; i < 100 && server_->Log().find("upload idle") == std::string::npos; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   EXPECT_THAT(server_->Log(), HasSubstr("upload idle for 0.5 s after 100 of 10485760 bytes"));
+}
+
+bool Stored(v1::Render::Stub& stub, const std::string& bytes) {
+  grpc::ClientContext context;
+  v1::HasTextureRequest request;
+  request.set_sha256(Sha256Hex(bytes));
+  v1::HasTextureResponse response;
+  EXPECT_TRUE(stub.HasTexture(&context, request, &response).ok());
+  return response.stored();
+}
+
+// A scene of one ground quad textured with an upload (or a checkerboard of `size`).
+v1::LoadSceneRequest TexturedScene(const std::string& upload_sha256, uint32_t checkerboard = 0) {
+  v1::LoadSceneRequest request;
+  v1::Scene& scene = *request.mutable_scene();
+  v1::Texture& texture = *scene.add_textures();
+  texture.set_id("t");
+  if (checkerboard > 0)
+    texture.mutable_checkerboard()->set_size(checkerboard);
+  else
+    (*request.mutable_texture_sha256())["t"] = upload_sha256;
+  v1::Material& material = *scene.add_materials();
+  material.set_id("m");
+  material.set_texture_id("t");
+  v1::Mesh& mesh = *scene.add_meshes();
+  mesh.set_id("ground");
+  mesh.set_material_id("m");
+  v1::Polygon& quad = *mesh.add_polygons();
+  for (auto [x, z] : {std::pair{-50, -50}, {-50, 50}, {50, 50}, {50, -50}}) {
+    v1::Vec3& v = *quad.add_vertices();
+    v.set_x(x);
+    v.set_z(z);
+  }
+  return request;
+}
+
+grpc::Status LoadRequest(v1::Render::Stub& stub, const v1::LoadSceneRequest& request,
+                         v1::LoadSceneResponse* response) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+  return stub.LoadScene(&context, request, response);
+}
+
+TEST_F(HostileClientTest, APngThatDeclaresAHugeImageIsWeighedBeforeItIsDecoded) {
+  StartServer({"--max-scenes-mb=512"});
+  // 8192 x 8192 is within the texel limit, so the upload is kept; decoded it would be 1.3 GiB.
+  const std::string bomb = PngDeclaring(8192, 8192);
+  ASSERT_TRUE(UploadWhole(*stub_, bomb).ok());
+  v1::LoadSceneResponse response;
+  const grpc::Status status = LoadRequest(*stub_, TexturedScene(Sha256Hex(bomb)), &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(status.error_message(), HasSubstr("1365.3 MiB"));
+  EXPECT_THAT(status.error_message(), HasSubstr("loaded scenes (--max-scenes-mb), 512 MiB"));
+  EXPECT_EQ(Info().budgets().scene_bytes(), 0u);
+}
+
+TEST_F(HostileClientTest, ScenesPastTheirBudgetEvictTheLeastRecentlyUsed) {
+  // Checkerboards of 1024 x 1024 texels: 21.3 MiB each as a float mip-map. Two fit in 50 MiB.
+  StartServer({"--max-scenes-mb=50"});
+  std::vector<std::string> ids;
+  for (uint32_t size : {1024u, 1023u, 1022u}) {  // three different scenes of the same weight
+    v1::LoadSceneResponse response;
+    ASSERT_TRUE(LoadRequest(*stub_, TexturedScene("", size), &response).ok());
+    ids.push_back(response.scene_id());
+    const v1::Budgets budgets = Info().budgets();
+    EXPECT_LE(budgets.scene_bytes(), budgets.scene_budget_bytes());
+  }
+  EXPECT_EQ(Info().budgets().scenes_evicted(), 1u);
+  EXPECT_EQ(Render(FrameRequest(ids[0], 16, 16), 10).error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_TRUE(Render(FrameRequest(ids[1], 16, 16), 10).ok());
+  EXPECT_TRUE(Render(FrameRequest(ids[2], 16, 16), 10).ok());
+}
+
+TEST_F(HostileClientTest, TheStoreStaysWithinItsBudgetAndScenesKeepTheirPixels) {
+  std::vector<std::string> pngs;
+  for (uint32_t seed = 10; seed < 13; ++seed) pngs.push_back(NoisePng(1024, 1024, seed));
+  // The shared store on /dev/shm, and uploads held in memory.
+  for (const std::string store : {"", "--store=none"}) {
+    SCOPED_TRACE(store);
+    own_server_.reset();
+    // Noise PNGs of about 3.1 MB: two fit in 7 MiB, a third evicts the least recently used.
+    StartServer(store.empty() ? std::vector<std::string>{"--max-store-mb=7"}
+                              : std::vector<std::string>{"--max-store-mb=7", store});
+    CheckStoreBudget(pngs);
+  }
+}
+
+void HostileClientTest::CheckStoreBudget(const std::vector<std::string>& pngs) {
+  ASSERT_TRUE(UploadWhole(*stub_, pngs[0]).ok());
+  ASSERT_TRUE(UploadWhole(*stub_, pngs[1]).ok());
+  v1::LoadSceneResponse scene;
+  ASSERT_TRUE(LoadRequest(*stub_, TexturedScene(Sha256Hex(pngs[0])), &scene).ok());
+  ASSERT_TRUE(UploadWhole(*stub_, pngs[2]).ok());
+
+  const v1::Budgets budgets = Info().budgets();
+  EXPECT_LE(budgets.store_bytes(), budgets.store_budget_bytes());
+  EXPECT_EQ(budgets.store_budget_bytes(), 7u << 20);
+  EXPECT_EQ(budgets.store_entries_evicted(), 1u);
+  // pngs[0] was used by the load after pngs[1] was uploaded: pngs[1] is the one evicted.
+  EXPECT_TRUE(Stored(*stub_, pngs[0]));
+  EXPECT_FALSE(Stored(*stub_, pngs[1]));
+  EXPECT_TRUE(Stored(*stub_, pngs[2]));
+  // The loaded scene holds its decoded texture: it renders whatever the store evicts.
+  ASSERT_TRUE(UploadWhole(*stub_, pngs[1]).ok());
+  EXPECT_FALSE(Stored(*stub_, pngs[0]));
+  v1::RenderFrameResponse frame;
+  EXPECT_TRUE(Render(FrameRequest(scene.scene_id(), 32, 32), 10, &frame).ok());
+  EXPECT_FALSE(Pixels(frame).empty());
 }
 
 }  // namespace

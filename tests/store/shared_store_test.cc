@@ -63,6 +63,38 @@ TEST_F(SharedStoreTest, PublishedEntryIsReadBackByAnotherStoreOnTheDirectory) {
   EXPECT_FALSE(reader->Has("blob-2", EntryKind::kBlob));
 }
 
+// Issue 23, part 2: the store kept under a budget, least recently used entries first; an entry
+// still mapped stays readable to whoever holds it.
+TEST_F(SharedStoreTest, TrimEvictsTheLeastRecentlyUsedAndMappedEntriesStayValid) {
+  auto store = OpenStore();
+  const std::string payload(100000, 'x');
+  std::shared_ptr<const StoreEntry> held;
+  for (const std::string key : {"a", "b", "c"}) {
+    auto put = store->Put(key, EntryKind::kBlob, Bytes(payload + key));
+    ASSERT_TRUE(put.ok()) << put.status();
+    if (key == "a") held = *put;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(store->Attach("a", EntryKind::kBlob).ok());  // "a" used last: "b" is the oldest
+  const uint64_t total = store->TotalBytes();
+  EXPECT_GT(total, 3 * payload.size());
+
+  const StoreTrim trim = store->Trim(total - 1);
+  EXPECT_EQ(trim.entries_evicted, 1u);
+  EXPECT_EQ(trim.bytes_before, total);
+  EXPECT_LT(trim.bytes_after, total);
+  EXPECT_EQ(store->TotalBytes(), trim.bytes_after);
+  EXPECT_FALSE(store->Has("b", EntryKind::kBlob));
+  EXPECT_TRUE(store->Has("a", EntryKind::kBlob));
+  EXPECT_TRUE(store->Has("c", EntryKind::kBlob));
+
+  EXPECT_EQ(store->Trim(0).entries_evicted, 2u);
+  EXPECT_EQ(store->TotalBytes(), 0u);
+  EXPECT_EQ(Text(held->payload()), payload + "a");  // still mapped, still whole
+  EXPECT_EQ(store->counters().evicted, 3u);
+  EXPECT_FALSE(store->Has("a", EntryKind::kBlob));
+}
+
 TEST_F(SharedStoreTest, MissingKeyIsNotFoundAndBadKeysAreRefused) {
   auto store = OpenStore();
   EXPECT_TRUE(absl::IsNotFound(store->Attach("nothing", EntryKind::kBlob).status()));
