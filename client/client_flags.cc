@@ -10,6 +10,9 @@ ABSL_FLAG(std::string, tls_cert, "",
           "PEM certificate of this client, for a server that requires client certificates "
           "(--tls-client-ca); needs --tls-ca and --tls-key");
 ABSL_FLAG(std::string, tls_key, "", "PEM private key of --tls-cert");
+ABSL_FLAG(bool, allow_any_path, false,
+          "upload texture files a scene file names outside its own folder (by default a path "
+          "that resolves, symlinks followed, outside the scene file's folder is refused)");
 ABSL_FLAG(std::string, token_file, "",
           "file whose first line is the bearer token for a server started with --auth-tokens "
           "(default: the APERTURE_TOKEN environment variable, if set)");

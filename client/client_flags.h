@@ -12,6 +12,7 @@ ABSL_DECLARE_FLAG(std::string, tls_ca);
 ABSL_DECLARE_FLAG(std::string, tls_cert);
 ABSL_DECLARE_FLAG(std::string, tls_key);
 ABSL_DECLARE_FLAG(std::string, token_file);
+ABSL_DECLARE_FLAG(bool, allow_any_path);
 ABSL_DECLARE_FLAG(int, split);
 ABSL_DECLARE_FLAG(std::string, scene);
 ABSL_DECLARE_FLAG(std::string, camera);

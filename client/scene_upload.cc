@@ -6,8 +6,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "absl/flags/flag.h"
 #include "absl/strings/str_cat.h"
 #include "channel.h"
+#include "client_flags.h"
 #include "grpc_status.h"
 #include "texture_upload.h"
 
@@ -51,6 +53,29 @@ absl::StatusOr<SceneOnServer> Load(v1::Render::Stub& stub, const v1::LoadSceneRe
   return result;
 }
 
+// The file a scene file's texture names: relative to the scene file's folder, and (unless
+// `allow_any_path`) inside it once every symlink is resolved, so a scene file cannot make the
+// client upload /etc/passwd or ~/.ssh to a server.
+absl::StatusOr<std::filesystem::path> TexturePath(const std::string& scene_file, int index,
+                                                  const v1::Texture& texture, bool allow_any_path) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(scene_file).parent_path();
+  const fs::path named = texture.file();
+  const fs::path path = named.is_absolute() ? named : folder / named;
+  if (allow_any_path) return path;
+  std::error_code error;
+  const fs::path real_folder = fs::weakly_canonical(folder.empty() ? "." : folder, error);
+  const fs::path real = fs::weakly_canonical(path, error);
+  if (error) return absl::NotFoundError(absl::StrCat("cannot resolve ", path.string()));
+  const fs::path inside = real.lexically_relative(real_folder);
+  if (inside.empty() || *inside.begin() == "..")
+    return absl::PermissionDeniedError(absl::StrCat(
+        scene_file, ": textures[", index, "] ('", texture.id(), "').file '", texture.file(),
+        "' resolves to ", real.string(), ", outside the scene file's folder ", real_folder.string(),
+        "; give --allow-any-path to upload it anyway"));
+  return path;
+}
+
 }  // namespace
 
 absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
@@ -64,11 +89,13 @@ absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
   auto scene = ReadScene(scene_argument);
   if (!scene.ok()) return scene.status();
   const std::filesystem::path base = std::filesystem::path(scene_argument).parent_path();
-  for (v1::Texture& texture : *scene->mutable_textures()) {
+  for (int i = 0; i < scene->textures_size(); ++i) {
+    v1::Texture& texture = *scene->mutable_textures(i);
     std::string bytes;
     if (texture.source_case() == v1::Texture::kFile) {
-      const std::filesystem::path file = texture.file();
-      auto read = ReadFile((file.is_absolute() ? file : base / file).string());
+      auto path = TexturePath(scene_argument, i, texture, absl::GetFlag(FLAGS_allow_any_path));
+      if (!path.ok()) return path.status();
+      auto read = ReadFile(path->string());
       if (!read.ok()) return read.status();
       bytes = *std::move(read);
     } else if (texture.source_case() == v1::Texture::kEncoded) {

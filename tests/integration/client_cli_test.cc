@@ -9,6 +9,7 @@
 #include "aperture/v1/render_service.grpc.pb.h"
 // clang-format on
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -120,6 +121,45 @@ TEST_F(ClientTest, FrameEqualsWhatApertureRenderWrites) {
   EXPECT_EQ(rw, lw);
   EXPECT_EQ(rh, lh);
   EXPECT_TRUE(a == b) << "the service's pixels differ from aperture-render's";
+}
+
+// Issue 23, part 5: a scene file cannot make the client upload files outside its folder.
+TEST_F(ClientTest, TexturePathsOutsideTheSceneFilesFolderAreRefused) {
+  const std::filesystem::path folder = dir_ / "scenes";
+  std::filesystem::create_directories(folder);
+  // An image beside the folder, not in it (its own content: other tests upload theirs).
+  OIIO::ImageBuf outside(OIIO::ImageSpec(8, 8, 3, OIIO::TypeDesc::UINT8));
+  const float grey[3] = {0.3f, 0.3f, 0.3f};
+  OIIO::ImageBufAlgo::fill(outside, grey);
+  ASSERT_TRUE(outside.write((dir_ / "outside.png").string()));
+  const std::string quad = R"("meshes": [{"id": "g", "materialId": "m", "polygons": [{"vertices": [
+      {"x": -50, "z": -50}, {"x": -50, "z": 50}, {"x": 50, "z": 50}, {"x": 50, "z": -50}]}]}])";
+  auto scene_naming = [&](const std::string& name, const std::string& file) {
+    const std::string path = (folder / name).string();
+    std::ofstream(path) << R"({"textures": [{"id": "t", "file": ")" << file
+                        << R"("}], "materials": [{"id": "m", "textureId": "t"}], )" << quad << "}";
+    return path;
+  };
+  std::filesystem::create_symlink(dir_ / "outside.png", folder / "link.png");
+  const std::vector<std::string> frame = {"--size=16x16", "--camera=0,1.7,0,0,-10,0",
+                                          "-o=" + (dir_ / "path.exr").string()};
+  for (const auto& [name, file] : {std::pair<std::string, std::string>{"up.json", "../outside.png"},
+                                   {"absolute.json", (dir_ / "outside.png").string()},
+                                   {"link.json", "link.png"},
+                                   {"passwd.json", "../../../../../../../etc/passwd"}}) {
+    SCOPED_TRACE(name);
+    std::vector<std::string> args = {"render", "--scene=" + scene_naming(name, file)};
+    args.insert(args.end(), frame.begin(), frame.end());
+    const CommandResult refused = Client(args);
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_THAT(refused.err, HasSubstr("outside the scene file's folder"));
+    EXPECT_THAT(refused.err, HasSubstr("--allow-any-path"));
+  }
+  std::vector<std::string> allowed = {"render", "--scene=" + (folder / "up.json").string(),
+                                      "--allow-any-path"};
+  allowed.insert(allowed.end(), frame.begin(), frame.end());
+  const CommandResult uploaded = Client(allowed);
+  EXPECT_EQ(uploaded.exit_code, 0) << uploaded.err;
 }
 
 TEST_F(ClientTest, ASceneFilesTexturesAreUploadedOnceThenFoundOnTheServer) {
