@@ -24,6 +24,7 @@
 #include "client_flags.h"
 #include "commands.h"
 #include "contact_sheet.h"
+#include "grpc_status.h"
 #include "request_flags.h"
 #include "scene_upload.h"
 
@@ -248,14 +249,24 @@ int RunBatch(const std::string& job_path) {
           grpc::ClientContext context;
           context.set_deadline(DeadlineIn(absl::GetFlag(FLAGS_deadline_s)));
           v1::RenderFrameResponse response;
-          const bool answered = stub->RenderFrame(&context, request, &response).ok();
-          progress.Attempt(context.peer(), answered);
-          if (answered && WriteFrame(path, response.exr())) {
+          const grpc::Status status = stub->RenderFrame(&context, request, &response);
+          progress.Attempt(context.peer(), status.ok());
+          if (status.ok() && WriteFrame(path, response.exr())) {
             ++rendered;
             progress.Finish(BatchProgress::Outcome::kRendered);
             break;
           }
-          if (attempt + 1 == attempts) ok = false;
+          // A request the server refused as such fails the same way everywhere: not retried.
+          const bool final = !status.ok() && !Retryable(status.error_code());
+          if (final || attempt + 1 == attempts) {
+            ok = false;
+            progress.Note(absl::StrCat("batch: frame ", i, " failed after ", attempt + 1,
+                                       " attempt(s): ",
+                                       status.ok() ? absl::StrCat("cannot write ", path)
+                                                   : absl::StrCat(GrpcCodeName(status.error_code()),
+                                                                  ": ", status.error_message())));
+            break;
+          }
         }
         if (!ok) {
           ++failed;

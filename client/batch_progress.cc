@@ -52,6 +52,17 @@ std::string BatchProgress::Line() const {
   return line;
 }
 
+void BatchProgress::Note(const std::string& line) {
+  std::lock_guard lock(mutex_);
+  if (terminal_) {
+    std::fprintf(out_, "\r\033[K%s\n", line.c_str());
+    Print(true);
+  } else {
+    std::fprintf(out_, "%s\n", line.c_str());
+    std::fflush(out_);
+  }
+}
+
 void BatchProgress::Print(bool force) {
   const auto now = std::chrono::steady_clock::now();
   const size_t done = rendered_ + skipped_ + failed_;

@@ -22,6 +22,8 @@ class BatchProgress {
   // A request answered by `peer` (gRPC's peer string) succeeded or failed; a failed frame may
   // still be retried on another server.
   void Attempt(const std::string& peer, bool ok);
+  // A line of its own (why a frame failed), above the redrawn progress line on a terminal.
+  void Note(const std::string& line);
   // The last line, always printed (ends the redrawn line on a terminal).
   void Close();
 

@@ -16,4 +16,27 @@ inline absl::Status FromGrpcStatus(const grpc::Status& status, const std::string
                       absl::StrCat(rpc, ": ", status.error_message()));
 }
 
+// "INVALID_ARGUMENT", ...: absl's name of the same code.
+inline std::string GrpcCodeName(grpc::StatusCode code) {
+  return absl::StatusCodeToString(static_cast<absl::StatusCode>(code));
+}
+
+// Whether another attempt (maybe on another server) can succeed: the server was busy, gone or
+// too slow. A request it refused (INVALID_ARGUMENT, NOT_FOUND, UNAUTHENTICATED, ...) is refused
+// the same way everywhere.
+inline bool Retryable(grpc::StatusCode code) {
+  switch (code) {
+    case grpc::StatusCode::UNAVAILABLE:
+    case grpc::StatusCode::RESOURCE_EXHAUSTED:
+    case grpc::StatusCode::DEADLINE_EXCEEDED:
+    case grpc::StatusCode::ABORTED:
+    case grpc::StatusCode::CANCELLED:
+    case grpc::StatusCode::UNKNOWN:
+    case grpc::StatusCode::INTERNAL:
+      return true;
+    default:
+      return false;
+  }
+}
+
 }  // namespace aperture

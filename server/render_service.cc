@@ -223,9 +223,12 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
 
   StopCheck stop(context, stop_at);
   auto ticket = admission_.Enter([&] { return stop(); });
+  // The waiter leaves the queue within milliseconds of its deadline, and says which it was.
   if (!ticket.ok())
-    return stop.FrameDeadlinePassed()
-               ? absl::DeadlineExceededError("the frame's deadline_ms passed in the queue")
+    return absl::IsCancelled(ticket.status()) && stop.DeadlinePassed()
+               ? absl::DeadlineExceededError(stop.FrameDeadlinePassed()
+                                                 ? "the frame's deadline_ms passed in the queue"
+                                                 : "the call's deadline passed in the queue")
                : ticket.status();
   v1::FrameTimings& timings = *response->mutable_timings();
   timings.set_update_ms(update_ms);
@@ -265,8 +268,10 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
     });
   });
   if (!frame->ok())
-    return stop.FrameDeadlinePassed() && absl::IsCancelled(frame->status())
-               ? absl::DeadlineExceededError("the frame's deadline_ms passed while rendering")
+    return stop.DeadlinePassed() && absl::IsCancelled(frame->status())
+               ? absl::DeadlineExceededError(stop.FrameDeadlinePassed()
+                                                 ? "the frame's deadline_ms passed while rendering"
+                                                 : "the call's deadline passed while rendering")
                : frame->status();
   // Raytrace: setup is the corner rays (plus building the scene's BVH and tables on its first
   // raytraced frame), raster the pixels' fragments and subdivision.

@@ -32,6 +32,10 @@ class StopCheck {
 
   // Whether the frame's own deadline (not the call's) is what stopped it.
   bool FrameDeadlinePassed() const { return std::chrono::steady_clock::now() > frame_deadline_; }
+  // Whether a deadline (the frame's or the call's), not a cancellation, is what stopped it.
+  bool DeadlinePassed() const {
+    return FrameDeadlinePassed() || std::chrono::system_clock::now() > context_->deadline();
+  }
 
  private:
   static constexpr int64_t kInterval =

@@ -28,6 +28,10 @@ absl::Status WriteAll(int fd, const void* data, size_t bytes, uint64_t offset) {
     const ssize_t written = pwrite(fd, p, bytes, static_cast<off_t>(offset));
     if (written < 0) {
       if (errno == EINTR) continue;
+      // A full store is the client's problem to hear about, without the server's paths.
+      if (errno == ENOSPC || errno == EDQUOT)
+        return absl::ResourceExhaustedError(
+            "the texture store is full (no space left on its file system)");
       return absl::InternalError(absl::StrCat("write: ", ErrnoText()));
     }
     p += written;
@@ -113,11 +117,13 @@ absl::Status EntryWriter::Publish(std::span<const std::byte> payload, uint64_t b
                                   const std::string& final_path) {
   const uint64_t total = header_.payload_offset + payload.size();
   if (ftruncate(fd_, static_cast<off_t>(total)) != 0)
-    return absl::ResourceExhaustedError(
-        absl::StrCat("cannot size store entry ", path_, " to ", total, " bytes: ", ErrnoText()));
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "the texture store has no room for an entry of ", total, " bytes (", ErrnoText(), ")"));
   if (auto status = WriteAll(fd_, payload.data(), payload.size(), header_.payload_offset);
       !status.ok())
-    return absl::Status(status.code(), absl::StrCat(path_, ": ", status.message()));
+    return absl::IsResourceExhausted(status)
+               ? status
+               : absl::Status(status.code(), absl::StrCat(path_, ": ", status.message()));
 
   header_.payload_bytes = payload.size();
   header_.checksum = XXH3_64bits(payload.data(), payload.size());

@@ -443,6 +443,22 @@ std::string WriteGroundJob(const std::filesystem::path& dir, const std::string& 
   return job;
 }
 
+// Issue 23, part 7: a frame the server refuses as such is not retried, and the batch says why.
+TEST_F(ClientTest, BatchDoesNotRetryARefusedFrameAndSaysWhy) {
+  std::string error;
+  auto small = ServerProcess::Start({"--max-pixels=1000"}, &error);
+  ASSERT_NE(small, nullptr) << error;
+  const std::string job = WriteGroundJob(dir_, "refused.json", "64x48", 3);
+  const CommandResult result =
+      RunCommand({APERTURE_CLIENT_BIN, "batch", job, "--servers=" + small->address(),
+                  "-o=" + (dir_ / "refused").string(), "--nocontact_sheet"},
+                 60);
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_THAT(result.out, HasSubstr("0 rendered, 0 skipped (already valid), 3 failed, 0 retries"));
+  EXPECT_THAT(result.err, HasSubstr("frame 0 failed after 1 attempt(s): INVALID_ARGUMENT"));
+  EXPECT_THAT(result.err, HasSubstr("--max-pixels"));
+}
+
 // Issue 21, part 5: a batch a person can watch. Its output here is not a terminal, so progress
 // comes as plain lines (no carriage returns) with frames/s and the server's tally; at the end a
 // contact sheet of thumbnails lies next to the frames.

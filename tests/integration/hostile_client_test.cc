@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <string>
 #include <thread>
 
@@ -351,6 +352,33 @@ void HostileClientTest::CheckStoreBudget(const std::vector<std::string>& pngs) {
   v1::RenderFrameResponse frame;
   EXPECT_TRUE(Render(FrameRequest(scene.scene_id(), 32, 32), 10, &frame).ok());
   EXPECT_FALSE(Pixels(frame).empty());
+}
+
+// Issue 23, part 7: a frame whose deadline passes while it waits for a turn leaves the queue at
+// once and is answered DEADLINE_EXCEEDED (in the server's log too, not CANCELLED).
+TEST_F(HostileClientTest, ADeadlineThatPassesInTheQueueFreesTheSlotAtOnce) {
+  StartServer({"--concurrent-frames=1", "--max-queue=1"});
+  const v1::RenderFrameRequest slow = SlowFrame();
+  auto busy = std::async(std::launch::async, [&] { return Render(slow, 20); });
+  for (int i = 0; i < 500 && Info().frames_in_flight() == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(Info().frames_in_flight(), 1u);
+
+  const std::string id = LoadBuiltinScene(*stub_, "triangles").scene_id();
+  const auto start = Clock::now();
+  const grpc::Status waited = Render(FrameRequest(id, 16, 16), 0.3);
+  EXPECT_EQ(waited.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  // The slot is free again at once: the queue (of one) takes the next frame.
+  for (int i = 0; i < 20 && Info().frames_queued() > 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(Info().frames_queued(), 0u);
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 0.6);
+  for (int i = 0; i < 100 && server_->Log().find("passed in the queue") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_THAT(server_->Log(), HasSubstr("status=DEADLINE_EXCEEDED error='the call\\'s deadline "
+                                        "passed in the queue'"));
+  own_server_.reset();  // the slow frame ends with its server
+  (void)busy.get();
 }
 
 }  // namespace
