@@ -5,6 +5,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
@@ -35,6 +37,53 @@ absl::Status CheckSpec(const OIIO::ImageSpec& spec, const std::string& what) {
   return absl::OkStatus();
 }
 
+// OpenEXR's C++ header reader allocates what an attribute's size field says: a 100-byte file can
+// ask for 1.9 GB (found by tests/fuzz/engine/upload_fuzzer). So before OpenImageIO sees an EXR,
+// its header is walked the way that reader tokenizes it (Header::readFrom: a name and a type,
+// each read up to its NUL or Name::MAX_LENGTH + 1 = 256 characters, whatever the long-names flag;
+// an int32 size; the value; an empty name ends a header, an empty header the parts of a
+// multi-part file), and every size must fit in the bytes that follow.
+absl::Status CheckExrAttributeSizes(std::span<const uint8_t> b) {
+  auto fail = [](const std::string& why) {
+    return absl::InvalidArgumentError(absl::StrCat("EXR header: ", why));
+  };
+  if (b.size() < 8) return fail("truncated");
+  const uint32_t version = b[4] | (b[5] << 8) | (b[6] << 16) | (uint32_t{b[7]} << 24);
+  constexpr size_t max_name = 255;
+  const bool multipart = (version & 0x1000) != 0;
+  size_t pos = 8;
+  auto token = [&](std::string* out) {
+    for (size_t k = 0; k <= max_name; ++k) {
+      if (pos >= b.size()) return false;
+      const char c = static_cast<char>(b[pos++]);
+      if (c == 0) return true;
+      *out += c;
+    }
+    return true;
+  };
+  for (int part = 0;; ++part) {
+    for (int attribute = 0;; ++attribute) {
+      if (pos >= b.size()) return fail("truncated");
+      if (b[pos] == 0) {
+        ++pos;
+        break;
+      }
+      std::string name, type;
+      if (!token(&name) || !token(&type) || pos + 4 > b.size()) return fail("truncated");
+      const int32_t size = static_cast<int32_t>(b[pos] | (b[pos + 1] << 8) | (b[pos + 2] << 16) |
+                                                (uint32_t{b[pos + 3]} << 24));
+      pos += 4;
+      if (size < 0 || static_cast<uint64_t>(size) > b.size() - pos)
+        return fail(absl::StrCat("attribute ", attribute, " of part ", part, " declares ", size,
+                                 " bytes, more than the file holds"));
+      pos += static_cast<size_t>(size);
+    }
+    if (!multipart) return absl::OkStatus();
+    if (pos >= b.size()) return fail("truncated");
+    if (b[pos] == 0) return absl::OkStatus();  // the empty header after the last part
+  }
+}
+
 // An encoded image in memory opened for reading (its header read), or why not.
 absl::StatusOr<std::unique_ptr<OIIO::ImageInput>> OpenInMemory(
     std::span<const uint8_t> bytes, OIIO::Filesystem::IOMemReader& reader) {
@@ -42,6 +91,8 @@ absl::StatusOr<std::unique_ptr<OIIO::ImageInput>> OpenInMemory(
   if (name == nullptr)
     return absl::InvalidArgumentError(
         "encoded texture is not PNG, JPEG, EXR or TIFF (unknown magic bytes)");
+  if (std::strcmp(name, "memory.exr") == 0)
+    if (auto header = CheckExrAttributeSizes(bytes); !header.ok()) return header;
   OIIO::ImageSpec config;
   void* proxy = &reader;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/exr_writer.h"
 #include "texture/image.h"
 #include "texture/prefiltered_table_builder.h"
 
@@ -67,6 +68,36 @@ TEST(ImageLimits, TableOfAnImageBeyondTheLimitIsRefusedBeforeResampling) {
   ASSERT_FALSE(block.ok());
   EXPECT_NE(std::string(block.status().message()).find("1x16384"), std::string::npos)
       << block.status();
+}
+
+}  // namespace
+}  // namespace aperture
+
+namespace aperture {
+namespace {
+
+// Issue 23, part 8 (found by tests/fuzz/engine/upload_fuzzer): OpenEXR's header reader allocates
+// what an attribute's size says. A 40-byte EXR that declares a 2 GiB attribute is refused before
+// OpenImageIO opens it; a real EXR still opens.
+TEST(ImageLimits, AnExrAttributeLargerThanTheFileIsRefusedBeforeOpenExrReadsIt) {
+  std::string exr("v/1\x01\x02\x00\x00\x00", 8);
+  exr += std::string("comment\0opaqueType\0", 19);
+  exr += std::string("\xff\xff\xff\x7f", 4);  // 2^31 - 1 bytes
+  exr += "a few bytes";
+  auto header =
+      ReadImageHeader(std::span(reinterpret_cast<const uint8_t*>(exr.data()), exr.size()));
+  ASSERT_FALSE(header.ok());
+  EXPECT_NE(header.status().message().find("declares 2147483647 bytes, more than the file holds"),
+            std::string::npos)
+      << header.status();
+
+  auto bytes = EncodeExr(Image(3, 5, Rgba{0.25f, 0.5f, 1.0f, 1.0f}), ExrOptions{});
+  ASSERT_TRUE(bytes.ok()) << bytes.status();
+  auto real =
+      ReadImageHeader(std::span(reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()));
+  ASSERT_TRUE(real.ok()) << real.status();
+  EXPECT_EQ(real->width, 3);
+  EXPECT_EQ(real->height, 5);
 }
 
 }  // namespace
