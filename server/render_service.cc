@@ -49,7 +49,6 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
 
 void RenderService::TrimStore() {
   if (const uint64_t evicted = textures_.Trim(limits_.max_store_bytes); evicted > 0) {
-    store_evicted_ += evicted;
     spdlog::info("texture store over its budget of {} MiB (--max-store-mb): {} entries evicted",
                  limits_.max_store_bytes >> 20, evicted);
   }
@@ -113,7 +112,7 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
   // The announced bytes are reserved before they are allocated, and held while they stream.
   auto reservation = uploads_in_flight_.Reserve(total);
   if (!reservation.ok()) return finish(reservation.status(), sha256, false);
-  const std::unique_ptr<IdleWatchdog::Watch> watch = upload_watchdog_.Start(context);
+  std::unique_ptr<IdleWatchdog::Watch> watch = upload_watchdog_.Start(context);
   std::string content;
   content.reserve(total);
   do {
@@ -128,7 +127,9 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
           sha256, false);
     content += message.chunk();
   } while (reader->Read(&message));
-  if (watch->Expired())
+  const bool idle = watch->Expired();
+  watch.reset();  // what follows (checks, the store) is the server's time, not the client's
+  if (idle)
     return finish(absl::DeadlineExceededError(absl::StrCat(
                       "upload idle for ", upload_watchdog_.idle_limit().count() / 1000.0,
                       " s after ", content.size(), " of ", total,
@@ -425,7 +426,7 @@ grpc::Status RenderService::GetServerInfo(grpc::ServerContext* context,
   budgets.set_upload_budget_bytes(uploads_in_flight_.limit());
   budgets.set_store_bytes(textures_.bytes());
   budgets.set_store_budget_bytes(limits_.max_store_bytes);
-  budgets.set_store_entries_evicted(store_evicted_.load());
+  budgets.set_store_entries_evicted(textures_.evicted());
   if (const auto& store = textures_.shared()) {
     const StoreCounters counters = store->counters();
     v1::StoreInfo& info = *response->mutable_store();

@@ -84,7 +84,6 @@ class RenderService final : public v1::Render::Service {
   const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   std::atomic<uint64_t> next_request_id_{1};
   std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0}, frames_skipped_{0};
-  std::atomic<uint64_t> store_evicted_{0};
   // Raytraced scenes' BVH and tables (about 100 MB per 1024² raster texture): the last few.
   static constexpr size_t kTracedScenes = 4;
   TracedSceneCache traced_;

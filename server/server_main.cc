@@ -204,6 +204,7 @@ int Run() {
                                  : memory_bytes / 8;
   }
   TextureStore textures(shared_store);
+  textures.SetBudget(limits.max_store_bytes);
   // A store left over its budget (by a process with a larger one) is trimmed at start.
   if (const uint64_t evicted = textures.Trim(limits.max_store_bytes); evicted > 0)
     spdlog::info("texture store over --max-store-mb at start: {} entries evicted", evicted);

@@ -37,11 +37,21 @@ absl::Status TextureStore::Put(const std::string& sha256, std::string bytes) {
       return absl::Status(entry.status().code(),
                           absl::StrCat("texture store: ", entry.status().message()));
   }
-  std::lock_guard lock(mutex_);
-  if (shared_)
+  if (shared_) {
+    std::lock_guard lock(mutex_);
     known_.insert(sha256);
-  else
-    textures_[sha256] = {std::make_shared<const std::string>(std::move(bytes)), ++clock_};
+    return absl::OkStatus();
+  }
+  const uint64_t size = bytes.size();
+  if (budget_bytes_ > 0 && size > budget_bytes_)
+    return absl::ResourceExhaustedError(
+        absl::StrCat("an upload of ", size >> 20,
+                     " MiB does not fit in the texture store's budget "
+                     "of ",
+                     budget_bytes_ >> 20, " MiB (--max-store-mb)"));
+  if (budget_bytes_ > 0) Trim(budget_bytes_ - size);  // room first
+  std::lock_guard lock(mutex_);
+  textures_[sha256] = {std::make_shared<const std::string>(std::move(bytes)), ++clock_};
   return absl::OkStatus();
 }
 
@@ -78,6 +88,18 @@ size_t TextureStore::size() const {
   return textures_.size() + known_.size();
 }
 
+void TextureStore::SetBudget(uint64_t budget_bytes) {
+  if (shared_) shared_->SetBudget(budget_bytes);
+  std::lock_guard lock(mutex_);
+  budget_bytes_ = budget_bytes;
+}
+
+uint64_t TextureStore::evicted() const {
+  if (shared_) return shared_->counters().evicted;
+  std::lock_guard lock(mutex_);
+  return evicted_;
+}
+
 uint64_t TextureStore::bytes() const {
   if (shared_) return shared_->TotalBytes();
   std::lock_guard lock(mutex_);
@@ -108,6 +130,7 @@ uint64_t TextureStore::Trim(uint64_t budget_bytes) {
     textures_.erase(oldest);
     ++evicted;
   }
+  evicted_ += evicted;
   return evicted;
 }
 

@@ -33,6 +33,11 @@ class TextureStore {
   // Evicts least recently used uploads (and, in the shared store, tables) until bytes() is at
   // most `budget_bytes`; returns how many entries went. Scenes built from them keep their pixels.
   uint64_t Trim(uint64_t budget_bytes);
+  // Keeps the store within `budget_bytes` as entries come (uploads, and the tables the engine
+  // publishes): room is made before an entry is written.
+  void SetBudget(uint64_t budget_bytes);
+  // Entries evicted to keep within the budget (by this process).
+  uint64_t evicted() const;
   const std::shared_ptr<const SharedStore>& shared() const { return shared_; }
 
  private:
@@ -45,6 +50,8 @@ class TextureStore {
     uint64_t last_use = 0;
   };
   mutable uint64_t clock_ = 0;
+  uint64_t budget_bytes_ = 0;
+  uint64_t evicted_ = 0;                                  // memory only
   mutable std::map<std::string, MemoryUpload> textures_;  // memory only
   mutable std::set<std::string> known_;                   // uploads seen in the shared store
 };

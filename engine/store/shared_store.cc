@@ -140,8 +140,21 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
   const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
                           std::chrono::steady_clock::now() - start)
                           .count();
-  if (auto status = writer->Publish(*payload, static_cast<uint64_t>(micros), path); !status.ok())
-    return status;
+  {
+    // Room first: within this process, trim and publish one entry at a time, so the store's
+    // files never exceed the budget (other processes sharing the directory trim for themselves).
+    std::lock_guard publishing(publish_mutex_);
+    if (const uint64_t budget = budget_bytes_.load(); budget > 0) {
+      const uint64_t bytes = payload->size() + 4096;  // the entry's header and alignment
+      if (bytes > budget)
+        return absl::ResourceExhaustedError(absl::StrCat(
+            "an entry of ", payload->size() >> 20, " MiB does not fit in the texture store's ",
+            "budget of ", budget >> 20, " MiB"));
+      Trim(budget - bytes);
+    }
+    if (auto status = writer->Publish(*payload, static_cast<uint64_t>(micros), path); !status.ok())
+      return status;
+  }
   auto published = MapFile(path, key, kind);
   if (!published.ok()) return published.status();
   MarkUsed(path);
@@ -180,6 +193,9 @@ void SharedStore::SweepTemporaries(const std::string& only_key) const {
 }
 
 uint64_t SharedStore::TotalBytes() const {
+  // No entry of this process is written while they are counted (files deleted meanwhile are
+  // counted or not; none is counted twice), so the figure is one the store really had.
+  std::lock_guard publishing(publish_mutex_);
   uint64_t total = 0;
   std::error_code error;
   for (const auto& item : fs::directory_iterator(directory_, error)) {

@@ -110,6 +110,9 @@ class SharedStore {
   // that has an entry mapped keeps it valid (the pages live until it unmaps them); this process
   // forgets its mapping, so the memory goes when its last user does. Entries being built stay.
   StoreTrim Trim(uint64_t budget_bytes) const;
+  // With a budget (0: none), each entry this process publishes first trims the store to leave
+  // room for it, and one larger than the budget is refused with ResourceExhausted.
+  void SetBudget(uint64_t budget_bytes) const { budget_bytes_ = budget_bytes; }
   StoreCounters counters() const;
 
  private:
@@ -131,6 +134,8 @@ class SharedStore {
   // One mapping per key and process: attaching twice costs nothing and checksums once.
   mutable std::map<std::string, std::shared_ptr<const StoreEntry>, std::less<>> mapped_;
   mutable std::atomic<uint64_t> attached_{0}, built_{0}, rejected_{0}, evicted_{0};
+  mutable std::atomic<uint64_t> budget_bytes_{0};
+  mutable std::mutex publish_mutex_;
 };
 
 }  // namespace aperture

@@ -95,6 +95,22 @@ TEST_F(SharedStoreTest, TrimEvictsTheLeastRecentlyUsedAndMappedEntriesStayValid)
   EXPECT_FALSE(store->Has("a", EntryKind::kBlob));
 }
 
+TEST_F(SharedStoreTest, WithABudgetRoomIsMadeBeforeAnEntryIsWritten) {
+  auto store = OpenStore();
+  const std::string payload(100000, 'y');
+  store->SetBudget(250000);  // two entries and their headers, not three
+  for (const std::string key : {"a", "b", "c"}) {
+    ASSERT_TRUE(store->Put(key, EntryKind::kBlob, Bytes(payload + key)).ok());
+    EXPECT_LE(store->TotalBytes(), 250000u);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_FALSE(store->Has("a", EntryKind::kBlob));
+  EXPECT_TRUE(store->Has("c", EntryKind::kBlob));
+  auto big = store->Put("big", EntryKind::kBlob, Bytes(std::string(300000, 'z')));
+  ASSERT_FALSE(big.ok());
+  EXPECT_TRUE(absl::IsResourceExhausted(big.status())) << big.status();
+}
+
 TEST_F(SharedStoreTest, MissingKeyIsNotFoundAndBadKeysAreRefused) {
   auto store = OpenStore();
   EXPECT_TRUE(absl::IsNotFound(store->Attach("nothing", EntryKind::kBlob).status()));
