@@ -16,7 +16,6 @@
 #include <OpenImageIO/imageio.h>
 // clang-format on
 #include <grpcpp/grpcpp.h>
-#include <zlib.h>
 
 #include <atomic>
 #include <chrono>
@@ -38,6 +37,7 @@
 #include "scene/camera.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
+#include "support/hostile_inputs.h"
 
 namespace aperture {
 namespace {
@@ -72,23 +72,6 @@ std::string EncodePng(int width, int height, uint32_t seed) {
   png->write_image(OIIO::TypeDesc::UINT8, texels.data());
   png->close();
   return std::string(out.begin(), out.end());
-}
-
-// A PNG whose header declares `width` x `height` and whose data is a few bytes.
-std::string PngDeclaring(uint32_t width, uint32_t height) {
-  auto be32 = [](uint32_t v) {
-    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
-                       static_cast<char>(v >> 8), static_cast<char>(v)};
-  };
-  auto chunk = [&](const std::string& type, const std::string& data) {
-    const std::string body = type + data;
-    return be32(static_cast<uint32_t>(data.size())) + body +
-           be32(static_cast<uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(body.data()),
-                                            static_cast<uInt>(body.size()))));
-  };
-  return std::string("\x89PNG\r\n\x1a\n", 8) +
-         chunk("IHDR", be32(width) + be32(height) + std::string{8, 2, 0, 0, 0}) +
-         chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + chunk("IEND", "");
 }
 
 class Soak {
@@ -208,32 +191,11 @@ class Soak {
     return stub.RenderFrame(&context, request, response);
   }
 
-  static v1::LoadSceneRequest TexturedScene(const std::string& sha256, bool aniso) {
-    v1::LoadSceneRequest request;
-    v1::Scene& scene = *request.mutable_scene();
-    scene.add_textures()->set_id("t");
-    (*request.mutable_texture_sha256())["t"] = sha256;
-    v1::Material& material = *scene.add_materials();
-    material.set_id("m");
-    material.set_texture_id("t");
-    if (aniso) material.set_filter(v1::TEXTURE_FILTER_ANISO);
-    v1::Mesh& mesh = *scene.add_meshes();
-    mesh.set_id("ground");
-    mesh.set_material_id("m");
-    v1::Polygon& quad = *mesh.add_polygons();
-    for (auto [x, z] : {std::pair{-50, -50}, {-50, 50}, {50, 50}, {50, -50}}) {
-      v1::Vec3& v = *quad.add_vertices();
-      v.set_x(x);
-      v.set_z(z);
-    }
-    return request;
-  }
-
   void Client(int index, Clock::time_point end) {
     auto stub = v1::Render::NewStub(channel_);
     std::mt19937 rng(1000 + index);
-    const std::string bomb16k = PngDeclaring(16384, 16384);
-    const std::string bomb8k = PngDeclaring(8192, 8192);
+    const std::string bomb16k = testing::PngDeclaring(16384, 16384);
+    const std::string bomb8k = testing::PngDeclaring(8192, 8192);
     uint32_t churn = static_cast<uint32_t>(index) << 20;
     while (Clock::now() < end) {
       const int what = static_cast<int>(rng() % 100);
@@ -272,7 +234,8 @@ class Soak {
         const grpc::Status kept = Upload(*stub, bomb8k);
         Count("bomb-8k-upload", kept, {StatusCode::OK, StatusCode::RESOURCE_EXHAUSTED});
         if (kept.ok())
-          Count("bomb-8k-load", Load(*stub, TexturedScene(Sha256Hex(bomb8k), false), nullptr),
+          Count("bomb-8k-load",
+                Load(*stub, testing::TexturedGroundScene(Sha256Hex(bomb8k)), nullptr),
                 {StatusCode::RESOURCE_EXHAUSTED, StatusCode::NOT_FOUND});
       } else if (what < 80) {  // a stalled upload: the server must cancel it
         grpc::ClientContext context;
@@ -293,7 +256,8 @@ class Soak {
         if (!uploaded.ok()) continue;
         std::string id;
         // NOT_FOUND: the store evicted the upload before the load (other clients' churn).
-        const grpc::Status loaded = Load(*stub, TexturedScene(Sha256Hex(png), rng() % 2), &id);
+        const grpc::Status loaded =
+            Load(*stub, testing::TexturedGroundScene(Sha256Hex(png), 0, rng() % 2 == 1), &id);
         Count("churn-load", loaded,
               {StatusCode::OK, StatusCode::RESOURCE_EXHAUSTED, StatusCode::NOT_FOUND});
         if (!loaded.ok()) continue;

@@ -4,7 +4,6 @@
 #include <gmock/gmock.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <chrono>
 #include <cmath>
@@ -14,6 +13,7 @@
 
 #include "content_hash.h"
 #include "integration/service_fixture.h"
+#include "support/hostile_inputs.h"
 
 namespace aperture::testing {
 namespace {
@@ -141,24 +141,6 @@ TEST_F(HostileClientTest, APentagramIsRefusedNamingThePolygon) {
   EXPECT_THAT(status.error_message(), HasSubstr("self-intersecting"));
 }
 
-// A PNG whose header declares `width` x `height` but whose data is a few bytes: the shape of a
-// decompression bomb (the header is all OpenImageIO reads first).
-std::string PngDeclaring(uint32_t width, uint32_t height) {
-  auto be32 = [](uint32_t v) {
-    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
-                       static_cast<char>(v >> 8), static_cast<char>(v)};
-  };
-  auto chunk = [&](const std::string& type, const std::string& data) {
-    const std::string body = type + data;
-    const uint32_t crc = static_cast<uint32_t>(
-        crc32(0, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
-    return be32(static_cast<uint32_t>(data.size())) + body + be32(crc);
-  };
-  const std::string ihdr = be32(width) + be32(height) + std::string{8, 2, 0, 0, 0};  // 8-bit RGB
-  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
-         chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + chunk("IEND", "");
-}
-
 // An upload stream: the first message announces `total` bytes and carries `chunk`.
 struct OpenUpload {
   grpc::ClientContext context;
@@ -259,31 +241,6 @@ bool Stored(v1::Render::Stub& stub, const std::string& bytes) {
   return response.stored();
 }
 
-// A scene of one ground quad textured with an upload (or a checkerboard of `size`).
-v1::LoadSceneRequest TexturedScene(const std::string& upload_sha256, uint32_t checkerboard = 0) {
-  v1::LoadSceneRequest request;
-  v1::Scene& scene = *request.mutable_scene();
-  v1::Texture& texture = *scene.add_textures();
-  texture.set_id("t");
-  if (checkerboard > 0)
-    texture.mutable_checkerboard()->set_size(checkerboard);
-  else
-    (*request.mutable_texture_sha256())["t"] = upload_sha256;
-  v1::Material& material = *scene.add_materials();
-  material.set_id("m");
-  material.set_texture_id("t");
-  v1::Mesh& mesh = *scene.add_meshes();
-  mesh.set_id("ground");
-  mesh.set_material_id("m");
-  v1::Polygon& quad = *mesh.add_polygons();
-  for (auto [x, z] : {std::pair{-50, -50}, {-50, 50}, {50, 50}, {50, -50}}) {
-    v1::Vec3& v = *quad.add_vertices();
-    v.set_x(x);
-    v.set_z(z);
-  }
-  return request;
-}
-
 grpc::Status LoadRequest(v1::Render::Stub& stub, const v1::LoadSceneRequest& request,
                          v1::LoadSceneResponse* response) {
   grpc::ClientContext context;
@@ -297,7 +254,7 @@ TEST_F(HostileClientTest, APngThatDeclaresAHugeImageIsWeighedBeforeItIsDecoded) 
   const std::string bomb = PngDeclaring(8192, 8192);
   ASSERT_TRUE(UploadWhole(*stub_, bomb).ok());
   v1::LoadSceneResponse response;
-  const grpc::Status status = LoadRequest(*stub_, TexturedScene(Sha256Hex(bomb)), &response);
+  const grpc::Status status = LoadRequest(*stub_, TexturedGroundScene(Sha256Hex(bomb)), &response);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_THAT(status.error_message(), HasSubstr("1365.3 MiB"));
   EXPECT_THAT(status.error_message(), HasSubstr("loaded scenes (--max-scenes-mb), 512 MiB"));
@@ -310,7 +267,7 @@ TEST_F(HostileClientTest, ScenesPastTheirBudgetEvictTheLeastRecentlyUsed) {
   std::vector<std::string> ids;
   for (uint32_t size : {1024u, 1023u, 1022u}) {  // three different scenes of the same weight
     v1::LoadSceneResponse response;
-    ASSERT_TRUE(LoadRequest(*stub_, TexturedScene("", size), &response).ok());
+    ASSERT_TRUE(LoadRequest(*stub_, TexturedGroundScene("", size), &response).ok());
     ids.push_back(response.scene_id());
     const v1::Budgets budgets = Info().budgets();
     EXPECT_LE(budgets.scene_bytes(), budgets.scene_budget_bytes());
@@ -339,7 +296,7 @@ void HostileClientTest::CheckStoreBudget(const std::vector<std::string>& pngs) {
   ASSERT_TRUE(UploadWhole(*stub_, pngs[0]).ok());
   ASSERT_TRUE(UploadWhole(*stub_, pngs[1]).ok());
   v1::LoadSceneResponse scene;
-  ASSERT_TRUE(LoadRequest(*stub_, TexturedScene(Sha256Hex(pngs[0])), &scene).ok());
+  ASSERT_TRUE(LoadRequest(*stub_, TexturedGroundScene(Sha256Hex(pngs[0])), &scene).ok());
   ASSERT_TRUE(UploadWhole(*stub_, pngs[2]).ok());
 
   const v1::Budgets budgets = Info().budgets();
