@@ -251,14 +251,14 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
       absl::StatusOr<std::shared_ptr<const TracedScene>> traced;
       if (updated) {
         const auto build_start = Clock::now();
-        auto built = TracedScene::Build(*scene, textures_.shared());
+        auto built = TracedScene::Build(*scene, textures_.shared(), [&] { return stop(); });
         traced_build_ms = MillisecondsSince(build_start);
         if (built.ok())
           traced = std::shared_ptr<const TracedScene>(*std::move(built));
         else
           traced = built.status();
       } else {
-        traced = traced_.Get(request.scene_id(), scene, &traced_build_ms);
+        traced = traced_.Get(request.scene_id(), scene, &traced_build_ms, [&] { return stop(); });
       }
       if (!traced.ok()) {
         *frame = traced.status();

@@ -14,7 +14,8 @@ struct Holder {
 }  // namespace
 
 absl::StatusOr<std::shared_ptr<const TracedScene>> TracedSceneCache::Get(
-    const std::string& id, std::shared_ptr<const Scene> scene, double* built_ms) {
+    const std::string& id, std::shared_ptr<const Scene> scene, double* built_ms,
+    const StopRequested& stop) {
   if (built_ms != nullptr) *built_ms = 0;
   std::shared_ptr<Slot> slot;
   {
@@ -35,7 +36,8 @@ absl::StatusOr<std::shared_ptr<const TracedScene>> TracedSceneCache::Get(
   const auto start = std::chrono::steady_clock::now();
   auto holder = std::make_shared<Holder>();
   holder->scene = std::move(scene);
-  auto traced = TracedScene::Build(*holder->scene, store_);
+  // A build stopped by the frame's deadline is not kept: the next frame builds again.
+  auto traced = TracedScene::Build(*holder->scene, store_, stop);
   if (!traced.ok()) return traced.status();
   holder->traced = std::move(*traced);
   slot->traced = std::shared_ptr<const TracedScene>(holder, holder->traced.get());

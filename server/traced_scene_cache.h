@@ -26,7 +26,8 @@ class TracedSceneCache {
   // `*built_ms` (optional) is the time spent building it in this call (0 when it was cached).
   absl::StatusOr<std::shared_ptr<const TracedScene>> Get(const std::string& id,
                                                          std::shared_ptr<const Scene> scene,
-                                                         double* built_ms = nullptr);
+                                                         double* built_ms = nullptr,
+                                                         const StopRequested& stop = {});
   size_t size() const;
 
  private:

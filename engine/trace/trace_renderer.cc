@@ -318,7 +318,7 @@ absl::Status ValidateTraceOptions(const TraceOptions& options) {
 }
 
 absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
-    const Scene& scene, std::shared_ptr<const SharedStore> store) {
+    const Scene& scene, std::shared_ptr<const SharedStore> store, const StopRequested& stop) {
   std::unique_ptr<TracedScene> ts(new TracedScene(scene));
   auto rays = RayScene::Build(scene);
   if (!rays.ok()) return rays.status();
@@ -332,6 +332,8 @@ absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
   for (size_t i = 0; i < scene.textures.size(); ++i) {
     const SceneTexture& t = *scene.textures[i];
     if (!used[i] || t.pyramid == nullptr || t.pyramid->levels() == 0) continue;
+    if (stop && stop())
+      return absl::CancelledError("the summed-area tables were stopped part-built");
     const Image& base = t.pyramid->level(0);
     bool alpha = false;
     for (const Rgba& texel : base.texels()) alpha = alpha || texel.a < 1.0f;

@@ -44,8 +44,10 @@ class TracedScene {
  public:
   // With a store, each raster texture's summed-area tables come from (or go to) the machine's
   // shared store and are used in place, so every server process builds them once per machine.
+  // `stop` is asked before each texture's tables; a build stopped ends with CANCELLED.
   static absl::StatusOr<std::unique_ptr<TracedScene>> Build(
-      const Scene& scene, std::shared_ptr<const SharedStore> store = nullptr);
+      const Scene& scene, std::shared_ptr<const SharedStore> store = nullptr,
+      const StopRequested& stop = {});
 
   // Renders settings.region of the settings.width x settings.height frame (empty: all of it) on
   // settings.threads threads (0: the caller's arena). `stop` is asked between tiles; a frame

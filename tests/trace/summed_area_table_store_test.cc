@@ -69,5 +69,16 @@ TEST(SummedAreaTableStore, TracedSceneFromTheStoreRendersTheSamePixels) {
   fs::remove_all(dir);
 }
 
+// Issue 23: a raytraced frame's deadline stops the build of its summed-area tables.
+TEST(SummedAreaTableStore, AStoppedBuildIsCancelled) {
+  const CurvedTestScene test = MakeCurvedTestScene(CurvedSceneKind::kCylinder, 128);
+  auto scene = BuildScene(test.scene);
+  ASSERT_TRUE(scene.ok());
+  auto stopped = TracedScene::Build(*scene, nullptr, [] { return true; });
+  ASSERT_FALSE(stopped.ok());
+  EXPECT_TRUE(absl::IsCancelled(stopped.status())) << stopped.status();
+  EXPECT_TRUE(TracedScene::Build(*scene, nullptr, [] { return false; }).ok());
+}
+
 }  // namespace
 }  // namespace aperture
