@@ -175,7 +175,7 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
   if (!reused)
     loaded = BuildSceneFromRequest(
         *request, textures_, limits_.scene, [&] { return stop(); }, admit);
-  if (absl::IsCancelled(loaded.status()) && std::chrono::system_clock::now() > context->deadline())
+  if (absl::IsCancelled(loaded.status()) && stop.DeadlinePassed())
     loaded = absl::DeadlineExceededError(
         "the call's deadline passed while the scene was built; nothing was kept");
   if (loaded.ok()) {

@@ -33,11 +33,16 @@ class StopCheck {
   // Whether the frame's own deadline (not the call's) is what stopped it.
   bool FrameDeadlinePassed() const { return std::chrono::steady_clock::now() > frame_deadline_; }
   // Whether a deadline (the frame's or the call's), not a cancellation, is what stopped it.
+  // gRPC cancels a call when its deadline timer fires, which can be a little before this
+  // process's clock reads the deadline: a cancellation within kDeadlineSlack of it counts as
+  // the deadline.
   bool DeadlinePassed() const {
-    return FrameDeadlinePassed() || std::chrono::system_clock::now() > context_->deadline();
+    return FrameDeadlinePassed() ||
+           std::chrono::system_clock::now() + kDeadlineSlack >= context_->deadline();
   }
 
  private:
+  static constexpr std::chrono::milliseconds kDeadlineSlack{10};
   static constexpr int64_t kInterval =
       std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(1))
           .count();
