@@ -67,7 +67,9 @@ growth=$(awk -v a="$rss_minute1" -v b="$rss_end" 'BEGIN { printf "%.1f", (b - a)
 echo "server RSS: minute 1 $((rss_minute1 / 1024)) MiB, minute $minutes $((rss_end / 1024)) MiB ($growth %)"
 echo "store: largest $max_store bytes ($((max_store / 1024 / 1024)) MiB), sampled every 2 s from aperture info; budget $budget bytes ($store_mb MiB)"
 cat "$work/soak.txt"
-echo "server log: $(grep -c 'entries evicted' "$work/server.log" || true) store trims, $(grep -c 'upload idle' "$work/server.log" || true) idle uploads cancelled"
+evicted=$("$build/client/aperture" info --server "$address" --deadline-s 10 2>/dev/null |
+  sed -n 's/.*"storeEntriesEvicted": "\([0-9]*\)".*/\1/p' || true)
+echo "store entries evicted: ${evicted:-0}; server log: $(grep -c 'upload idle' "$work/server.log" || true) idle uploads cancelled"
 awk -v g="$growth" 'BEGIN { exit !(g > 10) }' && { echo "bench-hostile: RSS grew by more than 10 %"; status=1; }
 [ "$max_store" -le "$budget" ] || { echo "bench-hostile: the store went over its budget"; status=1; }
 exit "$status"

@@ -47,13 +47,6 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
                          limits.max_upload_inflight_bytes),
       upload_watchdog_(limits.upload_idle) {}
 
-void RenderService::TrimStore() {
-  if (const uint64_t evicted = textures_.Trim(limits_.max_store_bytes); evicted > 0) {
-    spdlog::info("texture store over its budget of {} MiB (--max-store-mb): {} entries evicted",
-                 limits_.max_store_bytes >> 20, evicted);
-  }
-}
-
 absl::Status RenderService::Authorize(const grpc::ServerContext& context, const char* rpc) {
   if (auth_ == nullptr) return absl::OkStatus();
   absl::Status status = auth_->Check(context);
@@ -140,9 +133,7 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
                                                           " bytes, received ", content.size())),
                   sha256, false);
   response->set_size(content.size());
-  const absl::Status kept = textures_.Put(sha256, std::move(content));
-  if (kept.ok()) TrimStore();
-  return finish(kept, sha256, false);
+  return finish(textures_.Put(sha256, std::move(content)), sha256, false);
 }
 
 grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
@@ -179,10 +170,8 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
     loaded = absl::DeadlineExceededError(
         "the call's deadline passed while the scene was built; nothing was kept");
   if (loaded.ok()) {
-    if (!reused) {
-      scenes_.Put(loaded->id, loaded->scene, loaded->default_camera, std::move(room));
-      TrimStore();  // the tables it built may have filled the store
-    }
+    // The tables it built made room for themselves in the store (TextureStore::SetBudget).
+    if (!reused) scenes_.Put(loaded->id, loaded->scene, loaded->default_camera, std::move(room));
     response->set_scene_id(loaded->id);
     response->set_polygons(static_cast<uint32_t>(loaded->scene->polygons.size()));
     response->set_textures(static_cast<uint32_t>(loaded->scene->textures.size()));
@@ -276,7 +265,6 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
                : frame->status();
   // Raytrace: setup is the corner rays (plus building the scene's BVH and tables on its first
   // raytraced frame), raster the pixels' fragments and subdivision.
-  if (traced_build_ms > 0) TrimStore();  // its summed-area tables went to the store
   timings.set_setup_ms((*frame)->stats.setup_ms + traced_build_ms);
   timings.set_raster_ms((*frame)->stats.raster_ms);
   ExrOptions exr = job->exr;

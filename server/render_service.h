@@ -72,8 +72,6 @@ class RenderService final : public v1::Render::Service {
 
   // OK, or UNAUTHENTICATED (logged with the peer, never the token) when tokens are required.
   absl::Status Authorize(const grpc::ServerContext& context, const char* rpc);
-  // Keeps the texture store within --max-store-mb, least recently used entries first.
-  void TrimStore();
 
   const ServiceLimits limits_;
   const AuthTokens* const auth_;
