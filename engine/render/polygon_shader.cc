@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/footprint_kernels.h"
+
 namespace aperture {
 
 PolygonShader::PolygonShader(const Scene& scene, const FrameGeometry& geometry,
                              const ShadingOptions& options)
-    : scene_(scene), geo_(geometry), aperture_(options.texture_aperture) {
+    : scene_(scene),
+      geo_(geometry),
+      aperture_(options.texture_aperture),
+      row_footprints_(BestRowFootprints()) {
   for (const Material& m : scene.materials) {
     MaterialState state{m.base_color, nullptr};
     if (m.texture >= 0) {
@@ -25,24 +30,7 @@ PolygonShader::PolygonShader(const Scene& scene, const FrameGeometry& geometry,
 }
 
 double PolygonShader::InvDepth(int index, double x, double y) const {
-  return std::max(geo_.polygons[index].inv_depth.At(x, y), min_inv_depth_[index]);
-}
-
-TextureFootprint PolygonShader::Footprint(const ScreenPolygon& p, double w, double x,
-                                          double y) const {
-  // seed 000, eq. 1: U = (A_u x + B_u y + C_u) / (A_z x + B_z y + C_z).
-  const double inv_w = 1.0 / w;
-  const double u = p.u_num.At(x, y) * inv_w, v = p.v_num.At(x, y) * inv_w;
-  // seed 000, eq. 2: dU/dx = (A_u - A_z U) / z0, scaled by the aperture a.
-  const double s = aperture_ * inv_w;
-  TextureFootprint f;
-  f.u = u - std::floor(u);
-  f.v = v - std::floor(v);
-  f.dudx = static_cast<float>((p.u_num.a - p.inv_depth.a * u) * s);
-  f.dvdx = static_cast<float>((p.v_num.a - p.inv_depth.a * v) * s);
-  f.dudy = static_cast<float>((p.u_num.b - p.inv_depth.b * u) * s);
-  f.dvdy = static_cast<float>((p.v_num.b - p.inv_depth.b * v) * s);
-  return f;
+  return InvDepthAt(geo_.polygons[index], min_inv_depth_[index], x, y);
 }
 
 Rgba PolygonShader::Finish(const ScreenPolygon& p, Rgba colour, double w, double x,
@@ -62,12 +50,14 @@ Rgba PolygonShader::Shade(int index, double x, double y) const {
   const MaterialState& mat = materials_[p.material];
   const double w = InvDepth(index, x, y);
   Rgba colour = mat.base;
-  if (mat.sampler != nullptr) colour = colour * mat.sampler->Sample(Footprint(p, w, x, y));
+  if (mat.sampler != nullptr)
+    colour = colour * mat.sampler->Sample(FootprintAt(p, aperture_, w, x, y));
   return Finish(p, colour, w, x, y);
 }
 
-template <typename PointAt>
-void PolygonShader::ShadeBatched(int index, int count, PointAt point_at, Rgba* out) const {
+template <typename PointAt, typename FillFootprints>
+void PolygonShader::ShadeBatched(int index, int count, PointAt point_at,
+                                 FillFootprints fill_footprints, Rgba* out) const {
   const ScreenPolygon& p = geo_.polygons[index];
   const MaterialState& mat = materials_[p.material];
   if (mat.sampler == nullptr) {
@@ -77,29 +67,20 @@ void PolygonShader::ShadeBatched(int index, int count, PointAt point_at, Rgba* o
     }
     return;
   }
-  constexpr int kBatch = 64;
-  // Scratch left uninitialised: zeroing it (the members' default initialisers) cost an eighth of
-  // an interior pixel's shading.
-  union Scratch {
-    Scratch() {}
-    TextureFootprint footprints[kBatch];
-  } scratch;
+  constexpr int kBatch = FootprintBatch::kMax;
+  // Scratch left uninitialised: zeroing it cost an eighth of an interior pixel's shading.
+  FootprintBatch footprints;
   union Texels {
     Texels() {}
     Rgba texels[kBatch];
   } sampled;
-  TextureFootprint* footprints = scratch.footprints;
   Rgba* texels = sampled.texels;
   double inv_depths[kBatch];
   const bool fog = scene_.fog_density > 0;
   for (int first = 0; first < count; first += kBatch) {
     const int n = std::min(kBatch, count - first);
-    for (int i = 0; i < n; ++i) {
-      const Vec2 q = point_at(first + i);
-      inv_depths[i] = InvDepth(index, q.x, q.y);
-      footprints[i] = Footprint(p, inv_depths[i], q.x, q.y);
-    }
-    mat.sampler->SampleMany(footprints, texels, n);
+    fill_footprints(p, first, n, footprints, inv_depths);
+    mat.sampler->SampleBatch(footprints, texels);
     if (fog) {
       for (int i = 0; i < n; ++i) {
         const Vec2 q = point_at(first + i);
@@ -121,12 +102,27 @@ void PolygonShader::ShadeRow(int index, double x0, double y, int count, Rgba* ou
       [&](int i) {
         return Vec2{x0 + i, y};
       },
+      [&](const ScreenPolygon& p, int first, int n, FootprintBatch& footprints,
+          double* inv_depths) {
+        row_footprints_(p, min_inv_depth_[index], aperture_, RowRun{x0, y, first, n}, footprints,
+                        inv_depths);
+      },
       out);
 }
 
 void PolygonShader::ShadeMany(int index, const Vec2* points, int count, Rgba* out) const {
   ShadeBatched(
-      index, count, [&](int i) { return points[i]; }, out);
+      index, count, [&](int i) { return points[i]; },
+      [&](const ScreenPolygon& p, int first, int n, FootprintBatch& footprints,
+          double* inv_depths) {
+        for (int i = 0; i < n; ++i) {
+          const Vec2 q = points[first + i];
+          inv_depths[i] = InvDepth(index, q.x, q.y);
+          footprints.Set(i, FootprintAt(p, aperture_, inv_depths[i], q.x, q.y));
+        }
+        footprints.count = n;
+      },
+      out);
 }
 
 }  // namespace aperture

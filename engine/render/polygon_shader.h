@@ -1,10 +1,12 @@
 // Shading of one polygon at one pixel centre: perspective-correct texture coordinates and their
-// derivatives (seed 000, eq. 1-2), the texture filter, Lambert sun plus ambient, distance fog.
+// derivatives (seed 000, eq. 1-2; render/footprint_kernels.h), the texture filter, Lambert sun plus
+// ambient, distance fog.
 #pragma once
 
 #include <vector>
 
 #include "raster/projection.h"
+#include "render/footprint_kernels.h"
 #include "scene/scene.h"
 #include "texture/texture_sampler.h"
 
@@ -32,11 +34,12 @@ class PolygonShader {
 
  private:
   double InvDepth(int index, double x, double y) const;
-  TextureFootprint Footprint(const ScreenPolygon& p, double w, double x, double y) const;
   // Light and fog on the (textured) surface colour.
   Rgba Finish(const ScreenPolygon& p, Rgba colour, double w, double x, double y) const;
-  template <typename PointAt>
-  void ShadeBatched(int index, int count, PointAt point_at, Rgba* out) const;
+  // Shades point_at(i), i < count, in batches whose footprints fill_footprints computes.
+  template <typename PointAt, typename FillFootprints>
+  void ShadeBatched(int index, int count, PointAt point_at, FillFootprints fill_footprints,
+                    Rgba* out) const;
 
   struct MaterialState {
     Rgba base;
@@ -45,6 +48,7 @@ class PolygonShader {
   const Scene& scene_;
   const FrameGeometry& geo_;
   double aperture_;
+  RowFootprintsFn row_footprints_;  // the interior's kernel (render/footprint_kernels.h)
   std::vector<MaterialState> materials_;
   std::vector<double> min_inv_depth_;  // per polygon: over its vertices, to keep extrapolation sane
 };

@@ -50,6 +50,8 @@ class AnisoSampler final : public TextureSampler {
   // selections of the group, then its texel reads), so that independent samples overlap in the
   // processor instead of waiting one after the other on their chains of dependent loads.
   void SampleMany(const TextureFootprint* in, Rgba* out, int count) const override;
+  // The same over the renderer's batches (no copy into footprint structs first).
+  void SampleBatch(const FootprintBatch& in, Rgba* out) const override;
 
   // seed 000, eq. 6-9: skewed bilinear inside one copy along slope `tg` (plain bilinear for
   // untilted copies); u, v in repeats.
@@ -66,6 +68,8 @@ class AnisoSampler final : public TextureSampler {
     bool tilt_v;
   };
   CopyLayout LayoutOf(const CopyEntry& e) const;
+  template <typename FootprintOf>
+  void SampleGroups(FootprintOf footprint_of, Rgba* out, int count) const;
   Rgba Blend(const TextureFootprint& f, const ApertureShape& shape, const CopyBlend& blend) const;
 
   PrefilteredTable table_;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "texture/trilinear_kernels.h"
+
 namespace aperture {
 namespace {
 
@@ -102,6 +104,11 @@ void BilinearSampler::SampleMany(const TextureFootprint* in, Rgba* out, int coun
 
 void TrilinearSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
   for (int i = 0; i < count; ++i) out[i] = pyramid_.Trilinear(in[i]);
+}
+
+void TrilinearSampler::SampleBatch(const FootprintBatch& in, Rgba* out) const {
+  static const TrilinearBatchFn kernel = BestTrilinearBatch();
+  kernel(pyramid_, in, out);
 }
 
 }  // namespace aperture

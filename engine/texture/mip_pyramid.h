@@ -60,6 +60,8 @@ class TrilinearSampler final : public TextureSampler {
   Rgba Sample(const TextureFootprint& f) const override { return pyramid_.Trilinear(f); }
   // The batch in one loop, the pyramid's code inlined (no virtual call per sample).
   void SampleMany(const TextureFootprint* in, Rgba* out, int count) const override;
+  // Through the fastest kernel of texture/trilinear_kernels.h: the same floats.
+  void SampleBatch(const FootprintBatch& in, Rgba* out) const override;
 
  private:
   const MipPyramid& pyramid_;

@@ -19,6 +19,8 @@ struct TextureFootprint {
   float dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
 };
 
+struct FootprintBatch;  // texture/footprint_batch.h
+
 class TextureSampler {
  public:
   virtual ~TextureSampler() = default;
@@ -27,6 +29,9 @@ class TextureSampler {
   virtual void SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
     for (int i = 0; i < count; ++i) out[i] = Sample(in[i]);
   }
+  // out[i] = Sample(in.At(i)) for i < in.count: the renderer's batches. By default through
+  // SampleMany; a mode with a SIMD kernel overrides it.
+  virtual void SampleBatch(const FootprintBatch& in, Rgba* out) const;
 };
 
 }  // namespace aperture
