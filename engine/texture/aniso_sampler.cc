@@ -10,6 +10,9 @@
 #if defined(__SSE4_1__)
 #include <smmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace aperture {
 namespace {
@@ -121,6 +124,80 @@ inline PowerOfTwoSplit SplitPowerOfTwo(double x) {
 inline double PowerOfTwo(int e) {
   return std::bit_cast<double>(static_cast<uint64_t>(1023 + e) << 52);
 }
+
+// The copy reads of BlendReads ("jobs"): one CopySample each, with its weight in the sum.
+struct ReadJobs {
+  // A group of 8 samples reads at most 16 probes and 3 copies each; rounded up to whole vectors.
+  static constexpr int kMax = 160;
+  int count = 0;
+  alignas(32) float u[kMax], v[kMax], tg[kMax];
+  alignas(32) float width[kMax], height[kMax], lambda[kMax];
+  alignas(32) uint32_t width_mask[kMax], height_mask[kMax], tilt_v[kMax];  // tilt_v: ~0u or 0
+  // Out of the kernel: the texel indices of the four reads and the three interpolation weights.
+  alignas(32) uint32_t i00[kMax], i01[kMax], i10[kMax], i11[kMax];
+  alignas(32) float w1[kMax], w2[kMax], wM[kMax];
+  // Per job, for the reads: the copy's texels, the weight and the sample it adds to.
+  const uint8_t* texels[kMax];
+  float weight[kMax];
+  int sample[kMax];
+};
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define APERTURE_HAVE_AVX2_KERNEL 1
+
+// Fetch's texel index of at(major, minor): (x, y) = (minor, major) on copies tilted to V.
+__attribute__((target("avx2"))) inline __m256i ReadIndex(__m256i major, __m256i minor, __m256i tilt,
+                                                         __m256i wmask, __m256i hmask,
+                                                         __m256i row) {
+  const __m256i x = _mm256_blendv_epi8(major, minor, tilt);
+  const __m256i y = _mm256_blendv_epi8(minor, major, tilt);
+  return _mm256_add_epi32(_mm256_mullo_epi32(_mm256_and_si256(y, hmask), row),
+                          _mm256_and_si256(x, wmask));
+}
+
+// CopySample's addresses and weights for eight jobs: the same operations in the same order.
+__attribute__((target("avx2"))) void ComputeReadsAvx2(ReadJobs& jobs) {
+  const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
+  const __m256i ione = _mm256_set1_epi32(1);
+  for (int j = 0; j < jobs.count; j += 8) {
+    const __m256 X = _mm256_sub_ps(
+        _mm256_mul_ps(_mm256_load_ps(jobs.u + j), _mm256_load_ps(jobs.width + j)), half);
+    const __m256 Y = _mm256_sub_ps(
+        _mm256_mul_ps(_mm256_load_ps(jobs.v + j), _mm256_load_ps(jobs.height + j)), half);
+    const __m256i tilt = _mm256_load_si256(reinterpret_cast<const __m256i*>(jobs.tilt_v + j));
+    const __m256 tilt_f = _mm256_castsi256_ps(tilt);
+    const __m256 M = _mm256_blendv_ps(X, Y, tilt_f), m = _mm256_blendv_ps(Y, X, tilt_f);
+    const __m256 shift =
+        _mm256_mul_ps(_mm256_load_ps(jobs.lambda + j), _mm256_load_ps(jobs.tg + j));
+    const __m256 M0 = _mm256_floor_ps(M), fM = _mm256_sub_ps(M, M0);
+    const __m256 m1 = _mm256_sub_ps(m, _mm256_mul_ps(fM, shift));
+    const __m256 m2 = _mm256_add_ps(m, _mm256_mul_ps(_mm256_sub_ps(one, fM), shift));
+    const __m256 m1f = _mm256_floor_ps(m1), m2f = _mm256_floor_ps(m2);
+    const __m256i a = _mm256_cvttps_epi32(M0), b1 = _mm256_cvttps_epi32(m1f),
+                  b2 = _mm256_cvttps_epi32(m2f);
+    const __m256i wmask = _mm256_load_si256(reinterpret_cast<const __m256i*>(jobs.width_mask + j));
+    const __m256i hmask = _mm256_load_si256(reinterpret_cast<const __m256i*>(jobs.height_mask + j));
+    const __m256i row = _mm256_add_epi32(wmask, ione);
+    const __m256i a1 = _mm256_add_epi32(a, ione);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i00 + j),
+                       ReadIndex(a, b1, tilt, wmask, hmask, row));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i01 + j),
+                       ReadIndex(a, _mm256_add_epi32(b1, ione), tilt, wmask, hmask, row));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i10 + j),
+                       ReadIndex(a1, b2, tilt, wmask, hmask, row));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i11 + j),
+                       ReadIndex(a1, _mm256_add_epi32(b2, ione), tilt, wmask, hmask, row));
+    _mm256_store_ps(jobs.w1 + j, _mm256_sub_ps(m1, m1f));
+    _mm256_store_ps(jobs.w2 + j, _mm256_sub_ps(m2, m2f));
+    _mm256_store_ps(jobs.wM + j, fM);
+  }
+}
+
+bool HaveAvx2() { return __builtin_cpu_supports("avx2"); }
+#else
+void ComputeReadsAvx2(ReadJobs&) {}
+bool HaveAvx2() { return false; }
+#endif
 
 }  // namespace
 
@@ -287,7 +364,12 @@ AnisoSampler::CopyLayout AnisoSampler::LayoutOf(const CopyEntry& e) const {
 
 AnisoSampler::AnisoSampler(PrefilteredTable table) : table_(std::move(table)) {
   layouts_.reserve(table_.directory().size());
-  for (const CopyEntry& e : table_.directory()) layouts_.push_back(LayoutOf(e));
+  read_kernel_ = HaveAvx2();
+  for (const CopyEntry& e : table_.directory()) {
+    layouts_.push_back(LayoutOf(e));
+    // The kernel's texel indices are 32-bit.
+    if (uint64_t{e.width} * e.height >= (uint64_t{1} << 31)) read_kernel_ = false;
+  }
 }
 
 Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg) const {
@@ -316,7 +398,74 @@ void AnisoSampler::SampleGroups(FootprintOf footprint_of, Rgba* out, int count) 
       shapes[i] = ApertureFromFootprint(footprints[i], table_.size());
       blends[i] = SelectCopies(table_, shapes[i]);
     }
+    if (read_kernel_) {
+      BlendReads(footprints, shapes, blends, n, out + first);
+      continue;
+    }
     for (int i = 0; i < n; ++i) out[first + i] = Blend(footprints[i], shapes[i], blends[i]);
+  }
+}
+
+void AnisoSampler::BlendReads(const TextureFootprint* f, const ApertureShape* shapes,
+                              const CopyBlend* blends, int n, Rgba* out) const {
+  ReadJobs jobs;  // uninitialised arrays: each job is written before the kernel reads it
+  auto add = [&](int sample, const CopyLayout& c, float u, float v, float tg, float weight) {
+    const int j = jobs.count++;
+    jobs.u[j] = u, jobs.v[j] = v, jobs.tg[j] = tg;
+    jobs.width[j] = c.width, jobs.height[j] = c.height, jobs.lambda[j] = c.lambda;
+    jobs.width_mask[j] = c.width_mask, jobs.height_mask[j] = c.height_mask;
+    jobs.tilt_v[j] = c.tilt_v ? ~0u : 0u;
+    jobs.texels[j] = c.texels, jobs.weight[j] = weight, jobs.sample[j] = sample;
+  };
+  // Blend's reads in Blend's order: the magnified base; or the probes, then the copies.
+  const float inv_size = 1.0f / table_.size();
+  for (int i = 0; i < n; ++i) {
+    const CopyBlend& blend = blends[i];
+    const float u = static_cast<float>(f[i].u), v = static_cast<float>(f[i].v);
+    if (blend.magnify) {
+      add(i, layouts_[0], u, v, 0.0f, 1.0f / 255.0f);
+      continue;
+    }
+    const float tg = static_cast<float>(shapes[i].tg);
+    if (blend.probes > 0) {  // BaseProbes
+      const float step = blend.probe_step * inv_size;
+      const float first = -0.5f * static_cast<float>(blend.probes - 1) * step;
+      const float w = blend.probe_weight / 255.0f;
+      const bool along_u = shapes[i].axis == TiltAxis::kU;
+      for (int k = 0; k < blend.probes; ++k) {
+        const float major = first + static_cast<float>(k) * step, minor = major * tg;
+        add(i, layouts_[0], u + (along_u ? major : minor), v + (along_u ? minor : major), 0.0f, w);
+      }
+    }
+    for (int c = 0; c < blend.count; ++c) {
+      if (blend.weight[c] == 0.0f) continue;
+      add(i, layouts_[blend.copy[c]], u, v, tg, blend.weight[c] / 255.0f);
+    }
+  }
+  // Whole vectors: the padding repeats the first job (its results are not read).
+  const int jobs_count = jobs.count;
+  while (jobs.count % 8 != 0) {
+    const int j = jobs.count++;
+    jobs.u[j] = jobs.u[0], jobs.v[j] = jobs.v[0], jobs.tg[j] = jobs.tg[0];
+    jobs.width[j] = jobs.width[0], jobs.height[j] = jobs.height[0];
+    jobs.lambda[j] = jobs.lambda[0], jobs.width_mask[j] = jobs.width_mask[0];
+    jobs.height_mask[j] = jobs.height_mask[0], jobs.tilt_v[j] = jobs.tilt_v[0];
+  }
+  ComputeReadsAvx2(jobs);
+  // The reads and sums, sample by sample in job order (CopySample's Mix, then AddScaled).
+  int j = 0;
+  for (int i = 0; i < n; ++i) {
+    V4 sum = Zero();
+    for (; j < jobs_count && jobs.sample[j] == i; ++j) {
+      const uint8_t* t = jobs.texels[j];
+      const V4 r = Mix(Mix(LoadTexel(t + 4 * size_t{jobs.i00[j]}),
+                           LoadTexel(t + 4 * size_t{jobs.i01[j]}), jobs.w1[j]),
+                       Mix(LoadTexel(t + 4 * size_t{jobs.i10[j]}),
+                           LoadTexel(t + 4 * size_t{jobs.i11[j]}), jobs.w2[j]),
+                       jobs.wM[j]);
+      sum = AddScaled(sum, r, jobs.weight[j]);
+    }
+    out[i] = ToRgba(sum);
   }
 }
 

@@ -68,12 +68,17 @@ class AnisoSampler final : public TextureSampler {
     bool tilt_v;
   };
   CopyLayout LayoutOf(const CopyEntry& e) const;
+  // The copy reads of a group of samples (Blend's, in its order), their addresses and weights
+  // computed eight at a time by an AVX2 kernel; the same floats as Blend.
+  void BlendReads(const TextureFootprint* f, const ApertureShape* shapes, const CopyBlend* blends,
+                  int n, Rgba* out) const;
   template <typename FootprintOf>
   void SampleGroups(FootprintOf footprint_of, Rgba* out, int count) const;
   Rgba Blend(const TextureFootprint& f, const ApertureShape& shape, const CopyBlend& blend) const;
 
   PrefilteredTable table_;
   std::vector<CopyLayout> layouts_;
+  bool read_kernel_ = false;  // BlendReads: AVX2 present and every copy under 2^31 texels
 };
 
 }  // namespace aperture

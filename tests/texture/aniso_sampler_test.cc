@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
+#include "texture/footprint_batch.h"
 #include "texture/prefiltered_table_builder.h"
 #include "texture/reference_sampler.h"
 
@@ -324,7 +326,7 @@ TEST_F(AnisoSamplerTest, NarrowFootprintsInEveryDirectionStayCloseToTheReference
   EXPECT_LT(worst, 0.015);
 }
 
-TEST_F(AnisoSamplerTest, SampleManyEqualsSampleBitForBit) {
+TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
   // Random texels; footprints of every class (magnification, degenerate, three copies, both
   // tilt axes, the frozen region), anywhere in the plane (wrap), in a batch of 1001 (not a
   // multiple of the sampler's groups).
@@ -344,12 +346,24 @@ TEST_F(AnisoSamplerTest, SampleManyEqualsSampleBitForBit) {
   for (TextureFootprint& f : in) f = {pos(rng), pos(rng), d(), d(), d(), d()};
   std::vector<Rgba> out(in.size());
   sampler.SampleMany(in.data(), out.data(), static_cast<int>(in.size()));
-  int differing = 0;
+  // And through the renderer's batches (footprint arrays of up to 64).
+  std::vector<Rgba> batched(in.size());
+  for (size_t first = 0; first < in.size(); first += FootprintBatch::kMax) {
+    FootprintBatch batch;
+    batch.count = static_cast<int>(std::min<size_t>(FootprintBatch::kMax, in.size() - first));
+    for (int i = 0; i < batch.count; ++i) batch.Set(i, in[first + i]);
+    sampler.SampleBatch(batch, &batched[first]);
+  }
+  int differing = 0, differing_batched = 0, probed = 0;
   for (size_t i = 0; i < in.size(); ++i) {
     const Rgba a = sampler.Sample(in[i]);
-    if (a.r != out[i].r || a.g != out[i].g || a.b != out[i].b || a.a != out[i].a) ++differing;
+    if (std::memcmp(&a, &out[i], sizeof(Rgba)) != 0) ++differing;
+    if (std::memcmp(&a, &batched[i], sizeof(Rgba)) != 0) ++differing_batched;
+    probed += SelectCopies(*table_, ApertureFromFootprint(in[i], kN)).probes > 0;
   }
   EXPECT_EQ(differing, 0);
+  EXPECT_EQ(differing_batched, 0);
+  EXPECT_GT(probed, 50);  // the base probes of thin apertures are among the reads compared
 }
 
 }  // namespace
