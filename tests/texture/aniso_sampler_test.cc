@@ -344,6 +344,12 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
   };
   std::vector<TextureFootprint> in(1001);
   for (TextureFootprint& f : in) f = {pos(rng), pos(rng), d(), d(), d(), d()};
+  // And footprints many periods wide (the whole-period copies, H up to the table's cap).
+  std::uniform_real_distribution<double> logd_wide(8, 20);
+  for (int i = 0; i < 100; ++i) {
+    const float wide = float(std::exp2(logd_wide(rng)) / kN);
+    in[10 * i].dudx = wide, in[10 * i].dvdy = wide * float(std::exp2(-logd(rng) / 4));
+  }
   std::vector<Rgba> out(in.size());
   sampler.SampleMany(in.data(), out.data(), static_cast<int>(in.size()));
   // And through the renderer's batches (footprint arrays of up to 64).
