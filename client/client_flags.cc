@@ -22,7 +22,8 @@ ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
 ABSL_FLAG(int, split, 0,
           "render: cut the frame into this many regions of equal predicted cost (PlanRegions) "
           "and render them on --servers at once, then assemble one EXR (0: one server)");
-ABSL_FLAG(std::string, scene, "demo", "'demo' (built-in airfield) or a scene JSON file");
+ABSL_FLAG(std::string, scene, "demo",
+          "'demo' (built-in airfield), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
           "or 0,1.7,0,0,0,0 for a scene file");

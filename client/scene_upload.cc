@@ -2,6 +2,7 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "channel.h"
 #include "client_flags.h"
+#include "gltf_import.h"
 #include "grpc_status.h"
 #include "texture_upload.h"
 
@@ -29,6 +31,13 @@ bool IsBuiltinScene(const std::string& argument) {
 }
 
 absl::StatusOr<v1::Scene> ReadScene(const std::string& argument) {
+  if (IsGltfPath(argument)) {  // a glTF model: its images are uploaded as a scene file's are
+    auto model = ImportGltf(argument);
+    if (!model.ok()) return model.status();
+    for (const std::string& note : model->notes)
+      std::fprintf(stderr, "aperture: %s: %s\n", argument.c_str(), note.c_str());
+    return std::move(model->scene);
+  }
   auto json = ReadFile(argument);
   if (!json.ok()) return json.status();
   v1::Scene scene;

@@ -1,12 +1,14 @@
 #include "scene/scene_file.h"
 
 #include <google/protobuf/util/json_util.h>
+#include <spdlog/spdlog.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
+#include "gltf_import.h"
 #include "scene/scene_builder.h"
 
 namespace aperture {
@@ -23,6 +25,12 @@ absl::StatusOr<v1::Scene> ParseSceneJson(const std::string& json) {
 }
 
 absl::StatusOr<v1::Scene> ReadSceneFile(const std::string& path) {
+  if (IsGltfPath(path)) {
+    auto model = ImportGltf(path);
+    if (!model.ok()) return model.status();
+    for (const std::string& note : model->notes) spdlog::warn("{}: {}", path, note);
+    return std::move(model->scene);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) return absl::NotFoundError(absl::StrCat("cannot open scene file '", path, "'"));
   std::ostringstream text;

@@ -1,4 +1,5 @@
-// Scene files: the proto3 JSON mapping of aperture.v1.Scene, parsed by protobuf's own parser.
+// Scene files: the proto3 JSON mapping of aperture.v1.Scene, parsed by protobuf's own parser, and
+// glTF models.
 #pragma once
 
 #include <memory>
@@ -13,6 +14,8 @@ namespace aperture {
 
 // Parses JSON text into the proto (unknown fields are errors).
 absl::StatusOr<v1::Scene> ParseSceneJson(const std::string& json);
+// A scene JSON file, or a glTF model (.gltf, .glb; import/gltf_import.h), whose notes on what is
+// not drawn are logged as warnings.
 absl::StatusOr<v1::Scene> ReadSceneFile(const std::string& path);
 std::string SceneToJson(const v1::Scene& scene);
 

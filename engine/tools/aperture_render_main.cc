@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "absl/flags/flag.h"
@@ -13,10 +14,12 @@
 #include "absl/flags/usage.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 #include "cli_usage.h"
 #include "cost/calibration.h"
 #include "cost/frame_statistics.h"
 #include "flag_names.h"
+#include "gltf_import.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -31,15 +34,15 @@
 ABSL_FLAG(std::string, scene, "demo",
           "'demo' (built-in airfield), 'triangles' (10,000 random triangles), 'skewed' (a city "
           "block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
-          "benchmark's) or a scene JSON file");
+          "benchmark's), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
           "the machine's shared texture store (the server's default): seed 000 tables, decoded "
           "packed textures and raytrace tables are mapped from it, or built once and kept there "
           "for the next process; 'none': build them in this process only");
 ABSL_FLAG(std::string, camera, "",
-          "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
-          "or 0,1.7,0,0,0,0 for a scene file");
-ABSL_FLAG(double, fov, 60, "vertical field of view, degrees");
+          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: the demo's "
+          "approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
+ABSL_FLAG(double, fov, 0, "vertical field of view, degrees; 0: a glTF model camera's own, else 60");
 ABSL_FLAG(double, near, 0, "near plane distance (0: 0.5 for the demo, else 0.1)");
 ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT (each 1..16384)");
 ABSL_FLAG(std::string, aa, "box2", "edge anti-aliasing: box2 (2x2 box), box1 (pixel box), tent2");
@@ -115,6 +118,31 @@ int RunCalibration() {
   return 0;
 }
 
+// The camera of a glTF model named by --camera (empty: its first camera, if it has any; a
+// position spec: none, the spec is used).
+absl::StatusOr<std::optional<Camera>> ModelCamera(const std::string& path,
+                                                  const std::string& spec) {
+  if (!spec.empty() && ParseCameraSpec(spec).ok()) return std::optional<Camera>();
+  auto model = ImportGltf(path);
+  if (!model.ok()) return model.status();
+  if (spec.empty() && model->cameras.empty()) return std::optional<Camera>();
+  std::vector<std::string> names;
+  for (const GltfCamera& c : model->cameras) {
+    if (spec.empty() || c.name == spec) {
+      auto camera = CameraFromProto(c.camera);
+      if (!camera.ok())
+        return absl::Status(camera.status().code(), absl::StrCat(path, ": camera '", c.name,
+                                                                 "': ", camera.status().message()));
+      return std::optional<Camera>(*camera);
+    }
+    names.push_back(c.name);
+  }
+  return absl::InvalidArgumentError(
+      absl::StrCat("--camera '", spec, "' is neither X,Y,Z,YAW,PITCH,ROLL nor a camera of ", path,
+                   names.empty() ? std::string(" (it has none)")
+                                 : absl::StrCat(" (", absl::StrJoin(names, ", "), ")")));
+}
+
 int Run() {
   if (absl::GetFlag(FLAGS_calibrate)) return RunCalibration();
   // Options first, so that a mistake is reported before any work is done.
@@ -123,13 +151,26 @@ int Run() {
   auto builtin = FindBuiltinScene(scene_arg);
   if (!builtin.ok() && scene_arg.rfind("tris-", 0) == 0) return Fail(builtin.status());
   Camera camera = builtin.ok() ? builtin->camera : Camera{.position = {0, 1.7, 0}};
-  if (const std::string spec = absl::GetFlag(FLAGS_camera); !spec.empty()) {
+  // A glTF model's cameras go by name; the first is the default.
+  std::optional<Camera> model_camera;
+  const std::string spec = absl::GetFlag(FLAGS_camera);
+  if (!builtin.ok() && IsGltfPath(scene_arg)) {
+    auto found = ModelCamera(scene_arg, spec);
+    if (!found.ok()) return Fail(found.status());
+    model_camera = *found;
+  }
+  if (model_camera) {
+    camera = *model_camera;
+  } else if (!spec.empty()) {
     auto parsed = ParseCameraSpec(spec);
     if (!parsed.ok()) return Fail(parsed.status());
     parsed->near = camera.near;
     camera = *parsed;
   }
-  camera.vertical_fov_deg = absl::GetFlag(FLAGS_fov);
+  if (const double fov = absl::GetFlag(FLAGS_fov); fov != 0)
+    camera.vertical_fov_deg = fov;
+  else if (!model_camera)
+    camera.vertical_fov_deg = 60;
   if (absl::GetFlag(FLAGS_near) != 0) camera.near = absl::GetFlag(FLAGS_near);
   if (auto s = ValidateCamera(camera); !s.ok()) return Fail(s);
 

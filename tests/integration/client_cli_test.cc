@@ -175,6 +175,43 @@ TEST_F(ClientTest, ASceneFilesTexturesAreUploadedOnceThenFoundOnTheServer) {
   EXPECT_THAT(second.out, HasSubstr("textures uploaded 0, already on the server 1"));
 }
 
+// Issue 24: a glTF model through the client, its image uploaded content-addressed (an external
+// file from the .gltf, bytes of the buffer from the .glb), gives aperture-render's pixels.
+TEST_F(ClientTest, AGltfModelRendersAsItDoesLocally) {
+  const CommandResult made =
+      RunCommand({"/usr/bin/env", "python3",
+                  std::string(APERTURE_TESTS_DIR) + "/support/make_gltf_fixture.py", dir_.string()},
+                 60);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::vector<std::string> frame_flags = {"--size=96x64", "--camera=0,1.7,5,0,-5,0",
+                                                "--compression=none"};
+  for (const char* model : {"hangar.gltf", "hangar.glb"}) {
+    SCOPED_TRACE(model);
+    const std::string scene = (dir_ / model).string();
+    std::vector<std::string> local = {APERTURE_RENDER_BIN,
+                                      "--scene=" + scene,
+                                      "--nopreview",
+                                      "--fov=60",
+                                      "--store=none",
+                                      "-o",
+                                      (dir_ / "local.exr").string()};
+    local.insert(local.end(), frame_flags.begin(), frame_flags.end());
+    const CommandResult rendered = RunCommand(local, 60);
+    ASSERT_EQ(rendered.exit_code, 0) << rendered.err;
+    std::vector<std::string> remote = {"render", "--scene=" + scene,
+                                       "-o=" + (dir_ / "remote.exr").string()};
+    remote.insert(remote.end(), frame_flags.begin(), frame_flags.end());
+    const CommandResult sent = Client(remote);
+    ASSERT_EQ(sent.exit_code, 0) << sent.err;
+    EXPECT_THAT(sent.out, HasSubstr("textures uploaded"));
+    int w = 0, h = 0;
+    const std::vector<float> a = Pixels((dir_ / "local.exr").string(), &w, &h);
+    const std::vector<float> b = Pixels((dir_ / "remote.exr").string(), &w, &h);
+    ASSERT_FALSE(a.empty());
+    EXPECT_TRUE(a == b) << "the service's pixels differ from aperture-render's";
+  }
+}
+
 // The ground scene with a textured sphere on it: only the raytrace mode draws it.
 std::string WriteSphereScene(const std::filesystem::path& dir) {
   const std::string ground = WriteGroundScene(dir);

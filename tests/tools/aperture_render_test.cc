@@ -120,7 +120,7 @@ TEST_F(RenderCli, BadInputExitsNonZeroNamingTheProblem) {
       {"--aa box3", "unknown anti-aliasing 'box3'"},
       {"--filter sharp", "unknown texture filter 'sharp'"},
       {"--camera 1,2,3", "X,Y,Z,YAW,PITCH,ROLL"},
-      {"--fov 0", "field of view"},
+      {"--fov -5", "field of view"},
       {"--compression lzw", "unknown EXR compression"},
       {"--scene " + Path("missing.json"), "cannot open scene file"},
       {"--scene " + WriteScene("syntax.json", "{\"meshes\": ["), "scene JSON is invalid"},

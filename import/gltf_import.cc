@@ -1,0 +1,621 @@
+#include "gltf_import.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <tuple>
+
+#include "absl/strings/ascii.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+
+namespace aperture {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Column-major 4 x 4, as glTF stores node matrices.
+using Mat4 = std::array<double, 16>;
+
+constexpr Mat4 kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+Mat4 Multiply(const Mat4& a, const Mat4& b) {
+  Mat4 m{};
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) {
+      double sum = 0;
+      for (int k = 0; k < 4; ++k) sum += a[k * 4 + r] * b[c * 4 + k];
+      m[c * 4 + r] = sum;
+    }
+  return m;
+}
+
+std::array<double, 3> Apply(const Mat4& m, const std::array<double, 3>& p) {
+  std::array<double, 3> out;
+  for (int r = 0; r < 3; ++r) out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+  return out;
+}
+
+absl::Status Invalid(const std::string& where, const std::string& what) {
+  return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
+}
+
+// The node's own transform: its matrix, else translation * rotation * scale.
+absl::StatusOr<Mat4> LocalTransform(const tinygltf::Node& node, const std::string& where) {
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16) return Invalid(where + ".matrix", "needs 16 numbers");
+    Mat4 m;
+    std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
+    for (double v : m)
+      if (!std::isfinite(v)) return Invalid(where + ".matrix", "is NaN or infinite");
+    return m;
+  }
+  Mat4 m = kIdentity;
+  double x = 0, y = 0, z = 0, w = 1;
+  if (!node.rotation.empty()) {
+    if (node.rotation.size() != 4) return Invalid(where + ".rotation", "needs 4 numbers");
+    x = node.rotation[0], y = node.rotation[1], z = node.rotation[2], w = node.rotation[3];
+    const double norm = std::sqrt(x * x + y * y + z * z + w * w);
+    if (!(norm > 0) || !std::isfinite(norm))
+      return Invalid(where + ".rotation", "is not a rotation quaternion");
+    x /= norm, y /= norm, z /= norm, w /= norm;
+  }
+  // The rotation matrix of the unit quaternion, columns scaled.
+  std::array<double, 3> s = {1, 1, 1}, t = {0, 0, 0};
+  if (!node.scale.empty()) {
+    if (node.scale.size() != 3) return Invalid(where + ".scale", "needs 3 numbers");
+    s = {node.scale[0], node.scale[1], node.scale[2]};
+  }
+  if (!node.translation.empty()) {
+    if (node.translation.size() != 3) return Invalid(where + ".translation", "needs 3 numbers");
+    t = {node.translation[0], node.translation[1], node.translation[2]};
+  }
+  const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                          {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                          {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+  for (int c = 0; c < 3; ++c)
+    for (int row = 0; row < 3; ++row) m[c * 4 + row] = r[row][c] * s[c];
+  for (int row = 0; row < 3; ++row) m[12 + row] = t[row];
+  for (double v : m)
+    if (!std::isfinite(v)) return Invalid(where, "transform is NaN or infinite");
+  return m;
+}
+
+// Reads one accessor's elements as doubles, every range checked against its buffer view and
+// buffer.
+class AccessorReader {
+ public:
+  static absl::StatusOr<AccessorReader> Open(const tinygltf::Model& model, int index,
+                                             const std::string& where) {
+    if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+      return Invalid(where, absl::StrCat("accessor ", index, " does not exist"));
+    const tinygltf::Accessor& a = model.accessors[index];
+    const std::string at = absl::StrCat(where, " (accessors[", index, "])");
+    if (a.sparse.isSparse) return Invalid(at, "sparse accessors are not supported");
+    if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
+      return Invalid(at, "has no buffer view");
+    const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()))
+      return Invalid(at, "its buffer view has no buffer");
+    const std::vector<unsigned char>& data = model.buffers[view.buffer].data;
+    AccessorReader r;
+    r.components_ = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
+    r.component_size_ = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+    if (r.components_ <= 0 || r.component_size_ <= 0)
+      return Invalid(at, "has an unknown type or component type");
+    r.type_ = a.componentType;
+    r.normalized_ = a.normalized;
+    r.count_ = a.count;
+    const size_t element = static_cast<size_t>(r.components_) * r.component_size_;
+    r.stride_ = view.byteStride != 0 ? view.byteStride : element;
+    if (r.stride_ < element) return Invalid(at, "byteStride is smaller than an element");
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+      return Invalid(at, absl::StrCat("buffer view ", a.bufferView, " (", view.byteOffset, " + ",
+                                      view.byteLength, " bytes) goes beyond its buffer of ",
+                                      data.size(), " bytes"));
+    if (a.count > 0) {
+      const size_t last = a.byteOffset + (a.count - 1) * r.stride_ + element;
+      if (a.byteOffset > view.byteLength || (a.count - 1) > view.byteLength / r.stride_ ||
+          last > view.byteLength)
+        return Invalid(at, absl::StrCat(a.count, " elements from byte ", a.byteOffset,
+                                        " go beyond buffer view ", a.bufferView, " of ",
+                                        view.byteLength, " bytes"));
+    }
+    r.base_ = data.data() + view.byteOffset + a.byteOffset;
+    return r;
+  }
+
+  size_t count() const { return count_; }
+  int components() const { return components_; }
+  bool is_float() const { return type_ == TINYGLTF_COMPONENT_TYPE_FLOAT; }
+
+  // Component c of element i; normalized integers in [0, 1] (uvs), others as they are.
+  double At(size_t i, int c) const {
+    const unsigned char* p = base_ + i * stride_ + static_cast<size_t>(c) * component_size_;
+    switch (type_) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float f;
+        std::memcpy(&f, p, sizeof f);
+        return f;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized_ ? p[0] / 255.0 : p[0];
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t v;
+        std::memcpy(&v, p, sizeof v);
+        return normalized_ ? v / 65535.0 : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return normalized_ ? std::max(static_cast<int8_t>(p[0]) / 127.0, -1.0)
+                           : static_cast<int8_t>(p[0]);
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t v;
+        std::memcpy(&v, p, sizeof v);
+        return normalized_ ? std::max(v / 32767.0, -1.0) : v;
+      }
+      default:
+        return 0;
+    }
+  }
+
+ private:
+  const unsigned char* base_ = nullptr;
+  size_t count_ = 0, stride_ = 0;
+  int components_ = 0, component_size_ = 0, type_ = 0;
+  bool normalized_ = false;
+};
+
+// The uv map of KHR_texture_transform: offset, rotation, scale.
+struct UvTransform {
+  double offset[2] = {0, 0}, rotation = 0, scale[2] = {1, 1};
+  std::array<double, 2> Apply(double u, double v) const {
+    // The extension's matrix: translation * rotation * scale, rotation clockwise in uv space.
+    const double su = u * scale[0], sv = v * scale[1];
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    return {c * su + s * sv + offset[0], -s * su + c * sv + offset[1]};
+  }
+};
+
+UvTransform TextureTransformOf(const tinygltf::TextureInfo& info) {
+  UvTransform t;
+  const auto it = info.extensions.find("KHR_texture_transform");
+  if (it == info.extensions.end() || !it->second.IsObject()) return t;
+  const tinygltf::Value& ext = it->second;
+  auto number = [](const tinygltf::Value& v) { return v.IsNumber() ? v.GetNumberAsDouble() : 0.0; };
+  if (ext.Has("offset") && ext.Get("offset").ArrayLen() == 2)
+    t.offset[0] = number(ext.Get("offset").Get(0)), t.offset[1] = number(ext.Get("offset").Get(1));
+  if (ext.Has("scale") && ext.Get("scale").ArrayLen() == 2)
+    t.scale[0] = number(ext.Get("scale").Get(0)), t.scale[1] = number(ext.Get("scale").Get(1));
+  if (ext.Has("rotation")) t.rotation = number(ext.Get("rotation"));
+  return t;
+}
+
+// Camera orientation from a rotation matrix (columns: the camera's axes in the world):
+// R = Ry(yaw) Rx(pitch) Rz(-roll), as scene/vec.h's YawPitchRoll.
+void SetOrientation(const double r[3][3], v1::Camera& camera) {
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  const double pitch = std::asin(std::clamp(-r[1][2], -1.0, 1.0));
+  double yaw, roll;
+  if (std::abs(std::cos(pitch)) > 1e-9) {
+    yaw = std::atan2(r[0][2], r[2][2]);
+    roll = -std::atan2(r[1][0], r[1][1]);
+  } else {  // looking straight up or down: the roll folds into the yaw
+    yaw = std::atan2(-r[2][0], r[0][0]);
+    roll = 0;
+  }
+  camera.set_yaw_deg(yaw * kDeg);
+  camera.set_pitch_deg(pitch * kDeg);
+  camera.set_roll_deg(roll * kDeg);
+}
+
+class Importer {
+ public:
+  Importer(const tinygltf::Model& model, const fs::path& folder,
+           const std::map<int, std::vector<unsigned char>>& image_bytes)
+      : model_(model), folder_(folder), image_bytes_(image_bytes) {}
+
+  absl::StatusOr<ImportedModel> Run(const std::string& name) {
+    out_.scene.set_name(name);
+    if (auto s = Materials(); !s.ok()) return s;
+    std::vector<int> roots;
+    if (model_.defaultScene >= 0 && model_.defaultScene < static_cast<int>(model_.scenes.size()))
+      roots = model_.scenes[model_.defaultScene].nodes;
+    else if (!model_.scenes.empty())
+      roots = model_.scenes[0].nodes;
+    else
+      for (size_t n = 0; n < model_.nodes.size(); ++n)
+        if (!IsChild(static_cast<int>(n))) roots.push_back(static_cast<int>(n));
+    std::vector<bool> on_path(model_.nodes.size(), false);
+    for (int root : roots)
+      if (auto s = Visit(root, kIdentity, on_path); !s.ok()) return s;
+    Note(dropped_degenerate_, "degenerate triangles (zero area) skipped");
+    Note(static_cast<int>(model_.skins.size()), "skins ignored: meshes drawn in their bind pose");
+    Note(static_cast<int>(model_.animations.size()), "animations ignored");
+    Note(morph_targets_, "primitives' morph targets ignored");
+    Note(points_or_lines_, "point or line primitives not drawn");
+    Note(orthographic_, "orthographic cameras not supported");
+    if (!model_.extensionsUsed.empty()) {
+      std::vector<std::string> other;
+      for (const std::string& e : model_.extensionsUsed)
+        if (e != "KHR_texture_transform") other.push_back(e);
+      if (!other.empty())
+        out_.notes.push_back(absl::StrCat("extensions ignored: ", absl::StrJoin(other, ", ")));
+    }
+    for (const std::string& note : material_notes_) out_.notes.push_back(note);
+    return std::move(out_);
+  }
+
+ private:
+  void Note(int count, const std::string& what) {
+    if (count > 0) out_.notes.push_back(absl::StrCat(count, " ", what));
+  }
+
+  bool IsChild(int node) const {
+    for (const tinygltf::Node& n : model_.nodes)
+      if (std::find(n.children.begin(), n.children.end(), node) != n.children.end()) return true;
+    return false;
+  }
+
+  absl::Status Materials() {
+    int blend = 0, mask = 0, wrap = 0, other_sets = 0;
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& m = model_.materials[i];
+      const std::string where = absl::StrCat("materials[", i, "]");
+      v1::Material* material = out_.scene.add_materials();
+      material->set_id(absl::StrCat("material", i));
+      const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
+      if (f.size() >= 3) {
+        for (int c = 0; c < 3; ++c)
+          if (!std::isfinite(f[c]))
+            return Invalid(where + ".pbrMetallicRoughness.baseColorFactor", "is NaN or infinite");
+        material->mutable_base_color()->set_r(static_cast<float>(f[0]));
+        material->mutable_base_color()->set_g(static_cast<float>(f[1]));
+        material->mutable_base_color()->set_b(static_cast<float>(f[2]));
+      }
+      blend += m.alphaMode == "BLEND";
+      mask += m.alphaMode == "MASK";
+      const tinygltf::TextureInfo& info = m.pbrMetallicRoughness.baseColorTexture;
+      uv_transforms_.push_back(TextureTransformOf(info));
+      if (info.index < 0) continue;
+      other_sets += info.texCoord != 0;
+      auto texture = Texture(info.index, where + ".pbrMetallicRoughness.baseColorTexture");
+      if (!texture.ok()) return texture.status();
+      material->set_texture_id(*texture);
+      if (f.size() < 3) {  // glTF's default factor is white
+        material->mutable_base_color()->set_r(1);
+        material->mutable_base_color()->set_g(1);
+        material->mutable_base_color()->set_b(1);
+      }
+      const int sampler = model_.textures[info.index].sampler;
+      if (sampler >= 0 && sampler < static_cast<int>(model_.samplers.size())) {
+        const tinygltf::Sampler& s = model_.samplers[sampler];
+        wrap += s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT;
+      }
+    }
+    if (blend > 0) material_notes_.push_back(absl::StrCat(blend, " BLEND materials drawn opaque"));
+    if (mask > 0) material_notes_.push_back(absl::StrCat(mask, " MASK materials drawn opaque"));
+    if (wrap > 0)
+      material_notes_.push_back(
+          absl::StrCat(wrap, " textures with clamped or mirrored wrapping drawn repeated"));
+    if (other_sets > 0)
+      material_notes_.push_back(absl::StrCat(other_sets,
+                                             " textures on TEXCOORD_1 or later drawn "
+                                             "with TEXCOORD_0"));
+    return absl::OkStatus();
+  }
+
+  // The scene texture of glTF texture `index` (its image), added once.
+  absl::StatusOr<std::string> Texture(int index, const std::string& where) {
+    if (index < 0 || index >= static_cast<int>(model_.textures.size()))
+      return Invalid(where, absl::StrCat("texture ", index, " does not exist"));
+    const int image = model_.textures[index].source;
+    if (image < 0 || image >= static_cast<int>(model_.images.size()))
+      return Invalid(absl::StrCat("textures[", index, "]"), "has no image");
+    const std::string id = absl::StrCat("image", image);
+    if (!images_added_.insert(image).second) return id;
+    const tinygltf::Image& img = model_.images[image];
+    v1::Texture* texture = out_.scene.add_textures();
+    texture->set_id(id);
+    if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) {
+      texture->set_file(img.uri);  // checked to stay in the model's folder when it was read
+      return id;
+    }
+    const auto bytes = image_bytes_.find(image);
+    if (bytes == image_bytes_.end() || bytes->second.empty())
+      return Invalid(absl::StrCat("images[", image, "]"), "has no data");
+    texture->set_encoded(std::string(bytes->second.begin(), bytes->second.end()));
+    return id;
+  }
+
+  absl::Status Visit(int node, const Mat4& parent, std::vector<bool>& on_path) {
+    const std::string where = absl::StrCat("nodes[", node, "]");
+    if (node < 0 || node >= static_cast<int>(model_.nodes.size()))
+      return Invalid(where, "does not exist");
+    if (on_path[node]) return Invalid(where, "is its own ancestor (the node graph has a cycle)");
+    const tinygltf::Node& n = model_.nodes[node];
+    auto local = LocalTransform(n, where);
+    if (!local.ok()) return local.status();
+    const Mat4 world = Multiply(parent, *local);
+    if (n.mesh >= 0)
+      if (auto s = Mesh(node, n.mesh, world); !s.ok()) return s;
+    if (n.camera >= 0)
+      if (auto s = Camera(node, n.camera, world); !s.ok()) return s;
+    on_path[node] = true;
+    for (int child : n.children)
+      if (auto s = Visit(child, world, on_path); !s.ok()) return s;
+    on_path[node] = false;
+    return absl::OkStatus();
+  }
+
+  absl::Status Camera(int node, int index, const Mat4& world) {
+    if (index >= static_cast<int>(model_.cameras.size()))
+      return Invalid(absl::StrCat("nodes[", node, "].camera"),
+                     absl::StrCat("camera ", index, " does not exist"));
+    const tinygltf::Camera& c = model_.cameras[index];
+    if (c.type != "perspective") {
+      ++orthographic_;
+      return absl::OkStatus();
+    }
+    GltfCamera named;
+    named.name = !model_.nodes[node].name.empty() ? model_.nodes[node].name
+                 : !c.name.empty()                ? c.name
+                                                  : absl::StrCat("camera", index);
+    v1::Camera& camera = named.camera;
+    camera.mutable_position()->set_x(world[12]);
+    camera.mutable_position()->set_y(world[13]);
+    camera.mutable_position()->set_z(world[14]);
+    double r[3][3];
+    for (int col = 0; col < 3; ++col) {
+      const double len =
+          std::sqrt(world[col * 4] * world[col * 4] + world[col * 4 + 1] * world[col * 4 + 1] +
+                    world[col * 4 + 2] * world[col * 4 + 2]);
+      if (!(len > 0))
+        return Invalid(absl::StrCat("nodes[", node, "]"), "camera transform is singular");
+      for (int row = 0; row < 3; ++row) r[row][col] = world[col * 4 + row] / len;
+    }
+    SetOrientation(r, camera);
+    camera.set_vertical_fov_deg(c.perspective.yfov * 180.0 / std::numbers::pi);
+    if (c.perspective.znear > 0) camera.set_near(c.perspective.znear);
+    if (c.perspective.zfar > 0) camera.set_far(c.perspective.zfar);
+    out_.cameras.push_back(std::move(named));
+    return absl::OkStatus();
+  }
+
+  absl::Status Mesh(int node, int index, const Mat4& world) {
+    if (index >= static_cast<int>(model_.meshes.size()))
+      return Invalid(absl::StrCat("nodes[", node, "].mesh"),
+                     absl::StrCat("mesh ", index, " does not exist"));
+    const tinygltf::Mesh& mesh = model_.meshes[index];
+    v1::Mesh* out = out_.scene.add_meshes();
+    out->set_id(absl::StrCat("node", node, "-mesh", index));
+    for (size_t p = 0; p < mesh.primitives.size(); ++p)
+      if (auto s = Primitive(mesh.primitives[p],
+                             absl::StrCat("meshes[", index, "].primitives[", p, "]"), world, *out);
+          !s.ok())
+        return s;
+    v1::Object* object = out_.scene.add_objects();
+    object->set_mesh_id(out->id());
+    return absl::OkStatus();
+  }
+
+  absl::Status Primitive(const tinygltf::Primitive& prim, const std::string& where,
+                         const Mat4& world, v1::Mesh& out) {
+    morph_targets_ += !prim.targets.empty();
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
+      ++points_or_lines_;
+      return absl::OkStatus();
+    }
+    const auto position = prim.attributes.find("POSITION");
+    if (position == prim.attributes.end()) return Invalid(where + ".attributes", "has no POSITION");
+    auto positions = AccessorReader::Open(model_, position->second, where + ".attributes.POSITION");
+    if (!positions.ok()) return positions.status();
+    if (positions->components() != 3 || !positions->is_float())
+      return Invalid(where + ".attributes.POSITION", "must be float VEC3");
+    std::optional<AccessorReader> uvs;
+    if (const auto uv = prim.attributes.find("TEXCOORD_0"); uv != prim.attributes.end()) {
+      auto reader = AccessorReader::Open(model_, uv->second, where + ".attributes.TEXCOORD_0");
+      if (!reader.ok()) return reader.status();
+      if (reader->components() != 2 || reader->count() != positions->count())
+        return Invalid(where + ".attributes.TEXCOORD_0",
+                       "must be VEC2 with one element per position");
+      uvs = *reader;
+    }
+    // The vertex indices, in order.
+    std::vector<uint32_t> indices;
+    const size_t vertex_count = positions->count();
+    if (prim.indices >= 0) {
+      auto reader = AccessorReader::Open(model_, prim.indices, where + ".indices");
+      if (!reader.ok()) return reader.status();
+      if (reader->components() != 1 || reader->is_float())
+        return Invalid(where + ".indices", "must be unsigned integer SCALAR");
+      indices.resize(reader->count());
+      for (size_t i = 0; i < reader->count(); ++i) {
+        const double v = reader->At(i, 0);
+        if (!(v >= 0 && v < static_cast<double>(vertex_count)))
+          return Invalid(where + ".indices",
+                         absl::StrCat("index ", v, " out of range 0..",
+                                      vertex_count == 0 ? 0 : vertex_count - 1));
+        indices[i] = static_cast<uint32_t>(v);
+      }
+    } else {
+      indices.resize(vertex_count);
+      for (size_t i = 0; i < vertex_count; ++i) indices[i] = static_cast<uint32_t>(i);
+    }
+    std::vector<std::array<uint32_t, 3>> triangles;
+    const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      for (size_t i = 0; i + 2 < indices.size(); i += 3)
+        triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (size_t i = 0; i + 2 < indices.size(); ++i)
+        triangles.push_back(
+            i % 2 == 0 ? std::array<uint32_t, 3>{indices[i], indices[i + 1], indices[i + 2]}
+                       : std::array<uint32_t, 3>{indices[i + 1], indices[i], indices[i + 2]});
+    } else {
+      for (size_t i = 1; i + 1 < indices.size(); ++i)
+        triangles.push_back({indices[0], indices[i], indices[i + 1]});
+    }
+    const int material = prim.material;
+    if (material >= static_cast<int>(model_.materials.size()))
+      return Invalid(where + ".material", absl::StrCat("material ", material, " does not exist"));
+    const std::string material_id =
+        material >= 0 ? absl::StrCat("material", material) : DefaultMaterial();
+    const UvTransform* uv_map = material >= 0 ? &uv_transforms_[material] : nullptr;
+    for (const auto& t : triangles) {
+      std::array<std::array<double, 3>, 3> p;
+      for (int k = 0; k < 3; ++k) {
+        const std::array<double, 3> local = {positions->At(t[k], 0), positions->At(t[k], 1),
+                                             positions->At(t[k], 2)};
+        for (double v : local)
+          if (!std::isfinite(v))
+            return Invalid(where + ".attributes.POSITION",
+                           absl::StrCat("vertex ", t[k], " is NaN or infinite"));
+        p[k] = Apply(world, local);
+      }
+      if (Degenerate(p)) {
+        ++dropped_degenerate_;
+        continue;
+      }
+      v1::Polygon* polygon = out.add_polygons();
+      polygon->set_material_id(material_id);
+      for (int k = 0; k < 3; ++k) {
+        v1::Vec3* v = polygon->add_vertices();
+        v->set_x(p[k][0]), v->set_y(p[k][1]), v->set_z(p[k][2]);
+        if (uvs) {
+          double u = uvs->At(t[k], 0), w = uvs->At(t[k], 1);
+          if (!std::isfinite(u) || !std::isfinite(w))
+            return Invalid(where + ".attributes.TEXCOORD_0",
+                           absl::StrCat("element ", t[k], " is NaN or infinite"));
+          if (uv_map != nullptr) {
+            const std::array<double, 2> mapped = uv_map->Apply(u, w);
+            u = mapped[0], w = mapped[1];
+          }
+          v1::Vec2* uv = polygon->add_uvs();
+          uv->set_u(u), uv->set_v(w);
+        }
+      }
+    }
+    return absl::OkStatus();
+  }
+
+  // The scene builder's test (engine/scene/object_placement.cc): twice the area at most 1e-12 of
+  // the squared extent is degenerate, and would refuse the whole scene.
+  static bool Degenerate(const std::array<std::array<double, 3>, 3>& p) {
+    const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
+    const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
+    const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    const double twice_area = std::sqrt(cx * cx + cy * cy + cz * cz);
+    const double extent =
+        std::max(std::sqrt(ax * ax + ay * ay + az * az), std::sqrt(bx * bx + by * by + bz * bz));
+    // 1e-9 here: a thousand times the builder's margin, so that rounding between the two area
+    // formulas never lets through a triangle the builder refuses.
+    return !(twice_area > 1e-9 * extent * extent) || extent == 0;
+  }
+
+  std::string DefaultMaterial() {
+    if (!default_material_added_) {
+      v1::Material* m = out_.scene.add_materials();
+      m->set_id("default");
+      m->mutable_base_color()->set_r(1);
+      m->mutable_base_color()->set_g(1);
+      m->mutable_base_color()->set_b(1);
+      default_material_added_ = true;
+    }
+    return "default";
+  }
+
+  const tinygltf::Model& model_;
+  fs::path folder_;
+  const std::map<int, std::vector<unsigned char>>& image_bytes_;
+  ImportedModel out_;
+  std::vector<UvTransform> uv_transforms_;  // per glTF material
+  std::set<int> images_added_;
+  std::vector<std::string> material_notes_;
+  bool default_material_added_ = false;
+  int dropped_degenerate_ = 0, morph_targets_ = 0, points_or_lines_ = 0, orthographic_ = 0;
+};
+
+// tinygltf's file reads, kept inside the model's folder.
+struct Containment {
+  fs::path folder;  // weakly canonical
+  std::string refused;
+};
+
+bool ReadInsideFolder(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      void* user) {
+  auto* c = static_cast<Containment*>(user);
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(fs::path(path), ec);
+  const auto [end, _] =
+      std::mismatch(c->folder.begin(), c->folder.end(), resolved.begin(), resolved.end());
+  if (ec || end != c->folder.end()) {
+    c->refused = path;
+    if (err != nullptr)
+      *err += absl::StrCat("'", path, "' is outside the model's folder and is not read\n");
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, err, path, nullptr);
+}
+
+bool KeepEncodedImage(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+  auto* images = static_cast<std::map<int, std::vector<unsigned char>>*>(user);
+  (*images)[index].assign(bytes, bytes + std::max(size, 0));
+  return true;
+}
+
+}  // namespace
+
+bool IsGltfPath(const std::string& path) {
+  const std::string ext = absl::AsciiStrToLower(fs::path(path).extension().string());
+  return ext == ".gltf" || ext == ".glb";
+}
+
+absl::StatusOr<ImportedModel> ImportGltf(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    return absl::NotFoundError(absl::StrCat("cannot open model file '", path, "'"));
+  Containment containment;
+  containment.folder = fs::weakly_canonical(fs::absolute(path).parent_path(), ec);
+  tinygltf::TinyGLTF loader;
+  tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
+                                  &ReadInsideFolder, &tinygltf::WriteWholeFile, &containment};
+  loader.SetFsCallbacks(callbacks);
+  std::map<int, std::vector<unsigned char>> image_bytes;
+  loader.SetImageLoader(&KeepEncodedImage, &image_bytes);
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool binary = absl::AsciiStrToLower(fs::path(path).extension().string()) == ".glb";
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!containment.refused.empty())
+    return absl::InvalidArgumentError(absl::StrCat(
+        path, ": '", containment.refused, "' is outside the model's folder and is not read"));
+  if (!ok) {
+    std::string message = err.empty() ? warn : err;
+    while (!message.empty() && message.back() == '\n') message.pop_back();
+    return absl::InvalidArgumentError(absl::StrCat(path, ": not a valid glTF file: ", message));
+  }
+  Importer importer(model, containment.folder, image_bytes);
+  auto imported = importer.Run(fs::path(path).stem().string());
+  if (!imported.ok())
+    return absl::Status(imported.status().code(),
+                        absl::StrCat(path, ": ", imported.status().message()));
+  return imported;
+}
+
+}  // namespace aperture

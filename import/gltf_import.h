@@ -1,0 +1,39 @@
+// glTF 2.0 models (.gltf with external or embedded buffers, .glb) as Aperture scenes, read by
+// tinygltf (Debian's libtinygltf-dev). Proto only, no engine code: the engine's scene files and
+// the client's uploads both go through it.
+//
+// Mapping (docs/SCENE.md, "glTF models"): the default scene's node hierarchy (matrices and TRS)
+// is applied to the vertices, one mesh per node that has one; triangle primitives (lists, strips
+// and fans) with or without indices become triangles, with TEXCOORD_0 as their uvs;
+// baseColorFactor and baseColorTexture (with KHR_texture_transform) become the material.
+// External images stay files (relative to the model, which they may not leave); embedded ones
+// are carried as encoded bytes. What Aperture does not draw is listed in `notes`, once each.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "aperture/v1/scene.pb.h"
+
+namespace aperture {
+
+struct GltfCamera {
+  std::string name;  // the node's name, else "camera<i>" of the node's camera
+  v1::Camera camera;
+};
+
+struct ImportedModel {
+  v1::Scene scene;
+  std::vector<GltfCamera> cameras;
+  // Parts of the file that are not drawn or drawn differently, one line each ("2 skins ignored").
+  std::vector<std::string> notes;
+};
+
+// True for the file names ImportGltf reads (.gltf, .glb; any case).
+bool IsGltfPath(const std::string& path);
+
+// Errors name the element: "meshes[3].primitives[0].indices: index 912 out of range 0..899".
+absl::StatusOr<ImportedModel> ImportGltf(const std::string& path);
+
+}  // namespace aperture

@@ -1,0 +1,159 @@
+// glTF 2.0 models in aperture-render (issue 24): the import against an independent reading of the
+// same file (tests/support/gltf_to_scene.py, the standard library's json and struct) pixel for
+// pixel, the binary form with an embedded image, the file's cameras by name, and malformed
+// models refused with the element named.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "support/run_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Result = aperture::testing::ProcessResult;
+
+const fs::path kSupport = fs::path(APERTURE_TESTS_DIR) / "support";
+
+class GltfModel : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("aperture_gltf_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    // The fixture made afresh by its generator (also kept in tests/data/models).
+    const Result made = aperture::testing::RunProcess(
+        "python3 " + (kSupport / "make_gltf_fixture.py").string() + " " + dir_.string());
+    ASSERT_EQ(made.exit_code, 0) << made.output;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+  Result Render(const std::string& scene, const std::string& args, const std::string& out) {
+    return aperture::testing::RunProcess(std::string(APERTURE_RENDER_BIN) + " --scene " + scene +
+                                         " --size 320x240 --float-pixels --compression none "
+                                         "--nopreview --store none " +
+                                         args + " -o " + Path(out));
+  }
+  std::vector<float> Pixels(const std::string& name) {
+    auto in = OIIO::ImageInput::open(Path(name));
+    EXPECT_TRUE(in) << name;
+    if (!in) return {};
+    std::vector<float> pixels(static_cast<size_t>(in->spec().image_pixels()) *
+                              in->spec().nchannels);
+    EXPECT_TRUE(in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data()));
+    return pixels;
+  }
+  // A malformed copy of hangar.gltf: every `from` in its JSON text replaced by `to`.
+  std::string Malformed(const std::string& from, const std::string& to) {
+    std::ifstream in(Path("hangar.gltf"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find(from), std::string::npos) << from;
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+      text.replace(at, from.size(), to);
+    std::ofstream(Path("bad.gltf")) << text;
+    return Path("bad.gltf");
+  }
+  fs::path dir_;
+};
+
+constexpr char kCamera[] = "--camera 0,1.7,5,0,-5,0 --fov 50";
+
+TEST_F(GltfModel, MatchesAnIndependentReadingPixelForPixel) {
+  const Result ref =
+      aperture::testing::RunProcess("python3 " + (kSupport / "gltf_to_scene.py").string() + " " +
+                                    Path("hangar.gltf") + " > " + Path("reference.json"));
+  ASSERT_EQ(ref.exit_code, 0) << ref.output;
+  Result r = Render(Path("hangar.gltf"), kCamera, "model.exr");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = Render(Path("reference.json"), kCamera, "reference.exr");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::vector<float> model = Pixels("model.exr"), reference = Pixels("reference.exr");
+  ASSERT_EQ(model.size(), 320u * 240 * 4);
+  ASSERT_EQ(model.size(), reference.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < model.size(); ++i) differing += model[i] != reference[i];
+  EXPECT_EQ(differing, 0u);
+  // Not a blank frame: the ground, the sky and the textured hall's many shades are there.
+  std::set<float> reds;
+  for (size_t i = 0; i < model.size(); i += 4) reds.insert(model[i]);
+  EXPECT_GT(reds.size(), 50u);
+}
+
+TEST_F(GltfModel, TheBinaryFormWithAnEmbeddedImageIsTheSameModel) {
+  ASSERT_EQ(Render(Path("hangar.gltf"), kCamera, "gltf.exr").exit_code, 0);
+  const Result r = Render(Path("hangar.glb"), kCamera, "glb.exr");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(Pixels("gltf.exr"), Pixels("glb.exr"));
+}
+
+TEST_F(GltfModel, TheFilesCamerasGoByNameAndTheFirstIsTheDefault) {
+  // "gate": at (0, 1.7, 5), turned 5 degrees down about x, yfov 0.9 rad.
+  const std::string numbers = "--camera 0,1.7,5,0,-5,0 --fov " + std::to_string(0.9 * 180 / M_PI);
+  ASSERT_EQ(Render(Path("hangar.gltf"), numbers, "numbers.exr").exit_code, 0);
+  ASSERT_EQ(Render(Path("hangar.gltf"), "--camera gate", "named.exr").exit_code, 0);
+  ASSERT_EQ(Render(Path("hangar.gltf"), "", "default.exr").exit_code, 0);
+  const std::vector<float> a = Pixels("numbers.exr"), b = Pixels("named.exr");
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(double(a[i]) - b[i]));
+  EXPECT_LT(worst, 1e-3);  // the angles round-trip through a rotation matrix
+  EXPECT_EQ(Pixels("named.exr"), Pixels("default.exr"));
+
+  const Result unknown = Render(Path("hangar.gltf"), "--camera tower", "x.exr");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.output.find("--camera 'tower' is neither X,Y,Z,YAW,PITCH,ROLL nor a camera"),
+            std::string::npos)
+      << unknown.output;
+  EXPECT_NE(unknown.output.find("(gate)"), std::string::npos) << unknown.output;
+}
+
+TEST_F(GltfModel, WhatIsNotDrawnIsReportedOnce) {
+  const std::string bad =
+      Malformed("\"name\": \"grass\",", "\"name\": \"grass\", \"alphaMode\": \"BLEND\",");
+  const Result r = Render(bad, kCamera, "x.exr");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 BLEND materials drawn opaque"), std::string::npos) << r.output;
+}
+
+struct BadModel {
+  const char* what;
+  const char* from;
+  const char* to;
+  const char* message;
+};
+
+TEST_F(GltfModel, MalformedModelsAreRefusedNamingTheElement) {
+  const BadModel cases[] = {
+      {"indices beyond their buffer view", "\"count\": 36", "\"count\": 37",
+       "37 elements from byte 0 go beyond buffer view 2 of 72 bytes"},
+      {"an index out of range", "\"count\": 24", "\"count\": 20",
+       "meshes[0].primitives[0].indices: index 20 out of range 0..19"},
+      {"a node that is its own ancestor", "\"children\": [\n    2\n   ]",
+       "\"children\": [\n    1\n   ]", "nodes[1]: is its own ancestor"},
+      {"a buffer outside the model's folder", "\"uri\": \"hangar.bin\"",
+       "\"uri\": \"../../../../etc/hostname\"", "is outside the model's folder"},
+      {"a missing buffer file", "\"uri\": \"hangar.bin\"", "\"uri\": \"missing.bin\"",
+       "not a valid glTF file"},
+      {"a mesh that does not exist", "\"mesh\": 0", "\"mesh\": 7",
+       "nodes[2].mesh: mesh 7 does not exist"},
+      {"not JSON", "\"asset\"", "asset", "not a valid glTF file"},
+  };
+  for (const BadModel& c : cases) {
+    SCOPED_TRACE(c.what);
+    const Result r = Render(Malformed(c.from, c.to), kCamera, "x.exr");
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Segmentation"), std::string::npos);
+  }
+}
+
+}  // namespace
