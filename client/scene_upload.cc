@@ -45,6 +45,14 @@ absl::StatusOr<v1::Scene> ReadScene(const std::string& argument) {
   options.ignore_unknown_fields = false;
   if (auto s = google::protobuf::util::JsonStringToMessage(*json, &scene, options); !s.ok())
     return absl::InvalidArgumentError(absl::StrCat(argument, ": ", std::string(s.message())));
+  // glTF models it places become meshes here: the server never reads the client's files.
+  std::vector<std::string> notes;
+  if (auto s = ExpandModels(scene, std::filesystem::path(argument).parent_path().string(),
+                            absl::GetFlag(FLAGS_allow_any_path), &notes);
+      !s.ok())
+    return absl::Status(s.code(), absl::StrCat(argument, ": ", s.message()));
+  for (const std::string& note : notes)
+    std::fprintf(stderr, "aperture: %s: %s\n", argument.c_str(), note.c_str());
   return scene;
 }
 

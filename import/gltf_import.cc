@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -333,9 +336,27 @@ class Importer {
       texture->set_file(img.uri);  // checked to stay in the model's folder when it was read
       return id;
     }
+    const std::string at = absl::StrCat("images[", image, "]");
+    if (img.bufferView >= 0) {
+      if (img.bufferView >= static_cast<int>(model_.bufferViews.size()))
+        return Invalid(at, absl::StrCat("buffer view ", img.bufferView, " does not exist"));
+      const tinygltf::BufferView& view = model_.bufferViews[img.bufferView];
+      if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size()))
+        return Invalid(at, "its buffer view has no buffer");
+      const std::vector<unsigned char>& data = model_.buffers[view.buffer].data;
+      if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset ||
+          view.byteLength == 0)
+        return Invalid(at, absl::StrCat("buffer view ", img.bufferView, " (", view.byteOffset,
+                                        " + ", view.byteLength,
+                                        " bytes) is empty or goes "
+                                        "beyond its buffer of ",
+                                        data.size(), " bytes"));
+      const auto* first = reinterpret_cast<const char*>(data.data() + view.byteOffset);
+      texture->set_encoded(std::string(first, view.byteLength));
+      return id;
+    }
     const auto bytes = image_bytes_.find(image);
-    if (bytes == image_bytes_.end() || bytes->second.empty())
-      return Invalid(absl::StrCat("images[", image, "]"), "has no data");
+    if (bytes == image_bytes_.end() || bytes->second.empty()) return Invalid(at, "has no data");
     texture->set_encoded(std::string(bytes->second.begin(), bytes->second.end()));
     return id;
   }
@@ -571,8 +592,13 @@ bool ReadInsideFolder(std::vector<unsigned char>* out, std::string* err, const s
   return tinygltf::ReadWholeFile(out, err, path, nullptr);
 }
 
-bool KeepEncodedImage(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+// Keeps an image's encoded bytes (tinygltf would decode them; the engine does that, within its
+// limits). Not for an image in a buffer view: tinygltf 2.7 hands over the view's range without
+// checking it against its buffer (the fuzz target found the over-read), so those bytes are taken
+// after loading, from the checked view (Importer::Texture).
+bool KeepEncodedImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void* user) {
+  if (image->bufferView >= 0) return true;
   auto* images = static_cast<std::map<int, std::vector<unsigned char>>*>(user);
   (*images)[index].assign(bytes, bytes + std::max(size, 0));
   return true;
@@ -586,11 +612,29 @@ bool IsGltfPath(const std::string& path) {
 }
 
 absl::StatusOr<ImportedModel> ImportGltf(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
+  if (!in || !fs::is_regular_file(path, ec))
     return absl::NotFoundError(absl::StrCat("cannot open model file '", path, "'"));
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const bool binary = absl::AsciiStrToLower(fs::path(path).extension().string()) == ".glb";
+  auto imported = ImportGltfBytes(
+      std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()), binary,
+      fs::absolute(path).parent_path().string(), fs::path(path).stem().string());
+  if (!imported.ok())
+    return absl::Status(imported.status().code(),
+                        absl::StrCat(path, ": ", imported.status().message()));
+  return imported;
+}
+
+absl::StatusOr<ImportedModel> ImportGltfBytes(std::span<const uint8_t> bytes, bool binary,
+                                              const std::string& folder, const std::string& name) {
+  // tinygltf takes the length as an unsigned int.
+  if (bytes.size() > std::numeric_limits<unsigned int>::max())
+    return absl::InvalidArgumentError("the model file is larger than 4 GiB");
+  std::error_code ec;
   Containment containment;
-  containment.folder = fs::weakly_canonical(fs::absolute(path).parent_path(), ec);
+  containment.folder = fs::weakly_canonical(fs::absolute(folder), ec);
   tinygltf::TinyGLTF loader;
   tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath,
                                   &ReadInsideFolder, &tinygltf::WriteWholeFile, &containment};
@@ -599,23 +643,99 @@ absl::StatusOr<ImportedModel> ImportGltf(const std::string& path) {
   loader.SetImageLoader(&KeepEncodedImage, &image_bytes);
   tinygltf::Model model;
   std::string err, warn;
-  const bool binary = absl::AsciiStrToLower(fs::path(path).extension().string()) == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const std::string base_dir = containment.folder.string();
+  const auto size = static_cast<unsigned int>(bytes.size());
+  const bool ok =
+      binary
+          ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
+          : loader.LoadASCIIFromString(&model, &err, &warn,
+                                       reinterpret_cast<const char*>(bytes.data()), size, base_dir);
   if (!containment.refused.empty())
-    return absl::InvalidArgumentError(absl::StrCat(
-        path, ": '", containment.refused, "' is outside the model's folder and is not read"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("'", containment.refused, "' is outside the model's folder and is not read"));
   if (!ok) {
     std::string message = err.empty() ? warn : err;
     while (!message.empty() && message.back() == '\n') message.pop_back();
-    return absl::InvalidArgumentError(absl::StrCat(path, ": not a valid glTF file: ", message));
+    return absl::InvalidArgumentError(absl::StrCat("not a valid glTF file: ", message));
   }
   Importer importer(model, containment.folder, image_bytes);
-  auto imported = importer.Run(fs::path(path).stem().string());
-  if (!imported.ok())
-    return absl::Status(imported.status().code(),
-                        absl::StrCat(path, ": ", imported.status().message()));
-  return imported;
+  return importer.Run(name);
+}
+
+absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool allow_any_path,
+                          std::vector<std::string>* notes) {
+  if (scene.models_size() == 0) {
+    for (int i = 0; i < scene.objects_size(); ++i)
+      if (!scene.objects(i).model_id().empty())
+        return Invalid(absl::StrCat("objects[", i, "].model_id"),
+                       absl::StrCat("'", scene.objects(i).model_id(),
+                                    "' is not a model of the "
+                                    "scene"));
+    return absl::OkStatus();
+  }
+  std::set<std::string> taken;
+  for (const v1::Mesh& m : scene.meshes()) taken.insert(m.id());
+  std::error_code ec;
+  const fs::path base = scene_dir.empty() ? fs::path(".") : fs::path(scene_dir);
+  const fs::path base_canonical = fs::weakly_canonical(fs::absolute(base), ec);
+  for (int k = 0; k < scene.models_size(); ++k) {
+    const v1::Model& model = scene.models(k);
+    const std::string where = absl::StrCat("models[", k, "] ('", model.id(), "')");
+    if (model.id().empty()) return Invalid(absl::StrCat("models[", k, "].id"), "is empty");
+    if (!taken.insert(model.id()).second)
+      return Invalid(where, "id is already a mesh or model of the scene");
+    const fs::path file = base / model.file();
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(file), ec);
+    const auto [end, _] = std::mismatch(base_canonical.begin(), base_canonical.end(),
+                                        resolved.begin(), resolved.end());
+    if (!allow_any_path && end != base_canonical.end())
+      return Invalid(where + ".file",
+                     absl::StrCat("'", model.file(), "' is outside the scene file's folder"));
+    if (!IsGltfPath(file.string()))
+      return Invalid(where + ".file", absl::StrCat("'", model.file(), "' is not .gltf or .glb"));
+    auto imported = ImportGltf(file.string());
+    if (!imported.ok())
+      return absl::Status(imported.status().code(),
+                          absl::StrCat(where, ": ", imported.status().message()));
+    if (notes != nullptr)
+      for (const std::string& note : imported->notes)
+        notes->push_back(absl::StrCat(model.file(), ": ", note));
+    const std::string prefix = model.id() + "/";
+    const fs::path model_dir = fs::path(model.file()).parent_path();
+    for (v1::Texture texture : imported->scene.textures()) {
+      texture.set_id(prefix + texture.id());
+      if (texture.source_case() == v1::Texture::kFile)
+        texture.set_file((model_dir / texture.file()).lexically_normal().string());
+      *scene.add_textures() = std::move(texture);
+    }
+    for (v1::Material material : imported->scene.materials()) {
+      material.set_id(prefix + material.id());
+      if (!material.texture_id().empty()) material.set_texture_id(prefix + material.texture_id());
+      *scene.add_materials() = std::move(material);
+    }
+    v1::Mesh* mesh = scene.add_meshes();
+    mesh->set_id(model.id());
+    for (const v1::Mesh& part : imported->scene.meshes())
+      for (v1::Polygon polygon : part.polygons()) {
+        polygon.set_material_id(prefix + polygon.material_id());
+        *mesh->add_polygons() = std::move(polygon);
+      }
+  }
+  std::set<std::string> models;
+  for (const v1::Model& m : scene.models()) models.insert(m.id());
+  for (int i = 0; i < scene.objects_size(); ++i) {
+    v1::Object& object = *scene.mutable_objects(i);
+    if (object.model_id().empty()) continue;
+    const std::string where = absl::StrCat("objects[", i, "]");
+    if (!object.mesh_id().empty()) return Invalid(where, "has both mesh_id and model_id");
+    if (!models.count(object.model_id()))
+      return Invalid(where + ".model_id",
+                     absl::StrCat("'", object.model_id(), "' is not a model of the scene"));
+    object.set_mesh_id(object.model_id());
+    object.clear_model_id();
+  }
+  scene.clear_models();
+  return absl::OkStatus();
 }
 
 }  // namespace aperture

@@ -10,6 +10,8 @@
 // are carried as encoded bytes. What Aperture does not draw is listed in `notes`, once each.
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,5 +37,17 @@ bool IsGltfPath(const std::string& path);
 
 // Errors name the element: "meshes[3].primitives[0].indices: index 912 out of range 0..899".
 absl::StatusOr<ImportedModel> ImportGltf(const std::string& path);
+// The same from the file's bytes (`binary`: .glb); external files are read from `folder`, which
+// they may not leave. The fuzz target's entry point.
+absl::StatusOr<ImportedModel> ImportGltfBytes(std::span<const uint8_t> bytes, bool binary,
+                                              const std::string& folder, const std::string& name);
+
+// Resolves a scene file's glTF model references (Scene.models, Object.model_id): each model's
+// file (relative to `scene_dir`; outside it only with `allow_any_path`) imported, its triangles
+// made one mesh whose id is the model's, its materials and textures given ids "<model>/...", its
+// image files made relative to `scene_dir`; objects placing it get that mesh. The models' notes
+// go to `notes`, prefixed with their file.
+absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool allow_any_path,
+                          std::vector<std::string>* notes);
 
 }  // namespace aperture

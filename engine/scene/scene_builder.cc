@@ -492,6 +492,18 @@ std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image
 }
 
 absl::StatusOr<Scene> BuildScene(const v1::Scene& proto, const SceneBuildOptions& options) {
+  // glTF model references are resolved where the scene file is read (import/gltf_import.h,
+  // ExpandModels): a scene here, from a request or a file already read, carries them as meshes.
+  if (proto.models_size() > 0)
+    return absl::InvalidArgumentError(absl::StrCat(
+        "models[0] ('", proto.models(0).id(),
+        "'): glTF model references are resolved when a scene file is read (aperture-render, the "
+        "client); a scene sent to the service carries the models' meshes"));
+  for (int i = 0; i < proto.objects_size(); ++i)
+    if (!proto.objects(i).model_id().empty())
+      return absl::InvalidArgumentError(absl::StrCat("objects[", i, "].model_id: '",
+                                                     proto.objects(i).model_id(),
+                                                     "' is not resolved: the scene has no models"));
   return Builder(proto, options).Build();
 }
 

@@ -38,6 +38,13 @@ absl::StatusOr<v1::Scene> ReadSceneFile(const std::string& path) {
   auto scene = ParseSceneJson(text.str());
   if (!scene.ok())
     return absl::InvalidArgumentError(absl::StrCat(path, ": ", scene.status().message()));
+  // The glTF models it places, read from files next to it (the user's own: any path).
+  std::vector<std::string> notes;
+  if (auto s = ExpandModels(*scene, std::filesystem::path(path).parent_path().string(),
+                            /*allow_any_path=*/true, &notes);
+      !s.ok())
+    return absl::Status(s.code(), absl::StrCat(path, ": ", s.message()));
+  for (const std::string& note : notes) spdlog::warn("{}: {}", path, note);
   return scene;
 }
 

@@ -64,6 +64,27 @@ TEST(SceneBuilder, ObjectTransformsPlaceMeshes) {
   EXPECT_NEAR(v.z, -2, 1e-12);
 }
 
+// A scene that reaches the builder with glTF model references unresolved (a request to the
+// service, which never reads the client's files) is refused, naming the model or the object.
+TEST(SceneBuilder, UnresolvedModelReferencesAreRefused) {
+  v1::Scene scene;
+  v1::Model* model = scene.add_models();
+  model->set_id("hall");
+  model->set_file("hangar.glb");
+  auto built = BuildScene(scene, {});
+  ASSERT_FALSE(built.ok());
+  EXPECT_EQ(built.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(built.status().message().find("models[0] ('hall')"), std::string::npos)
+      << built.status();
+  scene.clear_models();
+  scene.add_objects()->set_model_id("hall");
+  built = BuildScene(scene, {});
+  ASSERT_FALSE(built.ok());
+  EXPECT_NE(built.status().message().find("objects[0].model_id: 'hall' is not resolved"),
+            std::string::npos)
+      << built.status();
+}
+
 TEST(SceneBuilder, DemoSceneBuilds) {
   auto scene = BuildScene(MakeDemoScene());
   ASSERT_TRUE(scene.ok()) << scene.status();

@@ -8,7 +8,9 @@ first, node matrix or T * R * S, POSITION and TEXCOORD_0 (float), unsigned indic
 strips and fans, baseColorFactor, baseColorTexture with KHR_texture_transform. Arithmetic is in
 doubles in the order the formulas are written, so equal inputs give equal bits.
 
-Usage: gltf_to_scene.py MODEL.gltf > scene.json   (texture files become absolute paths)
+Usage: gltf_to_scene.py MODEL.gltf [--as-mesh ID] > scene.json
+(texture files become absolute paths; --as-mesh: every triangle in one mesh ID and no objects,
+for a test to place)
 """
 import base64
 import json
@@ -96,6 +98,7 @@ def uv_map(info):
 
 def main():
     path = Path(sys.argv[1]).resolve()
+    as_mesh = sys.argv[3] if len(sys.argv) > 3 and sys.argv[2] == "--as-mesh" else None
     gltf = json.loads(path.read_text())
     buffers = load_buffers(gltf, path.parent)
     scene = {"name": path.stem, "textures": [], "materials": [], "meshes": [], "objects": []}
@@ -164,6 +167,10 @@ def main():
     roots = gltf["scenes"][gltf.get("scene", 0)]["nodes"]
     for root in roots:
         visit(root, identity)
+    if as_mesh:
+        polygons = [p for m in scene["meshes"] for p in m["polygons"]]
+        scene["meshes"] = [{"id": as_mesh, "polygons": polygons}]
+        scene["objects"] = []
     json.dump(scene, sys.stdout, indent=1)
     sys.stdout.write("\n")
 

@@ -6,9 +6,11 @@ textured box (24 vertices, 36 unsigned-short indices, TEXCOORD_0) under a node w
 rotation and scale whose child has a matrix; a material with baseColorFactor, an external PNG and
 KHR_texture_transform, another untextured; a perspective camera named "gate".
 hangar.glb: the same model as one binary file with the PNG embedded in the buffer.
+hangar_embedded.gltf: the same again, buffer and PNG as base64 data URIs.
 
 Usage: make_gltf_fixture.py OUT_DIR
 """
+import base64
 import json
 import math
 import struct
@@ -129,6 +131,11 @@ def main():
     (out / "hangar.bin").write_bytes(bytes(blob))
     (out / "checker.png").write_bytes(texture)
     (out / "hangar.gltf").write_text(json.dumps(gltf, indent=1) + "\n")
+    data_uri = lambda kind, data: "data:%s;base64,%s" % (kind, base64.b64encode(data).decode())
+    embedded = dict(model, images=[{"uri": data_uri("image/png", texture)}],
+                    buffers=[{"uri": data_uri("application/octet-stream", bytes(blob)),
+                              "byteLength": len(blob)}], bufferViews=views)
+    (out / "hangar_embedded.gltf").write_text(json.dumps(embedded) + "\n")
     # The binary form: the PNG in the buffer too.
     v_img = view(texture)
     glb_model = dict(model, images=[{"bufferView": v_img, "mimeType": "image/png"}],

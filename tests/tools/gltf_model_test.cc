@@ -88,11 +88,14 @@ TEST_F(GltfModel, MatchesAnIndependentReadingPixelForPixel) {
   EXPECT_GT(reds.size(), 50u);
 }
 
-TEST_F(GltfModel, TheBinaryFormWithAnEmbeddedImageIsTheSameModel) {
+TEST_F(GltfModel, TheBinaryFormAndDataUrisAreTheSameModel) {
   ASSERT_EQ(Render(Path("hangar.gltf"), kCamera, "gltf.exr").exit_code, 0);
-  const Result r = Render(Path("hangar.glb"), kCamera, "glb.exr");
+  Result r = Render(Path("hangar.glb"), kCamera, "glb.exr");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(Pixels("gltf.exr"), Pixels("glb.exr"));
+  r = Render(Path("hangar_embedded.gltf"), kCamera, "embedded.exr");  // data URIs
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(Pixels("gltf.exr"), Pixels("embedded.exr"));
 }
 
 TEST_F(GltfModel, TheFilesCamerasGoByNameAndTheFirstIsTheDefault) {
@@ -114,6 +117,51 @@ TEST_F(GltfModel, TheFilesCamerasGoByNameAndTheFirstIsTheDefault) {
             std::string::npos)
       << unknown.output;
   EXPECT_NE(unknown.output.find("(gate)"), std::string::npos) << unknown.output;
+}
+
+// A scene file places models as objects, each instance with its own transform: the same pixels
+// as the independent reading's triangles in one mesh placed by the same objects.
+TEST_F(GltfModel, ASceneFilePlacesModelsAsObjects) {
+  const std::string objects = R"([
+    {"modelId": "hall", "transform": {"translation": {"x": -6, "y": 0, "z": -4}, "yawDeg": 20}},
+    {"modelId": "hall_glb", "name": "second", "transform": {"translation": {"x": 5, "y": 0,
+     "z": -12}, "yawDeg": -40, "scale": {"x": 0.5, "y": 0.5, "z": 0.5}}}])";
+  std::ofstream(Path("apron.json")) << R"({"name": "apron", "models": [
+      {"id": "hall", "file": "hangar.gltf"}, {"id": "hall_glb", "file": "hangar.glb"}],
+    "objects": )" << objects << "}";
+  const Result ref = aperture::testing::RunProcess(
+      "python3 " + (kSupport / "gltf_to_scene.py").string() + " " + Path("hangar.gltf") +
+      " --as-mesh hall > " + Path("one_mesh.json"));
+  ASSERT_EQ(ref.exit_code, 0) << ref.output;
+  std::ifstream in(Path("one_mesh.json"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = text.find("\"objects\": []");
+  ASSERT_NE(at, std::string::npos);
+  std::string placed = objects;
+  for (size_t p = placed.find("hall_glb"); p != std::string::npos; p = placed.find("hall_glb"))
+    placed.replace(p, 8, "hall");
+  text.replace(at, 14, "\"objects\": " + placed);
+  for (size_t p = text.find("modelId"); p != std::string::npos; p = text.find("modelId"))
+    text.replace(p, 7, "meshId");
+  std::ofstream(Path("reference.json")) << text;
+
+  Result r = Render(Path("apron.json"), kCamera, "apron.exr");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = Render(Path("reference.json"), kCamera, "reference.exr");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::vector<float> a = Pixels("apron.exr"), b = Pixels("reference.exr");
+  ASSERT_EQ(a.size(), 320u * 240 * 4);
+  EXPECT_TRUE(a == b) << "the placed models differ from the reference";
+
+  // A model outside the scene's folder is read locally (the user's own files) but an unknown
+  // model id is refused naming the object.
+  std::ofstream(Path("unknown.json"))
+      << R"({"objects": [{"modelId": "tower"}], "models": [{"id": "hall", "file": "hangar.gltf"}]})";
+  r = Render(Path("unknown.json"), kCamera, "x.exr");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("objects[0].model_id: 'tower' is not a model of the scene"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST_F(GltfModel, WhatIsNotDrawnIsReportedOnce) {
