@@ -120,8 +120,12 @@ def main():
             if image not in images:
                 images.add(image)
                 uri = gltf["images"][image]["uri"]
-                scene["textures"].append({"id": "image%d" % image,
-                                          "file": str(path.parent / uri)})
+                if uri.startswith("data:"):  # proto JSON bytes are base64 too
+                    scene["textures"].append({"id": "image%d" % image,
+                                              "encoded": uri.split(",", 1)[1]})
+                else:
+                    scene["textures"].append({"id": "image%d" % image,
+                                              "file": str(path.parent / uri)})
         scene["materials"].append(out)
 
     def visit(index, parent):
@@ -167,6 +171,9 @@ def main():
     roots = gltf["scenes"][gltf.get("scene", 0)]["nodes"]
     for root in roots:
         visit(root, identity)
+    used = {p["materialId"] for m in scene["meshes"] for p in m["polygons"]}
+    if "default" in used:  # the specification's default material: white
+        scene["materials"].append({"id": "default", "baseColor": {"r": 1.0, "g": 1.0, "b": 1.0}})
     if as_mesh:
         polygons = [p for m in scene["meshes"] for p in m["polygons"]]
         scene["meshes"] = [{"id": as_mesh, "polygons": polygons}]

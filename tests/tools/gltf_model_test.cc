@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -170,6 +171,62 @@ TEST_F(GltfModel, WhatIsNotDrawnIsReportedOnce) {
   const Result r = Render(bad, kCamera, "x.exr");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 BLEND materials drawn opaque"), std::string::npos) << r.output;
+}
+
+// Issue 24's acceptance: models of Debian's assimp-testmodels package (textures, embedded data,
+// texture transforms, strips and fans, index types, a skin in its bind pose) against the
+// independent reading, pixel for pixel; and the package's malformed models refused with messages.
+const fs::path kPackage = "/usr/share/assimp/models/glTF2";
+
+TEST_F(GltfModel, PackageModelsMatchTheIndependentReading) {
+  ASSERT_TRUE(fs::exists(kPackage)) << "install assimp-testmodels (scripts/install-deps.sh)";
+  const char* models[] = {
+      "BoxTextured-glTF/BoxTextured.gltf",
+      "BoxTextured-glTF-Embedded/BoxTextured.gltf",
+      "BoxTexcoords-glTF/boxTexcoords.gltf",
+      "textureTransform/TextureTransformTest.gltf",
+      "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_04.gltf",
+      "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_05.gltf",
+      "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_06.gltf",
+      "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_12.gltf",
+      "simple_skin/simple_skin.gltf",
+  };
+  const std::string camera = "--camera 0.3,0.6,3,5,-10,0 --fov 50";
+  for (const char* model : models) {
+    SCOPED_TRACE(model);
+    const std::string path = (kPackage / model).string();
+    const Result ref =
+        aperture::testing::RunProcess("python3 " + (kSupport / "gltf_to_scene.py").string() + " " +
+                                      path + " > " + Path("reference.json"));
+    ASSERT_EQ(ref.exit_code, 0) << ref.output;
+    Result r = Render(path, camera, "model.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    r = Render(Path("reference.json"), camera, "reference.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const std::vector<float> a = Pixels("model.exr"), b = Pixels("reference.exr");
+    ASSERT_EQ(a.size(), 320u * 240 * 4);
+    EXPECT_TRUE(a == b) << "differs from the independent reading";
+    EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.5f);  // the model is in view
+  }
+}
+
+TEST_F(GltfModel, PackageMalformedModelsAreRefused) {
+  ASSERT_TRUE(fs::exists(kPackage)) << "install assimp-testmodels (scripts/install-deps.sh)";
+  const std::pair<const char*, const char*> cases[] = {
+      {"IndexOutOfRange/IndexOutOfRange.gltf",
+       "meshes[0].primitives[0].indices: index 255 out of range 0..23"},
+      {"IndexOutOfRange/AllIndicesOutOfRange.gltf", "index 65535 out of range 0..23"},
+      {"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "vertex 0 is NaN or infinite"},
+      {"MissingBin/BoxTextured.gltf", "BoxTextured0.bin"},
+      {"RecursiveNodes/RecursiveNodes.gltf", "nodes[0]: is its own ancestor"},
+      {"draco/2CylinderEngine.gltf", "not a valid glTF file"},
+  };
+  for (const auto& [model, message] : cases) {
+    SCOPED_TRACE(model);
+    const Result r = Render((kPackage / model).string(), kCamera, "x.exr");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+  }
 }
 
 struct BadModel {
