@@ -279,6 +279,7 @@ class Importer {
       const std::string where = absl::StrCat("materials[", i, "]");
       v1::Material* material = out_.scene.add_materials();
       material->set_id(absl::StrCat("material", i));
+      material->set_single_sided(!m.doubleSided);
       const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
       if (f.size() >= 3) {
         for (int c = 0; c < 3; ++c)
@@ -496,6 +497,13 @@ class Importer {
     const std::string material_id =
         material >= 0 ? absl::StrCat("material", material) : DefaultMaterial();
     const UvTransform* uv_map = material >= 0 ? &uv_transforms_[material] : nullptr;
+    // A transform that mirrors (negative determinant) turns the winding: glTF then takes the
+    // front as the other side, so the vertices are reversed to keep it counter-clockwise.
+    const double det = world[0] * (world[5] * world[10] - world[9] * world[6]) -
+                       world[4] * (world[1] * world[10] - world[9] * world[2]) +
+                       world[8] * (world[1] * world[6] - world[5] * world[2]);
+    if (det < 0)
+      for (auto& t : triangles) std::swap(t[1], t[2]);
     for (const auto& t : triangles) {
       std::array<std::array<double, 3>, 3> p;
       for (int k = 0; k < 3; ++k) {
@@ -551,6 +559,7 @@ class Importer {
     if (!default_material_added_) {
       v1::Material* m = out_.scene.add_materials();
       m->set_id("default");
+      m->set_single_sided(true);  // the specification's default material: doubleSided false
       m->mutable_base_color()->set_r(1);
       m->mutable_base_color()->set_g(1);
       m->mutable_base_color()->set_b(1);

@@ -46,6 +46,9 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
     const Vec3 n = to_camera * poly.normal;
     const double h = Dot(n, cam_pts[0]);                             // plane: dot(n, P) = h
     if (std::abs(h) < 1e-12 * (1.0 + Length(cam_pts[0]))) continue;  // seen edge-on
+    // h > 0: the camera is behind the polygon's front side. A single-sided material is not seen
+    // from there (closed solids: their back faces never reach the visibility test).
+    if (h > 0 && scene.materials[poly.material].single_sided) continue;
 
     ClipByPlane(cam_pts, {0, 0, -1}, -camera.near, scratch3);
     if (camera.far > 0 && !cam_pts.empty()) ClipByPlane(cam_pts, {0, 0, 1}, camera.far, scratch3);

@@ -36,6 +36,7 @@ struct Material {
   int texture = -1;  // index into Scene::textures, -1: untextured
   FilterMode filter = FilterMode::kTrilinear;
   bool unlit = false;
+  bool single_sided = false;  // the raster mode skips it seen from behind (v1::Material)
 };
 
 // Affine world-to-texture map over a polygon's plane: u = dot(su, P) + u0 (texture repeats).

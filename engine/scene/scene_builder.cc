@@ -190,6 +190,7 @@ class Builder {
       Material mat;
       mat.id = m.id();
       mat.unlit = m.unlit();
+      mat.single_sided = m.single_sided();
       if (m.has_base_color()) {
         auto c = ColorFromProto(m.base_color(), where + ".base_color");
         if (!c.ok()) return c.status();

@@ -107,6 +107,8 @@ def main():
     for i, m in enumerate(gltf.get("materials", [])):
         pbr = m.get("pbrMetallicRoughness", {})
         out = {"id": "material%d" % i}
+        if not m.get("doubleSided", False):
+            out["singleSided"] = True
         factor = pbr.get("baseColorFactor")
         info = pbr.get("baseColorTexture")
         if factor:
@@ -152,6 +154,12 @@ def main():
                     continue
                 material = prim.get("material")
                 f = maps[material] if material is not None else None
+                m3 = world
+                det = (m3[0] * (m3[5] * m3[10] - m3[9] * m3[6]) -
+                       m3[4] * (m3[1] * m3[10] - m3[9] * m3[2]) +
+                       m3[8] * (m3[1] * m3[6] - m3[5] * m3[2]))
+                if det < 0:  # a mirroring transform turns the winding: keep fronts CCW
+                    tris = [[t[0], t[2], t[1]] for t in tris]
                 for t in tris:
                     poly = {"materialId": "material%d" % material if material is not None
                             else "default",
@@ -173,7 +181,8 @@ def main():
         visit(root, identity)
     used = {p["materialId"] for m in scene["meshes"] for p in m["polygons"]}
     if "default" in used:  # the specification's default material: white
-        scene["materials"].append({"id": "default", "baseColor": {"r": 1.0, "g": 1.0, "b": 1.0}})
+        scene["materials"].append({"id": "default", "singleSided": True,
+                                   "baseColor": {"r": 1.0, "g": 1.0, "b": 1.0}})
     if as_mesh:
         polygons = [p for m in scene["meshes"] for p in m["polygons"]]
         scene["meshes"] = [{"id": as_mesh, "polygons": polygons}]
