@@ -53,6 +53,33 @@ class GltfModel : public ::testing::Test {
     EXPECT_TRUE(in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data()));
     return pixels;
   }
+  // Renders `scene` and `reference` with the same flags; their pixels (`scene`'s) when they are
+  // the same bits, else a failure and nothing.
+  std::vector<float> RenderBothAndCompare(const std::string& scene, const std::string& reference,
+                                          const std::string& args) {
+    const Result a = Render(scene, args, "scene.exr"), b = Render(reference, args, "reference.exr");
+    EXPECT_EQ(a.exit_code, 0) << a.output;
+    EXPECT_EQ(b.exit_code, 0) << b.output;
+    std::vector<float> pixels = Pixels("scene.exr");
+    EXPECT_EQ(pixels.size(), 320u * 240 * 4);
+    const std::vector<float> expected = Pixels("reference.exr");
+    size_t differing = 0;
+    for (size_t i = 0; i < std::min(pixels.size(), expected.size()); ++i)
+      differing += pixels[i] != expected[i];
+    EXPECT_EQ(differing, 0u) << scene << " against " << reference;
+    EXPECT_EQ(pixels.size(), expected.size());
+    if (differing != 0 || pixels.size() != expected.size() || pixels.empty()) return {};
+    return pixels;
+  }
+  // The independent reading of a model (tests/support/gltf_to_scene.py) into reference.json.
+  std::string Reference(const std::string& model, const std::string& options = "") {
+    const Result ref =
+        aperture::testing::RunProcess("python3 " + (kSupport / "gltf_to_scene.py").string() + " " +
+                                      model + " " + options + " > " + Path("reference.json"));
+    EXPECT_EQ(ref.exit_code, 0) << ref.output;
+    return Path("reference.json");
+  }
+
   // A malformed copy of hangar.gltf: every `from` in its JSON text replaced by `to`.
   std::string Malformed(const std::string& from, const std::string& to) {
     std::ifstream in(Path("hangar.gltf"));
@@ -69,20 +96,9 @@ class GltfModel : public ::testing::Test {
 constexpr char kCamera[] = "--camera 0,1.7,5,0,-5,0 --fov 50";
 
 TEST_F(GltfModel, MatchesAnIndependentReadingPixelForPixel) {
-  const Result ref =
-      aperture::testing::RunProcess("python3 " + (kSupport / "gltf_to_scene.py").string() + " " +
-                                    Path("hangar.gltf") + " > " + Path("reference.json"));
-  ASSERT_EQ(ref.exit_code, 0) << ref.output;
-  Result r = Render(Path("hangar.gltf"), kCamera, "model.exr");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = Render(Path("reference.json"), kCamera, "reference.exr");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::vector<float> model = Pixels("model.exr"), reference = Pixels("reference.exr");
-  ASSERT_EQ(model.size(), 320u * 240 * 4);
-  ASSERT_EQ(model.size(), reference.size());
-  size_t differing = 0;
-  for (size_t i = 0; i < model.size(); ++i) differing += model[i] != reference[i];
-  EXPECT_EQ(differing, 0u);
+  const std::vector<float> model =
+      RenderBothAndCompare(Path("hangar.gltf"), Reference(Path("hangar.gltf")), kCamera);
+  ASSERT_FALSE(model.empty());
   // Not a blank frame: the ground, the sky and the textured hall's many shades are there.
   std::set<float> reds;
   for (size_t i = 0; i < model.size(); i += 4) reds.insert(model[i]);
@@ -130,11 +146,7 @@ TEST_F(GltfModel, ASceneFilePlacesModelsAsObjects) {
   std::ofstream(Path("apron.json")) << R"({"name": "apron", "models": [
       {"id": "hall", "file": "hangar.gltf"}, {"id": "hall_glb", "file": "hangar.glb"}],
     "objects": )" << objects << "}";
-  const Result ref = aperture::testing::RunProcess(
-      "python3 " + (kSupport / "gltf_to_scene.py").string() + " " + Path("hangar.gltf") +
-      " --as-mesh hall > " + Path("one_mesh.json"));
-  ASSERT_EQ(ref.exit_code, 0) << ref.output;
-  std::ifstream in(Path("one_mesh.json"));
+  std::ifstream in(Reference(Path("hangar.gltf"), "--as-mesh hall"));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const size_t at = text.find("\"objects\": []");
   ASSERT_NE(at, std::string::npos);
@@ -146,19 +158,14 @@ TEST_F(GltfModel, ASceneFilePlacesModelsAsObjects) {
     text.replace(p, 7, "meshId");
   std::ofstream(Path("reference.json")) << text;
 
-  Result r = Render(Path("apron.json"), kCamera, "apron.exr");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = Render(Path("reference.json"), kCamera, "reference.exr");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::vector<float> a = Pixels("apron.exr"), b = Pixels("reference.exr");
-  ASSERT_EQ(a.size(), 320u * 240 * 4);
-  EXPECT_TRUE(a == b) << "the placed models differ from the reference";
+  in.close();
+  std::ofstream(Path("placed.json")) << text;
+  EXPECT_FALSE(RenderBothAndCompare(Path("apron.json"), Path("placed.json"), kCamera).empty());
 
-  // A model outside the scene's folder is read locally (the user's own files) but an unknown
-  // model id is refused naming the object.
+  // An object placing a model the scene does not have is refused, naming the object.
   std::ofstream(Path("unknown.json"))
       << R"({"objects": [{"modelId": "tower"}], "models": [{"id": "hall", "file": "hangar.gltf"}]})";
-  r = Render(Path("unknown.json"), kCamera, "x.exr");
+  const Result r = Render(Path("unknown.json"), kCamera, "x.exr");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("objects[0].model_id: 'tower' is not a model of the scene"),
             std::string::npos)
@@ -195,17 +202,8 @@ TEST_F(GltfModel, PackageModelsMatchTheIndependentReading) {
   for (const char* model : models) {
     SCOPED_TRACE(model);
     const std::string path = (kPackage / model).string();
-    const Result ref =
-        aperture::testing::RunProcess("python3 " + (kSupport / "gltf_to_scene.py").string() + " " +
-                                      path + " > " + Path("reference.json"));
-    ASSERT_EQ(ref.exit_code, 0) << ref.output;
-    Result r = Render(path, camera, "model.exr");
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    r = Render(Path("reference.json"), camera, "reference.exr");
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    const std::vector<float> a = Pixels("model.exr"), b = Pixels("reference.exr");
-    ASSERT_EQ(a.size(), 320u * 240 * 4);
-    EXPECT_TRUE(a == b) << "differs from the independent reading";
+    const std::vector<float> a = RenderBothAndCompare(path, Reference(path), camera);
+    ASSERT_FALSE(a.empty());
     EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.5f);  // the model is in view
   }
 }
