@@ -25,9 +25,9 @@ ABSL_FLAG(int, split, 0,
 ABSL_FLAG(std::string, scene, "demo",
           "'demo' (built-in airfield), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, camera, "",
-          "X,Y,Z,YAW,PITCH,ROLL; default: the demo's approach camera, "
-          "or 0,1.7,0,0,0,0 for a scene file");
-ABSL_FLAG(double, fov, 60, "vertical field of view, degrees");
+          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: the demo's "
+          "approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
+ABSL_FLAG(double, fov, 0, "vertical field of view, degrees; 0: a glTF model camera's own, else 60");
 ABSL_FLAG(double, near, 0, "near plane distance (0: the demo's 0.5, else 0.1)");
 ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT");
 ABSL_FLAG(std::string, region, "", "only this part of the frame: X,Y,WIDTHxHEIGHT");

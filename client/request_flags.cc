@@ -6,6 +6,7 @@
 #include "absl/flags/flag.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "client_flags.h"
 
@@ -78,9 +79,29 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const SceneOnServer
     camera.mutable_position()->set_y(1.7);
     camera.set_near(0.1);
   }
-  if (const std::string spec = absl::GetFlag(FLAGS_camera); !spec.empty())
-    if (auto s = ParseCameraInto(spec, &camera); !s.ok()) return s;
-  camera.set_vertical_fov_deg(absl::GetFlag(FLAGS_fov));
+  // A glTF model's cameras go by name; the first is the default (as in aperture-render).
+  const std::string spec = absl::GetFlag(FLAGS_camera);
+  bool model_camera = false;
+  if (!scene.model_cameras.empty() || (!spec.empty() && !ParseCameraInto(spec, &camera).ok())) {
+    std::vector<std::string> names;
+    for (const GltfCamera& c : scene.model_cameras) {
+      if (spec.empty() || c.name == spec) {
+        camera = c.camera;
+        model_camera = true;
+        break;
+      }
+      names.push_back(c.name);
+    }
+    if (!model_camera && !spec.empty() && !ParseCameraInto(spec, &camera).ok())
+      return absl::InvalidArgumentError(absl::StrCat(
+          "--camera '", spec, "' is neither X,Y,Z,YAW,PITCH,ROLL nor a camera of the model",
+          names.empty() ? std::string(" (it has none)")
+                        : absl::StrCat(" (", absl::StrJoin(names, ", "), ")")));
+  }
+  if (const double fov = absl::GetFlag(FLAGS_fov); fov != 0)
+    camera.set_vertical_fov_deg(fov);
+  else if (!model_camera)
+    camera.set_vertical_fov_deg(60);
   if (absl::GetFlag(FLAGS_near) != 0) camera.set_near(absl::GetFlag(FLAGS_near));
 
   v1::RenderOptions& options = *request.mutable_options();

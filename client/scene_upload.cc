@@ -30,12 +30,13 @@ bool IsBuiltinScene(const std::string& argument) {
   return argument == "demo" || argument == "triangles" || argument == "skewed";
 }
 
-absl::StatusOr<v1::Scene> ReadScene(const std::string& argument) {
+absl::StatusOr<v1::Scene> ReadScene(const std::string& argument, std::vector<GltfCamera>* cameras) {
   if (IsGltfPath(argument)) {  // a glTF model: its images are uploaded as a scene file's are
     auto model = ImportGltf(argument);
     if (!model.ok()) return model.status();
     for (const std::string& note : model->notes)
       std::fprintf(stderr, "aperture: %s: %s\n", argument.c_str(), note.c_str());
+    *cameras = std::move(model->cameras);
     return std::move(model->scene);
   }
   auto json = ReadFile(argument);
@@ -103,7 +104,7 @@ absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
     request.set_builtin_scene(scene_argument);  // the server builds it
     return Load(stub, request, result);
   }
-  auto scene = ReadScene(scene_argument);
+  auto scene = ReadScene(scene_argument, &result.model_cameras);
   if (!scene.ok()) return scene.status();
   const std::filesystem::path base = std::filesystem::path(scene_argument).parent_path();
   for (int i = 0; i < scene->textures_size(); ++i) {

@@ -1,6 +1,6 @@
 // Gets a scene onto a server: a built-in scene by name (demo, triangles, skewed: the server builds
-// it), or a scene JSON file whose image textures are uploaded (skipping those the server already
-// has) and then referenced by hash.
+// it), or a scene JSON file or glTF model whose image textures are uploaded (skipping those the
+// server already has) and then referenced by hash.
 #pragma once
 
 #include <optional>
@@ -9,6 +9,7 @@
 
 #include "absl/status/statusor.h"
 #include "aperture/v1/render_service.grpc.pb.h"
+#include "gltf_import.h"
 
 namespace aperture {
 
@@ -17,6 +18,7 @@ struct SceneOnServer {
   uint32_t polygons = 0;
   int textures_sent = 0, textures_skipped = 0;
   std::optional<v1::Camera> default_camera;  // built-in scenes: the camera they are seen from
+  std::vector<GltfCamera> model_cameras;     // a glTF model's cameras, for --camera NAME
   std::vector<v1::NamedObject> objects;      // what a SceneUpdate can move, as loaded
 };
 

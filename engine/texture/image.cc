@@ -84,6 +84,25 @@ absl::Status CheckExrAttributeSizes(std::span<const uint8_t> b) {
   }
 }
 
+// OpenImageIO 2.4's memory reader reads at whatever offset it is given: an EXR whose chunk table
+// points before the start of the bytes made it read outside them (the upload fuzz target found
+// it). This one reads nothing there, and the decoder then reports a truncated file.
+class BoundedMemReader final : public OIIO::Filesystem::IOMemReader {
+ public:
+  explicit BoundedMemReader(std::span<const uint8_t> bytes)
+      : IOMemReader(bytes.data(), bytes.size()) {}
+  size_t pread(void* buf, size_t size, int64_t offset) override {
+    const int64_t end = static_cast<int64_t>(m_buf.size());
+    if (offset < 0 || offset > end) return 0;
+    return IOMemReader::pread(buf, std::min(size, static_cast<size_t>(end - offset)), offset);
+  }
+  size_t read(void* buf, size_t size) override {
+    const size_t n = pread(buf, size, m_pos);
+    m_pos += static_cast<int64_t>(n);
+    return n;
+  }
+};
+
 // An encoded image in memory opened for reading (its header read), or why not.
 absl::StatusOr<std::unique_ptr<OIIO::ImageInput>> OpenInMemory(
     std::span<const uint8_t> bytes, OIIO::Filesystem::IOMemReader& reader) {
@@ -149,14 +168,14 @@ absl::StatusOr<Image> LoadImageFile(const std::string& path) {
 }
 
 absl::StatusOr<Image> DecodeImage(std::span<const uint8_t> bytes) {
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  BoundedMemReader reader(bytes);
   auto in = OpenInMemory(bytes, reader);
   if (!in.ok()) return in.status();
   return ReadFrom(in->get(), "encoded texture");
 }
 
 absl::StatusOr<ImageHeader> ReadImageHeader(std::span<const uint8_t> bytes) {
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  BoundedMemReader reader(bytes);
   auto in = OpenInMemory(bytes, reader);
   if (!in.ok()) return in.status();
   const OIIO::ImageSpec& spec = (*in)->spec();

@@ -210,6 +210,24 @@ TEST_F(ClientTest, AGltfModelRendersAsItDoesLocally) {
     ASSERT_FALSE(a.empty());
     EXPECT_TRUE(a == b) << "the service's pixels differ from aperture-render's";
   }
+  // The model's camera by name, with its own field of view, as aperture-render takes it.
+  const std::string scene = "--scene=" + (dir_ / "hangar.gltf").string();
+  const CommandResult local =
+      RunCommand({APERTURE_RENDER_BIN, scene, "--camera=gate", "--size=96x64", "--nopreview",
+                  "--store=none", "--compression=none", "-o", (dir_ / "gate_local.exr").string()},
+                 60);
+  ASSERT_EQ(local.exit_code, 0) << local.err;
+  const CommandResult sent = Client({"render", scene, "--camera=gate", "--size=96x64",
+                                     "--compression=none", "-o=" + (dir_ / "gate.exr").string()});
+  ASSERT_EQ(sent.exit_code, 0) << sent.err;
+  int w = 0, h = 0;
+  EXPECT_TRUE(Pixels((dir_ / "gate_local.exr").string(), &w, &h) ==
+              Pixels((dir_ / "gate.exr").string(), &w, &h));
+  const CommandResult unknown =
+      Client({"render", scene, "--camera=tower", "-o=" + (dir_ / "x.exr").string()});
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
+  EXPECT_THAT(unknown.err, HasSubstr("is neither X,Y,Z,YAW,PITCH,ROLL nor a camera of the model "
+                                     "(gate)"));
 }
 
 // The ground scene with a textured sphere on it: only the raytrace mode draws it.
