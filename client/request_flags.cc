@@ -1,5 +1,6 @@
 #include "request_flags.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <vector>
 
@@ -79,24 +80,28 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const SceneOnServer
     camera.mutable_position()->set_y(1.7);
     camera.set_near(0.1);
   }
-  // A glTF model's cameras go by name; the first is the default (as in aperture-render).
+  // Six numbers place the camera; else a glTF model's camera by name, its first by default (as in
+  // aperture-render).
   const std::string spec = absl::GetFlag(FLAGS_camera);
   bool model_camera = false;
-  if (!scene.model_cameras.empty() || (!spec.empty() && !ParseCameraInto(spec, &camera).ok())) {
+  if (!spec.empty() && ParseCameraInto(spec, &camera).ok()) {
+    // placed by the numbers
+  } else if (const auto named =
+                 std::find_if(scene.model_cameras.begin(), scene.model_cameras.end(),
+                              [&](const GltfCamera& c) { return spec.empty() || c.name == spec; });
+             named != scene.model_cameras.end()) {
+    camera = named->camera;
+    model_camera = true;
+  } else if (!spec.empty() && scene.model_cameras.empty()) {
+    return ParseCameraInto(spec, &camera);  // says what the six numbers should be
+  } else if (!spec.empty()) {
     std::vector<std::string> names;
-    for (const GltfCamera& c : scene.model_cameras) {
-      if (spec.empty() || c.name == spec) {
-        camera = c.camera;
-        model_camera = true;
-        break;
-      }
-      names.push_back(c.name);
-    }
-    if (!model_camera && !spec.empty() && !ParseCameraInto(spec, &camera).ok())
-      return absl::InvalidArgumentError(absl::StrCat(
-          "--camera '", spec, "' is neither X,Y,Z,YAW,PITCH,ROLL nor a camera of the model",
-          names.empty() ? std::string(" (it has none)")
-                        : absl::StrCat(" (", absl::StrJoin(names, ", "), ")")));
+    for (const GltfCamera& c : scene.model_cameras) names.push_back(c.name);
+    return absl::InvalidArgumentError(
+        absl::StrCat("--camera '", spec,
+                     "' is neither X,Y,Z,YAW,PITCH,ROLL nor a camera of the "
+                     "model (",
+                     absl::StrJoin(names, ", "), ")"));
   }
   if (const double fov = absl::GetFlag(FLAGS_fov); fov != 0)
     camera.set_vertical_fov_deg(fov);

@@ -226,9 +226,9 @@ void SetOrientation(const double r[3][3], v1::Camera& camera) {
 
 class Importer {
  public:
-  Importer(const tinygltf::Model& model, const fs::path& folder,
+  Importer(const tinygltf::Model& model,
            const std::map<int, std::vector<unsigned char>>& image_bytes)
-      : model_(model), folder_(folder), image_bytes_(image_bytes) {}
+      : model_(model), image_bytes_(image_bytes) {}
 
   absl::StatusOr<ImportedModel> Run(const std::string& name) {
     out_.scene.set_name(name);
@@ -569,7 +569,6 @@ class Importer {
   }
 
   const tinygltf::Model& model_;
-  fs::path folder_;
   const std::map<int, std::vector<unsigned char>>& image_bytes_;
   ImportedModel out_;
   std::vector<UvTransform> uv_transforms_;  // per glTF material
@@ -585,14 +584,20 @@ struct Containment {
   std::string refused;
 };
 
+// Whether `path`, symbolic links resolved, lies under `folder` (weakly canonical).
+bool IsInside(const fs::path& folder, const fs::path& path) {
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(path), ec);
+  if (ec) return false;
+  const auto [end, _] =
+      std::mismatch(folder.begin(), folder.end(), resolved.begin(), resolved.end());
+  return end == folder.end();
+}
+
 bool ReadInsideFolder(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                       void* user) {
   auto* c = static_cast<Containment*>(user);
-  std::error_code ec;
-  const fs::path resolved = fs::weakly_canonical(fs::path(path), ec);
-  const auto [end, _] =
-      std::mismatch(c->folder.begin(), c->folder.end(), resolved.begin(), resolved.end());
-  if (ec || end != c->folder.end()) {
+  if (!IsInside(c->folder, path)) {
     c->refused = path;
     if (err != nullptr)
       *err += absl::StrCat("'", path, "' is outside the model's folder and is not read\n");
@@ -667,7 +672,7 @@ absl::StatusOr<ImportedModel> ImportGltfBytes(std::span<const uint8_t> bytes, bo
     while (!message.empty() && message.back() == '\n') message.pop_back();
     return absl::InvalidArgumentError(absl::StrCat("not a valid glTF file: ", message));
   }
-  Importer importer(model, containment.folder, image_bytes);
+  Importer importer(model, image_bytes);
   return importer.Run(name);
 }
 
@@ -694,10 +699,7 @@ absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool a
     if (!taken.insert(model.id()).second)
       return Invalid(where, "id is already a mesh or model of the scene");
     const fs::path file = base / model.file();
-    const fs::path resolved = fs::weakly_canonical(fs::absolute(file), ec);
-    const auto [end, _] = std::mismatch(base_canonical.begin(), base_canonical.end(),
-                                        resolved.begin(), resolved.end());
-    if (!allow_any_path && end != base_canonical.end())
+    if (!allow_any_path && !IsInside(base_canonical, file))
       return Invalid(where + ".file",
                      absl::StrCat("'", model.file(), "' is outside the scene file's folder"));
     if (!IsGltfPath(file.string()))

@@ -7,17 +7,19 @@
 
 namespace aperture {
 
-void RowFootprintsPortable(const ScreenPolygon& p, double min_inv_depth, double aperture,
-                           const RowRun& run, FootprintBatch& out, double* inv_depth) {
-  for (int i = 0; i < run.count; ++i) {
+namespace {
+
+// Pixels begin..run.count of the run, one at a time: the portable kernel, and the tail of a
+// vector kernel.
+void RowFootprintsFrom(int begin, const ScreenPolygon& p, double min_inv_depth, double aperture,
+                       const RowRun& run, FootprintBatch& out, double* inv_depth) {
+  for (int i = begin; i < run.count; ++i) {
     const double x = run.x0 + (run.first + i);
     inv_depth[i] = InvDepthAt(p, min_inv_depth, x, run.y);
     out.Set(i, FootprintAt(p, aperture, inv_depth[i], x, run.y));
   }
   out.count = run.count;
 }
-
-namespace {
 
 #if defined(APERTURE_HAVE_AVX2_KERNEL)
 
@@ -61,17 +63,17 @@ __attribute__((target("avx2"))) void RowFootprintsAvx2Kernel(const ScreenPolygon
     _mm_store_ps(out.dvdy + i,
                  _mm256_cvtpd_ps(_mm256_mul_pd(_mm256_sub_pd(v_b, _mm256_mul_pd(z_b, v)), s)));
   }
-  for (; i < run.count; ++i) {
-    const double x = run.x0 + (run.first + i);
-    inv_depth[i] = InvDepthAt(p, min_inv_depth, x, run.y);
-    out.Set(i, FootprintAt(p, aperture, inv_depth[i], x, run.y));
-  }
-  out.count = run.count;
+  RowFootprintsFrom(i, p, min_inv_depth, aperture, run, out, inv_depth);
 }
 
 #endif
 
 }  // namespace
+
+void RowFootprintsPortable(const ScreenPolygon& p, double min_inv_depth, double aperture,
+                           const RowRun& run, FootprintBatch& out, double* inv_depth) {
+  RowFootprintsFrom(0, p, min_inv_depth, aperture, run, out, inv_depth);
+}
 
 RowFootprintsFn RowFootprintsAvx2() {
 #if defined(APERTURE_HAVE_AVX2_KERNEL)

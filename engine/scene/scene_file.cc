@@ -24,11 +24,12 @@ absl::StatusOr<v1::Scene> ParseSceneJson(const std::string& json) {
   return scene;
 }
 
-absl::StatusOr<v1::Scene> ReadSceneFile(const std::string& path) {
+absl::StatusOr<v1::Scene> ReadSceneFile(const std::string& path, std::vector<GltfCamera>* cameras) {
   if (IsGltfPath(path)) {
     auto model = ImportGltf(path);
     if (!model.ok()) return model.status();
     for (const std::string& note : model->notes) spdlog::warn("{}: {}", path, note);
+    if (cameras != nullptr) *cameras = std::move(model->cameras);
     return std::move(model->scene);
   }
   std::ifstream in(path, std::ios::binary);
@@ -61,10 +62,15 @@ absl::StatusOr<Scene> LoadSceneFile(const std::string& path,
                                     std::shared_ptr<const SharedStore> store) {
   auto proto = ReadSceneFile(path);
   if (!proto.ok()) return proto.status();
+  return BuildSceneFile(*proto, path, std::move(store));
+}
+
+absl::StatusOr<Scene> BuildSceneFile(const v1::Scene& proto, const std::string& path,
+                                     std::shared_ptr<const SharedStore> store) {
   SceneBuildOptions options;
   options.base_dir = std::filesystem::path(path).parent_path().string();
   options.store = std::move(store);
-  auto scene = BuildScene(*proto, options);
+  auto scene = BuildScene(proto, options);
   if (!scene.ok())
     return absl::Status(scene.status().code(), absl::StrCat(path, ": ", scene.status().message()));
   if (scene->name.empty()) scene->name = std::filesystem::path(path).stem().string();

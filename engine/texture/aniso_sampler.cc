@@ -88,23 +88,32 @@ template <typename Layout>
              Mix(at(a + 1, b2), at(a + 1, b2 + 1), m2 - m2f), fM);
 }
 
-// The base probes of a thin aperture (see AddBaseProbes), summed with their weights.
-template <typename Layout>
-[[gnu::always_inline]] inline V4 BaseProbes(const Layout& base, const CopyBlend& blend,
-                                            const ApertureShape& shape, float u, float v,
-                                            float inv_size) {
+// The base probes of a thin aperture (see AddBaseProbes): visit(u', v', weight) for each, in
+// order, where they are read (a bilinear read of the base, untilted).
+template <typename Visit>
+[[gnu::always_inline]] inline void ForEachBaseProbe(const CopyBlend& blend,
+                                                    const ApertureShape& shape, float u, float v,
+                                                    float inv_size, Visit visit) {
   // Along the major axis, and tg times that along the minor one; in repeats.
   const float step = blend.probe_step * inv_size;
   const float first = -0.5f * static_cast<float>(blend.probes - 1) * step;
   const float tg = static_cast<float>(shape.tg), w = blend.probe_weight / 255.0f;
   const bool along_u = shape.axis == TiltAxis::kU;
-  V4 sum = Zero();
   for (int k = 0; k < blend.probes; ++k) {
     const float major = first + static_cast<float>(k) * step, minor = major * tg;
-    sum = AddScaled(
-        sum, CopySample(base, u + (along_u ? major : minor), v + (along_u ? minor : major), 0.0f),
-        w);
+    visit(u + (along_u ? major : minor), v + (along_u ? minor : major), w);
   }
+}
+
+// The base probes summed with their weights.
+template <typename Layout>
+[[gnu::always_inline]] inline V4 BaseProbes(const Layout& base, const CopyBlend& blend,
+                                            const ApertureShape& shape, float u, float v,
+                                            float inv_size) {
+  V4 sum = Zero();
+  ForEachBaseProbe(blend, shape, u, v, inv_size, [&](float pu, float pv, float w) {
+    sum = AddScaled(sum, CopySample(base, pu, pv, 0.0f), w);
+  });
   return sum;
 }
 
@@ -427,16 +436,8 @@ void AnisoSampler::BlendReads(const TextureFootprint* f, const ApertureShape* sh
       continue;
     }
     const float tg = static_cast<float>(shapes[i].tg);
-    if (blend.probes > 0) {  // BaseProbes
-      const float step = blend.probe_step * inv_size;
-      const float first = -0.5f * static_cast<float>(blend.probes - 1) * step;
-      const float w = blend.probe_weight / 255.0f;
-      const bool along_u = shapes[i].axis == TiltAxis::kU;
-      for (int k = 0; k < blend.probes; ++k) {
-        const float major = first + static_cast<float>(k) * step, minor = major * tg;
-        add(i, layouts_[0], u + (along_u ? major : minor), v + (along_u ? minor : major), 0.0f, w);
-      }
-    }
+    ForEachBaseProbe(blend, shapes[i], u, v, inv_size,
+                     [&](float pu, float pv, float w) { add(i, layouts_[0], pu, pv, 0.0f, w); });
     for (int c = 0; c < blend.count; ++c) {
       if (blend.weight[c] == 0.0f) continue;
       add(i, layouts_[blend.copy[c]], u, v, tg, blend.weight[c] / 255.0f);

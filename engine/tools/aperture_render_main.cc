@@ -121,13 +121,12 @@ int RunCalibration() {
 // The camera of a glTF model named by --camera (empty: its first camera, if it has any; a
 // position spec: none, the spec is used).
 absl::StatusOr<std::optional<Camera>> ModelCamera(const std::string& path,
+                                                  const std::vector<GltfCamera>& cameras,
                                                   const std::string& spec) {
   if (!spec.empty() && ParseCameraSpec(spec).ok()) return std::optional<Camera>();
-  auto model = ImportGltf(path);
-  if (!model.ok()) return model.status();
-  if (spec.empty() && model->cameras.empty()) return std::optional<Camera>();
+  if (spec.empty() && cameras.empty()) return std::optional<Camera>();
   std::vector<std::string> names;
-  for (const GltfCamera& c : model->cameras) {
+  for (const GltfCamera& c : cameras) {
     if (spec.empty() || c.name == spec) {
       auto camera = CameraFromProto(c.camera);
       if (!camera.ok())
@@ -152,10 +151,16 @@ int Run() {
   if (!builtin.ok() && scene_arg.rfind("tris-", 0) == 0) return Fail(builtin.status());
   Camera camera = builtin.ok() ? builtin->camera : Camera{.position = {0, 1.7, 0}};
   // A glTF model's cameras go by name; the first is the default.
+  // A model is read here, once: its cameras are part of the options.
   std::optional<Camera> model_camera;
+  std::optional<v1::Scene> model;
   const std::string spec = absl::GetFlag(FLAGS_camera);
   if (!builtin.ok() && IsGltfPath(scene_arg)) {
-    auto found = ModelCamera(scene_arg, spec);
+    std::vector<GltfCamera> cameras;
+    auto read = ReadSceneFile(scene_arg, &cameras);
+    if (!read.ok()) return Fail(read.status());
+    model = *std::move(read);
+    auto found = ModelCamera(scene_arg, cameras, spec);
     if (!found.ok()) return Fail(found.status());
     model_camera = *found;
   }
@@ -235,8 +240,9 @@ int Run() {
   }
   SceneBuildOptions build_options;
   build_options.store = store;
-  auto built =
-      builtin.ok() ? BuildScene(builtin->scene, build_options) : LoadSceneFile(scene_arg, store);
+  auto built = builtin.ok() ? BuildScene(builtin->scene, build_options)
+               : model      ? BuildSceneFile(*model, scene_arg, store)
+                            : LoadSceneFile(scene_arg, store);
   if (!built.ok()) return Fail(built.status());
   if (built->name.empty()) built->name = scene_arg;
 

@@ -154,10 +154,9 @@ def main():
                     continue
                 material = prim.get("material")
                 f = maps[material] if material is not None else None
-                m3 = world
-                det = (m3[0] * (m3[5] * m3[10] - m3[9] * m3[6]) -
-                       m3[4] * (m3[1] * m3[10] - m3[9] * m3[2]) +
-                       m3[8] * (m3[1] * m3[6] - m3[5] * m3[2]))
+                m = world
+                det = (m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
+                       m[8] * (m[1] * m[6] - m[5] * m[2]))
                 if det < 0:  # a mirroring transform turns the winding: keep fronts CCW
                     tris = [[t[0], t[2], t[1]] for t in tris]
                 for t in tris:
