@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -68,6 +70,21 @@ TEST(ImageLimits, TableOfAnImageBeyondTheLimitIsRefusedBeforeResampling) {
   ASSERT_FALSE(block.ok());
   EXPECT_NE(std::string(block.status().message()).find("1x16384"), std::string::npos)
       << block.status();
+}
+
+// An EXR whose chunk table points before the start of its bytes (found by the upload fuzz
+// target: OpenImageIO's memory reader read outside them) is refused with an error. The over-read
+// itself shows only under ASan: the upload fuzz test replays this input from its corpus.
+TEST(ImageLimits, AnExrChunkBeforeTheStartOfTheBytesIsAnError) {
+  std::ifstream in(
+      std::string(APERTURE_TEST_DATA) + "/../fuzz/corpus/upload/exr-chunk-offset-before-start.exr",
+      std::ios::binary);
+  ASSERT_TRUE(in);
+  const std::string exr((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto image = DecodeImage(std::span(reinterpret_cast<const uint8_t*>(exr.data()), exr.size()));
+  ASSERT_FALSE(image.ok());
+  EXPECT_EQ(image.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_FALSE(image.status().message().empty());
 }
 
 }  // namespace
