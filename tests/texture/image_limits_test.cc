@@ -77,7 +77,7 @@ TEST(ImageLimits, TableOfAnImageBeyondTheLimitIsRefusedBeforeResampling) {
 // itself shows only under ASan: the upload fuzz test replays this input from its corpus.
 TEST(ImageLimits, AnExrChunkBeforeTheStartOfTheBytesIsAnError) {
   std::ifstream in(
-      std::string(APERTURE_TEST_DATA) + "/../fuzz/corpus/upload/exr-chunk-offset-before-start.exr",
+      std::string(APERTURE_TEST_DATA) + "/../fuzz/corpus/upload/exr-chunk-offset-before-start.exr-bytes",
       std::ios::binary);
   ASSERT_TRUE(in);
   const std::string exr((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
