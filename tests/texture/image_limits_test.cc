@@ -76,9 +76,9 @@ TEST(ImageLimits, TableOfAnImageBeyondTheLimitIsRefusedBeforeResampling) {
 // target: OpenImageIO's memory reader read outside them) is refused with an error. The over-read
 // itself shows only under ASan: the upload fuzz test replays this input from its corpus.
 TEST(ImageLimits, AnExrChunkBeforeTheStartOfTheBytesIsAnError) {
-  std::ifstream in(
-      std::string(APERTURE_TEST_DATA) + "/../fuzz/corpus/upload/exr-chunk-offset-before-start.exr-bytes",
-      std::ios::binary);
+  std::ifstream in(std::string(APERTURE_TEST_DATA) +
+                       "/../fuzz/corpus/upload/exr-chunk-offset-before-start.exr-bytes",
+                   std::ios::binary);
   ASSERT_TRUE(in);
   const std::string exr((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   auto image = DecodeImage(std::span(reinterpret_cast<const uint8_t*>(exr.data()), exr.size()));
