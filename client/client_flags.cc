@@ -46,6 +46,9 @@ ABSL_FLAG(double, delta, 0.1,
 ABSL_FLAG(int, max_depth, 3, "raytrace: subdivisions of a pixel whose corner rays disagree (0..8)");
 ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
 ABSL_FLAG(bool, float_pixels, false, "32-bit float channels instead of half");
+ABSL_FLAG(bool, transparent_sky, false,
+          "leave the sky transparent: alpha is what the scene covers, the colour premultiplied by "
+          "it (for compositing the frame over other imagery)");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (batch: output directory)");
 ABSL_FLAG(double, deadline_s, 60, "deadline of each frame request, seconds");
 ABSL_FLAG(int, concurrency, 1, "load, batch: requests in flight at once");

@@ -28,6 +28,7 @@ ABSL_DECLARE_FLAG(double, delta);
 ABSL_DECLARE_FLAG(int, max_depth);
 ABSL_DECLARE_FLAG(std::string, compression);
 ABSL_DECLARE_FLAG(bool, float_pixels);
+ABSL_DECLARE_FLAG(bool, transparent_sky);
 ABSL_DECLARE_FLAG(std::string, o);
 ABSL_DECLARE_FLAG(double, deadline_s);
 ABSL_DECLARE_FLAG(int, concurrency);

@@ -158,6 +158,7 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const SceneOnServer
   options.set_compression(*compression);
   options.set_pixel_type(absl::GetFlag(FLAGS_float_pixels) ? v1::PIXEL_TYPE_FLOAT
                                                            : v1::PIXEL_TYPE_HALF);
+  options.set_transparent_sky(absl::GetFlag(FLAGS_transparent_sky));
   return request;
 }
 

@@ -272,8 +272,35 @@ class Importer {
     return false;
   }
 
+  // alphaMode, alphaCutoff and baseColorFactor's alpha (glTF 2.0, 3.9.4 "Alpha Coverage").
+  static absl::Status Alpha(const tinygltf::Material& m, const std::string& where,
+                            v1::Material* material) {
+    if (m.alphaMode == "MASK") {
+      material->set_alpha_mode(v1::ALPHA_MODE_MASK);
+    } else if (m.alphaMode == "BLEND") {
+      material->set_alpha_mode(v1::ALPHA_MODE_BLEND);
+    } else if (!m.alphaMode.empty() && m.alphaMode != "OPAQUE") {
+      return Invalid(where + ".alphaMode",
+                     absl::StrCat("'", m.alphaMode, "' is not OPAQUE, MASK or BLEND"));
+    }
+    if (!(m.alphaCutoff >= 0 && m.alphaCutoff <= 1))
+      return Invalid(where + ".alphaCutoff", absl::StrCat(m.alphaCutoff, " is not in [0, 1]"));
+    // 0 in the proto means the default 0.5; a cutoff of 0 keeps every texel, as does the
+    // smallest positive float.
+    material->set_alpha_cutoff(m.alphaCutoff > 0 ? static_cast<float>(m.alphaCutoff)
+                                                 : std::numeric_limits<float>::min());
+    const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
+    if (f.size() >= 4) {
+      if (!(f[3] >= 0 && f[3] <= 1))
+        return Invalid(where + ".pbrMetallicRoughness.baseColorFactor",
+                       absl::StrCat("alpha ", f[3], " is not in [0, 1]"));
+      material->set_transparency(static_cast<float>(1.0 - f[3]));
+    }
+    return absl::OkStatus();
+  }
+
   absl::Status Materials() {
-    int blend = 0, mask = 0, wrap = 0, other_sets = 0;
+    int wrap = 0, other_sets = 0;
     for (size_t i = 0; i < model_.materials.size(); ++i) {
       const tinygltf::Material& m = model_.materials[i];
       const std::string where = absl::StrCat("materials[", i, "]");
@@ -289,8 +316,7 @@ class Importer {
         material->mutable_base_color()->set_g(static_cast<float>(f[1]));
         material->mutable_base_color()->set_b(static_cast<float>(f[2]));
       }
-      blend += m.alphaMode == "BLEND";
-      mask += m.alphaMode == "MASK";
+      if (auto s = Alpha(m, where, material); !s.ok()) return s;
       const tinygltf::TextureInfo& info = m.pbrMetallicRoughness.baseColorTexture;
       uv_transforms_.push_back(TextureTransformOf(info));
       if (info.index < 0) continue;
@@ -309,8 +335,6 @@ class Importer {
         wrap += s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT;
       }
     }
-    if (blend > 0) material_notes_.push_back(absl::StrCat(blend, " BLEND materials drawn opaque"));
-    if (mask > 0) material_notes_.push_back(absl::StrCat(mask, " MASK materials drawn opaque"));
     if (wrap > 0)
       material_notes_.push_back(
           absl::StrCat(wrap, " textures with clamped or mirrored wrapping drawn repeated"));

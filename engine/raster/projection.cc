@@ -89,6 +89,7 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
     const Material& mat = scene.materials[poly.material];
     sp.material = poly.material;
     sp.scene_polygon = static_cast<int>(index);
+    sp.transparent = mat.Transparent();
     if (mat.unlit) {
       sp.light = {1, 1, 1, 1};
     } else {

@@ -25,6 +25,9 @@ struct ScreenPolygon {
   ScreenLinear u_num, v_num;
   int material = 0;
   int scene_polygon = 0;
+  // Its material has an alpha mode (MASK or BLEND): it hides nothing for certain, so it is never
+  // a window's cover and cells composite what lies behind it (render/leaf_renderer).
+  bool transparent = false;
   Rgba light{1, 1, 1, 1};  // ambient + sun * cos(angle), constant over a flat polygon
   // One per edge (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
   std::vector<ScreenLinear> edges;

@@ -85,6 +85,7 @@ class Subdivider {
     const double xs[4] = {r.x0, r.x1, r.x1, r.x0}, ys[4] = {r.y0, r.y0, r.y1, r.y1};
     for (int c : inside) {
       const ScreenPolygon& p = geo_.polygons[c];
+      if (p.transparent) continue;  // what lies behind it may show through
       bool covers = true;
       for (int k = 0; k < 4 && covers; ++k) covers = p.Contains(xs[k], ys[k]);
       if (!covers) continue;

@@ -82,8 +82,10 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
     size_t kinds[3] = {0, 0, 0};
   };
   tbb::enumerable_thread_specific<Worker> workers([&] {
-    return Worker{
-        LeafRenderer(geometry, shader, settings.aa, scene.sky, frame.region, stop), {}, {}};
+    return Worker{LeafRenderer(geometry, shader, settings.aa, FrameSky(scene.sky, settings),
+                               frame.region, stop),
+                  {},
+                  {}};
   });
   std::vector<double> task_us(tasks.size(), 0);
   // Tasks are taken strictly in plan order (most expensive first for the cost-driven plan).

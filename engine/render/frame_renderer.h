@@ -26,7 +26,16 @@ struct RenderSettings {
   WarnockOptions warnock;
   SchedulingOptions scheduling;
   int threads = 0;  // > 0: a task arena of that many threads; 0: the caller's arena
+  // The sky drawn as (0, 0, 0, 0): alpha is then the coverage of what the scene draws, and the
+  // colour premultiplied by it (v1::RenderOptions.transparent_sky).
+  bool transparent_sky = false;
 };
+
+// The sky a frame's pixels show where nothing covers them.
+inline Rgba FrameSky(const Rgba& scene_sky, const RenderSettings& settings) {
+  return settings.transparent_sky ? Rgba{0, 0, 0, 0}
+                                  : Rgba{scene_sky.r, scene_sky.g, scene_sky.b, 1};
+}
 
 struct TaskTiming {
   PixelRect rect;

@@ -1,6 +1,7 @@
 #include "render/leaf_renderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace aperture {
 
@@ -22,6 +23,8 @@ bool LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
 }
 
 bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
+  for (int p : leaf.polygons)
+    if (geo_.polygons[p].transparent) return RenderMixedTransparent(leaf, image);
   const PixelRect& r = leaf.rect;
   const int span = shape_.cells_per_axis - 1;  // extra cells beyond the pixels
   const int nx = r.width() + span, ny = r.height() + span;
@@ -108,7 +111,151 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
       }
       const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
       Pixel(image, r.x0 + px, r.y0 + py) = {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w,
-                                            b_sum + sky_.b * sky_w, 1.0f};
+                                            b_sum + sky_.b * sky_w, PixelAlpha(total, sky_w)};
+    }
+  }
+  return true;
+}
+
+void LeafRenderer::TransparentLayers(const LeafWindow& leaf, double cx, double cy) {
+  layers_.clear();
+  for (int p : leaf.polygons) {
+    const ScreenPolygon& polygon = geo_.polygons[p];
+    if (polygon.transparent && PolygonOverlapsRect(polygon, cx - 0.5, cy - 0.5, cx + 0.5, cy + 0.5))
+      layers_.push_back(p);
+  }
+  if (layers_.size() <= kMaxLayers) return;
+  std::stable_sort(layers_.begin(), layers_.end(), [&](int a, int b) {
+    return geo_.polygons[a].inv_depth.At(cx, cy) > geo_.polygons[b].inv_depth.At(cx, cy);
+  });
+  layers_.resize(kMaxLayers);
+}
+
+// Compositing is linear in each layer's alpha. With alpha taken at the pixel centre (as the
+// colour is, seed 002), the pixel composited over a transparent polygon T equals
+//   alpha_T * (the pixel with T opaque) + (1 - alpha_T) * (the pixel without T),
+// point by point and so for the filtered pixel. Over the k layers of a cell this is a sum over
+// the 2^k subsets of layers drawn opaque, each an exact visibility pass of CellCoverage, weighted
+// by the product of alpha (layers in the subset) and 1 - alpha (the others) at each pixel.
+bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) {
+  const PixelRect& r = leaf.rect;
+  const int span = shape_.cells_per_axis - 1;
+  const int nx = r.width() + span, ny = r.height() + span;
+  const size_t cells = static_cast<size_t>(nx) * ny;
+  pieces_.clear();
+  passes_.clear();
+  cell_layers_.clear();
+  cell_begin_.assign(cells + 1, 0);
+  layer_begin_.assign(cells + 1, 0);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const size_t cell = static_cast<size_t>(j) * nx + i;
+      cell_begin_[cell] = passes_.size();
+      layer_begin_[cell] = cell_layers_.size();
+      const double cx = r.x0 + i + shape_.cell_offset + 0.5;
+      const double cy = r.y0 + j + shape_.cell_offset + 0.5;
+      TransparentLayers(leaf, cx, cy);
+      cell_layers_.insert(cell_layers_.end(), layers_.begin(), layers_.end());
+      for (unsigned included = 0; included < (1u << layers_.size()); ++included) {
+        candidates_.clear();
+        for (int p : leaf.polygons) {
+          const auto at = std::find(layers_.begin(), layers_.end(), p);
+          if (at == layers_.end() || (included >> (at - layers_.begin()) & 1u))
+            candidates_.push_back(p);
+        }
+        const size_t begin = pieces_.size();
+        coverage_.Compute(geo_.polygons, candidates_, cx, cy, shape_.needs_moments, pieces_);
+        if (coverage_.Stopped()) return false;
+        passes_.push_back({included, begin, pieces_.size()});
+      }
+    }
+  }
+  cell_begin_[cells] = passes_.size();
+  layer_begin_[cells] = cell_layers_.size();
+
+  // Every polygon a pixel needs the colour and alpha of: its cells' pieces and layers.
+  entries_.clear();
+  pixel_begin_.clear();
+  for (int py = 0; py < r.height(); ++py) {
+    for (int px = 0; px < r.width(); ++px) {
+      pixel_begin_.push_back(entries_.size());
+      pixel_entry_.clear();
+      auto add = [&](int polygon) {
+        if (pixel_entry_.try_emplace(polygon, entries_.size()).second)
+          entries_.push_back({polygon, 0, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
+      };
+      for (int cy = 0; cy <= span; ++cy) {
+        for (int cx = 0; cx <= span; ++cx) {
+          const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
+          for (size_t k = layer_begin_[cell]; k < layer_begin_[cell + 1]; ++k) add(cell_layers_[k]);
+          const size_t pieces_begin = passes_[cell_begin_[cell]].begin;
+          const size_t pieces_end = passes_[cell_begin_[cell + 1] - 1].end;
+          for (size_t k = pieces_begin; k < pieces_end; ++k) add(pieces_[k].polygon);
+        }
+      }
+    }
+  }
+  pixel_begin_.push_back(entries_.size());
+
+  order_.resize(entries_.size());
+  for (size_t i = 0; i < order_.size(); ++i) order_[i] = i;
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&](size_t a, size_t b) { return entries_[a].polygon < entries_[b].polygon; });
+  colours_.resize(entries_.size());
+  for (size_t begin = 0; begin < order_.size();) {
+    const int polygon = entries_[order_[begin]].polygon;
+    size_t end = begin;
+    points_.clear();
+    for (; end < order_.size() && entries_[order_[end]].polygon == polygon; ++end)
+      points_.push_back(entries_[order_[end]].point);
+    batch_.resize(points_.size());
+    shader_.ShadeMany(polygon, points_.data(), static_cast<int>(points_.size()), batch_.data());
+    for (size_t i = begin; i < end; ++i) colours_[order_[i]] = batch_[i - begin];
+    begin = end;
+  }
+
+  for (int py = 0; py < r.height(); ++py) {
+    for (int px = 0; px < r.width(); ++px) {
+      const size_t pixel = static_cast<size_t>(py) * r.width() + px;
+      const size_t first = pixel_begin_[pixel], last = pixel_begin_[pixel + 1];
+      const bool crowded = last - first > kCrowdedPixelPieces;
+      if (crowded) {
+        pixel_entry_.clear();
+        for (size_t e = first; e < last; ++e) pixel_entry_.emplace(entries_[e].polygon, e);
+      }
+      auto colour_of = [&](int polygon) -> const Rgba& {  // every polygon asked has an entry
+        if (crowded) return colours_[pixel_entry_.at(polygon)];
+        size_t e = first;
+        while (e + 1 < last && entries_[e].polygon != polygon) ++e;
+        return colours_[e];
+      };
+      double r_sum = 0, g_sum = 0, b_sum = 0, total = 0;
+      for (int cy = 0; cy <= span; ++cy) {
+        for (int cx = 0; cx <= span; ++cx) {
+          const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
+          float alpha[kMaxLayers];
+          const size_t layers = layer_begin_[cell + 1] - layer_begin_[cell];
+          for (size_t k = 0; k < layers; ++k)
+            alpha[k] = colour_of(cell_layers_[layer_begin_[cell] + k]).a;
+          for (size_t g = cell_begin_[cell]; g < cell_begin_[cell + 1]; ++g) {
+            const Pass& pass = passes_[g];
+            double weight = 1;
+            for (size_t k = 0; k < layers; ++k)
+              weight *= (pass.included >> k & 1u) ? alpha[k] : 1.0 - alpha[k];
+            if (weight == 0) continue;
+            for (size_t k = pass.begin; k < pass.end; ++k) {
+              const double w = weight * CellWeight(aa_, pieces_[k].moments, cx, cy);
+              const Rgba& c = colour_of(pieces_[k].polygon);
+              r_sum += c.r * w, g_sum += c.g * w, b_sum += c.b * w;
+              total += w;
+            }
+          }
+        }
+      }
+      const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
+      Pixel(image, r.x0 + px, r.y0 + py) = {
+          static_cast<float>(r_sum) + sky_.r * sky_w, static_cast<float>(g_sum) + sky_.g * sky_w,
+          static_cast<float>(b_sum) + sky_.b * sky_w, PixelAlpha(total, sky_w)};
     }
   }
   return true;

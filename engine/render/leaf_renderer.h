@@ -17,6 +17,7 @@ class LeafRenderer {
  public:
   // `image` holds the pixels of `region` of the frame (row 0 = the region's top row).
   // `stop` (may be empty) is asked inside crowded cells; see CellCoverage::SetStop.
+  // `sky` with alpha below 1 (a transparent sky): pixels get the alpha of what covers them.
   LeafRenderer(const FrameGeometry& geometry, const PolygonShader& shader, AntiAliasing aa,
                Rgba sky, const PixelRect& region, std::function<bool()> stop = {})
       : geo_(geometry), shader_(shader), aa_(aa), shape_(ShapeOf(aa)), sky_(sky), region_(region) {
@@ -29,6 +30,19 @@ class LeafRenderer {
 
  private:
   bool RenderMixed(const LeafWindow& leaf, Image& image);
+  // A mixed leaf with MASK or BLEND polygons (ScreenPolygon::transparent), composited exactly.
+  bool RenderMixedTransparent(const LeafWindow& leaf, Image& image);
+  // The transparent polygons of `leaf` that reach the cell centred at (cx, cy), nearest at its
+  // centre first, at most kMaxLayers of them, into layers_.
+  void TransparentLayers(const LeafWindow& leaf, double cx, double cy);
+  // The alpha of the pixel's finished value: 1 over an opaque sky, else what covers it.
+  float PixelAlpha(double covered, float sky_weight) const {
+    return sky_.a == 1.0f ? 1.0f : static_cast<float>(std::min(1.0, covered)) + sky_.a * sky_weight;
+  }
+  // Transparent polygons per cell that are composited exactly: each subset of them is a
+  // visibility pass of its own (2^kMaxLayers at most). Any further ones (rare: more than four
+  // semi-transparent surfaces in one cell) are drawn as if opaque.
+  static constexpr size_t kMaxLayers = 4;
   // More pieces than this in a pixel's cells: its polygons are merged through a map.
   static constexpr size_t kCrowdedPixelPieces = 32;
   Rgba& Pixel(Image& image, int x, int y) const { return image.at(x - region_.x0, y - region_.y0); }
@@ -53,6 +67,16 @@ class LeafRenderer {
   std::vector<size_t> order_;        // entries by polygon
   std::vector<Vec2> points_;
   std::vector<Rgba> batch_, colours_;
+  // The transparent path's passes: a cell's passes are passes_[cell_begin_[c], cell_begin_[c + 1])
+  // (its pieces each pass's [begin, end) of pieces_); bit j of `included` says whether the cell's
+  // layer j took part. Its layers are cell_layers_[layer_begin_[c], layer_begin_[c + 1]).
+  struct Pass {
+    unsigned included;
+    size_t begin, end;
+  };
+  std::vector<Pass> passes_;
+  std::vector<int> layers_, cell_layers_, candidates_;
+  std::vector<size_t> layer_begin_;
 };
 
 }  // namespace aperture

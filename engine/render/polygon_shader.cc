@@ -14,8 +14,9 @@ PolygonShader::PolygonShader(const Scene& scene, const FrameGeometry& geometry,
       aperture_(options.texture_aperture),
       row_footprints_(BestRowFootprints()) {
   for (const Material& m : scene.materials) {
-    MaterialState state{m.base_color, nullptr};
+    MaterialState state{m.base_color, nullptr, &m, false};
     if (m.texture >= 0) {
+      state.unpremultiply = scene.textures[m.texture]->has_alpha;
       const FilterMode mode = options.override_filter ? options.filter : m.filter;
       state.sampler = &scene.textures[m.texture]->Sampler(mode);
     }
@@ -35,13 +36,14 @@ double PolygonShader::InvDepth(int index, double x, double y) const {
 
 Rgba PolygonShader::Finish(const ScreenPolygon& p, Rgba colour, double w, double x,
                            double y) const {
+  const float alpha = materials_[p.material].material->ShadedAlpha(colour.a);
   colour = colour * p.light;
   if (scene_.fog_density > 0) {
     const double distance = Length(geo_.Ray(x, y)) / w;
     const float keep = static_cast<float>(std::exp(-scene_.fog_density * distance));
     colour = colour * keep + scene_.fog_color * (1.0f - keep);
   }
-  colour.a = 1.0f;
+  colour.a = alpha;
   return colour;
 }
 
@@ -51,7 +53,7 @@ Rgba PolygonShader::Shade(int index, double x, double y) const {
   const double w = InvDepth(index, x, y);
   Rgba colour = mat.base;
   if (mat.sampler != nullptr)
-    colour = colour * mat.sampler->Sample(FootprintAt(p, aperture_, w, x, y));
+    colour = Surface(mat, mat.sampler->Sample(FootprintAt(p, aperture_, w, x, y)));
   return Finish(p, colour, w, x, y);
 }
 
@@ -84,13 +86,15 @@ void PolygonShader::ShadeBatched(int index, int count, PointAt point_at,
     if (fog) {
       for (int i = 0; i < n; ++i) {
         const Vec2 q = point_at(first + i);
-        out[first + i] = Finish(p, mat.base * texels[i], inv_depths[i], q.x, q.y);
+        out[first + i] = Finish(p, Surface(mat, texels[i]), inv_depths[i], q.x, q.y);
       }
       continue;
     }
     for (int i = 0; i < n; ++i) {  // Finish without fog, inlined: the same operations
-      Rgba colour = (mat.base * texels[i]) * p.light;
-      colour.a = 1.0f;
+      Rgba colour = Surface(mat, texels[i]);
+      const float alpha = mat.material->ShadedAlpha(colour.a);
+      colour = colour * p.light;
+      colour.a = alpha;
       out[first + i] = colour;
     }
   }

@@ -24,7 +24,8 @@ class PolygonShader {
 
   // Colour of polygon `index` at screen point (x, y) (a pixel centre), which may lie outside the
   // polygon: then its plane is extrapolated, as seed 002 takes each colour constant over the
-  // aperture.
+  // aperture. Its alpha is Material::ShadedAlpha of the material's there (1 when opaque); the
+  // colour is not premultiplied by it.
   Rgba Shade(int index, double x, double y) const;
   // out[i] = Shade(index, x0 + i, y) for i < count (a run of pixel centres of one row), with the
   // texture sampled in batches (TextureSampler::SampleMany).
@@ -44,7 +45,18 @@ class PolygonShader {
   struct MaterialState {
     Rgba base;
     const TextureSampler* sampler;  // null: untextured
+    const Material* material;
+    bool unpremultiply;  // the texture's colours are premultiplied by its alpha
   };
+  // The material's colour and alpha over a filtered texel.
+  static Rgba Surface(const MaterialState& mat, Rgba texel) {
+    if (mat.unpremultiply) {
+      const float k = texel.a > 0 ? 1.0f / texel.a : 0.0f;
+      texel.r *= k, texel.g *= k, texel.b *= k;
+    }
+    return mat.base * texel;
+  }
+
   const Scene& scene_;
   const FrameGeometry& geo_;
   double aperture_;

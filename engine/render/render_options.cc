@@ -54,6 +54,7 @@ absl::StatusOr<RenderSettings> RenderSettingsFromProto(const v1::RenderOptions& 
                                                      options.texture_aperture(),
                                                      "; must be in (0, 16] pixels"));
   }
+  settings.transparent_sky = options.transparent_sky();
   return settings;
 }
 

@@ -26,17 +26,40 @@ struct SceneTexture {
   // nearest mode, the exact area integral over the footprint for every other mode.
   std::shared_ptr<const void> packed;  // owns the bytes the samplers read (memory or the store)
   std::unique_ptr<TextureSampler> packed_nearest, packed_area;
+  // Some texel has alpha below 1. Its colours are then premultiplied by alpha (OpenImageIO
+  // decodes unassociated alpha, as in PNG, to associated), so every filter averages them weighted
+  // by coverage, without dark fringes; shading divides the filtered colour by the filtered alpha.
+  bool has_alpha = false;
 
   const TextureSampler& Sampler(FilterMode mode) const;
 };
 
+// v1::AlphaMode: what a material's alpha (base_color.a times the texture's alpha) does.
+enum class AlphaMode { kOpaque, kMask, kBlend };
+
 struct Material {
   std::string id;
-  Rgba base_color{1, 1, 1, 1};
-  int texture = -1;  // index into Scene::textures, -1: untextured
+  Rgba base_color{1, 1, 1, 1};  // a: 1 - v1::Material.transparency
+  int texture = -1;             // index into Scene::textures, -1: untextured
   FilterMode filter = FilterMode::kTrilinear;
   bool unlit = false;
   bool single_sided = false;  // the raster mode skips it seen from behind (v1::Material)
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;  // kMask: drawn where alpha >= alpha_cutoff
+  bool Transparent() const { return alpha_mode != AlphaMode::kOpaque; }
+  // The alpha a surface of this material is drawn with, from its alpha there (base colour times
+  // texture): 1 when opaque, 0 or 1 for MASK, within [0, 1] for BLEND.
+  float ShadedAlpha(float alpha) const {
+    switch (alpha_mode) {
+      case AlphaMode::kOpaque:
+        return 1.0f;
+      case AlphaMode::kMask:
+        return alpha >= alpha_cutoff ? 1.0f : 0.0f;
+      case AlphaMode::kBlend:
+        return alpha <= 0.0f ? 0.0f : alpha >= 1.0f ? 1.0f : alpha;
+    }
+    return 1.0f;
+  }
 };
 
 // Affine world-to-texture map over a polygon's plane: u = dot(su, P) + u0 (texture repeats).

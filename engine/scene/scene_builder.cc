@@ -175,6 +175,31 @@ class Builder {
     return absl::OkStatus();
   }
 
+  // The material's alpha mode, cutoff and transparency (docs/SCENE.md "Alpha").
+  static absl::Status AlphaFromProto(const v1::Material& m, const std::string& where,
+                                     Material& mat) {
+    switch (m.alpha_mode()) {
+      case v1::ALPHA_MODE_OPAQUE:
+        mat.alpha_mode = AlphaMode::kOpaque;
+        break;
+      case v1::ALPHA_MODE_MASK:
+        mat.alpha_mode = AlphaMode::kMask;
+        break;
+      case v1::ALPHA_MODE_BLEND:
+        mat.alpha_mode = AlphaMode::kBlend;
+        break;
+      default:
+        return Invalid(where, absl::StrCat("alpha_mode has unknown value ", m.alpha_mode()));
+    }
+    if (!(m.alpha_cutoff() >= 0 && m.alpha_cutoff() <= 1))
+      return Invalid(where, absl::StrCat("alpha_cutoff ", m.alpha_cutoff(), " is not in [0, 1]"));
+    if (!(m.transparency() >= 0 && m.transparency() <= 1))
+      return Invalid(where, absl::StrCat("transparency ", m.transparency(), " is not in [0, 1]"));
+    if (m.alpha_cutoff() > 0) mat.alpha_cutoff = m.alpha_cutoff();
+    mat.base_color.a = 1.0f - m.transparency();
+    return absl::OkStatus();
+  }
+
   absl::Status BuildMaterials() {
     Material fallback;
     fallback.id = "";
@@ -196,6 +221,7 @@ class Builder {
         if (!c.ok()) return c.status();
         mat.base_color = *c;
       }
+      if (auto s = AlphaFromProto(m, where, mat); !s.ok()) return s;
       if (!m.texture_id().empty()) {
         auto it = texture_index_.find(m.texture_id());
         if (it == texture_index_.end())
@@ -483,6 +509,11 @@ std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image
                                                      std::shared_ptr<const SharedStore> store) {
   auto texture = std::make_shared<SceneTexture>();
   texture->id = std::move(id);
+  for (const Rgba& t : image.texels())
+    if (t.a < 1.0f) {
+      texture->has_alpha = true;
+      break;
+    }
   auto pyramid = std::make_shared<MipPyramid>(ResizeToPowerOfTwo(image));
   texture->nearest = std::make_unique<NearestSampler>(*pyramid);
   texture->bilinear = std::make_unique<BilinearSampler>(*pyramid);

@@ -115,6 +115,7 @@ absl::StatusOr<std::unique_ptr<OIIO::ImageInput>> OpenInMemory(
   OIIO::ImageSpec config;
   void* proxy = &reader;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  config.attribute("oiio:UnassociatedAlpha", 1);  // premultiplied in float by ReadFrom
   auto in = OIIO::ImageInput::open(name, &config, &reader);
   if (!in)
     return absl::InvalidArgumentError(
@@ -126,6 +127,12 @@ absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
   const OIIO::ImageSpec& spec = in->spec();
   if (auto s = CheckSpec(spec, what); !s.ok()) return s;
   const int channels = spec.nchannels;
+  // Texels carry associated (premultiplied) alpha, the convention of EXR and of OpenImageIO. A
+  // format that stores unassociated alpha (PNG) is read as it is and premultiplied here in float:
+  // OpenImageIO's own premultiplication happens in the file's 8 bits and loses the colour of
+  // faint texels.
+  const bool unassociated =
+      (channels == 2 || channels >= 4) && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
     return absl::InvalidArgumentError(absl::StrCat(what, ": ", in->geterror()));
@@ -139,6 +146,7 @@ absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
       } else {
         t = {p[0], p[0], p[0], channels == 2 ? p[1] : 1.0f};
       }
+      if (unassociated) t.r *= t.a, t.g *= t.a, t.b *= t.a;
     }
   }
   return image;
@@ -160,7 +168,9 @@ Image Image::Uninitialized(int width, int height) {
 absl::StatusOr<Image> LoadImageFile(const std::string& path) {
   if (!OIIO::Filesystem::exists(path))
     return absl::NotFoundError(absl::StrCat("texture file '", path, "' does not exist"));
-  auto in = OIIO::ImageInput::open(path);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // premultiplied in float by ReadFrom
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in)
     return absl::InvalidArgumentError(
         absl::StrCat("cannot read texture file '", path, "': ", OIIO::geterror()));

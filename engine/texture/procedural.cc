@@ -50,17 +50,25 @@ Image MakeNoiseTexture(int size, uint32_t seed, Rgba dark, Rgba light) {
 }
 
 absl::StatusOr<std::vector<uint8_t>> EncodePng(const Image& image, int zlib_level) {
-  std::vector<uint8_t> pixels(static_cast<size_t>(image.width()) * image.height() * 3);
+  bool alpha = false;
+  for (const Rgba& t : image.texels()) alpha = alpha || t.a < 1.0f;
+  const int channels = alpha ? 4 : 3;
+  std::vector<uint8_t> pixels(static_cast<size_t>(image.width()) * image.height() * channels);
   size_t k = 0;
   for (const Rgba& t : image.texels())
-    for (float v : {t.r, t.g, t.b})
+    for (int c = 0; c < channels; ++c) {
+      const float v = c == 0 ? t.r : c == 1 ? t.g : c == 2 ? t.b : t.a;
       pixels[k++] = static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    }
   std::vector<unsigned char> bytes;
   OIIO::Filesystem::IOVecOutput proxy(bytes);
   auto out = OIIO::ImageOutput::create("texture.png", &proxy);
   if (!out) return absl::InternalError("OpenImageIO has no PNG writer");
-  OIIO::ImageSpec spec(image.width(), image.height(), 3, OIIO::TypeDesc::UINT8);
+  OIIO::ImageSpec spec(image.width(), image.height(), channels, OIIO::TypeDesc::UINT8);
   spec.attribute("png:compressionLevel", zlib_level);
+  // The texels are written as they are: with alpha, PNG's unassociated colours (which decoding
+  // premultiplies again, as for any PNG).
+  if (alpha) spec.attribute("oiio:UnassociatedAlpha", 1);
   if (!out->open("texture.png", spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
       !out->close())
     return absl::InternalError("cannot encode PNG: " + out->geterror());

@@ -54,6 +54,9 @@ ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zi
 ABSL_FLAG(int, zip_level, 4,
           "deflate level of zip and zips compression (libdeflate), 1 (fastest) .. 9 (smallest)");
 ABSL_FLAG(bool, float_pixels, false, "write 32-bit float channels instead of half");
+ABSL_FLAG(bool, transparent_sky, false,
+          "leave the sky transparent: alpha is what the scene covers, the colour premultiplied by "
+          "it (for compositing the frame over other imagery)");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path");
 ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR");
 ABSL_FLAG(int, threads, 0, "worker threads (0: all cores)");
@@ -195,6 +198,7 @@ int Run() {
   }
   settings.shading.texture_aperture = absl::GetFlag(FLAGS_aperture);
   settings.threads = absl::GetFlag(FLAGS_threads);
+  settings.transparent_sky = absl::GetFlag(FLAGS_transparent_sky);
   settings.warnock.leaf_size = absl::GetFlag(FLAGS_leaf);
   if (const std::string mode = absl::GetFlag(FLAGS_scheduling); mode == "uniform") {
     settings.scheduling.mode = Scheduling::kUniform;

@@ -139,7 +139,8 @@ RayScene::~RayScene() {
   if (device_ != nullptr) rtcReleaseDevice(static_cast<RTCDevice>(device_));
 }
 
-int RayScene::Intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const {
+int RayScene::Intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far,
+                        std::span<const int> skip) const {
   if (triangle_polygon_.empty() && curved_.empty()) return -1;
   const Vec3 o = origin - origin_;
   RTCIntersectContext context;
@@ -158,12 +159,22 @@ int RayScene::Intersect(const Vec3& origin, const Vec3& dir, double t_near, doub
   rh.ray.mask = ~0u;
   rh.ray.id = 0;
   rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
-  if (rh.hit.geomID == curved_geometry_) return polygons_ + static_cast<int>(rh.hit.primID);
-  return triangle_polygon_[rh.hit.primID];
+  const float far = rh.ray.tfar;
+  // A skipped primitive's hit moves the ray's start just past it; a polygon's other triangles
+  // and a curved primitive's far side may be met again, so a few rounds can be needed.
+  for (int round = 0; round < 64; ++round) {
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(static_cast<RTCScene>(scene_), &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
+    const int hit = rh.hit.geomID == curved_geometry_ ? polygons_ + static_cast<int>(rh.hit.primID)
+                                                      : triangle_polygon_[rh.hit.primID];
+    if (std::find(skip.begin(), skip.end(), hit) == skip.end()) return hit;
+    rh.ray.tnear = std::nextafter(rh.ray.tfar, far);
+    rh.ray.tfar = far;
+    if (!(rh.ray.tnear < far)) return -1;
+  }
+  return -1;
 }
 
 }  // namespace aperture

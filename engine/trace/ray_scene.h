@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -20,8 +21,10 @@ class RayScene {
   RayScene& operator=(const RayScene&) = delete;
 
   // The primitive the ray origin + t dir, t in [t_near, t_far], meets first: a scene polygon's
-  // index, or polygons + i for scene.curved[i]; -1 for none. Thread-safe.
-  int Intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const;
+  // index, or polygons + i for scene.curved[i]; -1 for none. Primitives in `skip` are passed
+  // through (what lies behind a transparent surface). Thread-safe.
+  int Intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far,
+                std::span<const int> skip = {}) const;
 
   size_t triangles() const { return triangle_polygon_.size(); }
   int polygons() const { return polygons_; }

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "absl/strings/str_cat.h"
 #include "store/texture_entries.h"
@@ -37,6 +38,20 @@ struct Hit {
 
 // Corners agree when they lie on one sheet of one primitive.
 bool SameSurface(const Hit& a, const Hit& b) { return a.polygon == b.polygon && a.part == b.part; }
+
+// The transparent primitives a ray has passed through (seen through to what lies behind them).
+// Past kMaxLayers of them a transparent surface is drawn as if opaque, which bounds a pixel's rays.
+struct PassedThrough {
+  static constexpr int kMaxLayers = 4;
+  int primitives[kMaxLayers];
+  int count = 0;
+  std::span<const int> span() const { return {primitives, static_cast<size_t>(count)}; }
+  PassedThrough With(int primitive) const {
+    PassedThrough next = *this;
+    next.primitives[next.count++] = primitive;
+    return next;
+  }
+};
 
 // Everything one frame needs, shared read-only by the workers.
 class Frame {
@@ -125,10 +140,10 @@ class Frame {
   // The corner ray through (x, y): Embree finds the primitive, the hit point is then recomputed
   // in double on its plane, or by the exact sphere / cylinder intersection from the camera.
   // `point` (optional) receives a curved hit's world point.
-  Hit Trace(double x, double y, Vec3* point = nullptr) const {
+  Hit Trace(double x, double y, Vec3* point = nullptr, const PassedThrough& passed = {}) const {
     Hit hit;
     const Vec3 d = Direction(x, y);
-    const int primitive = rays_.Intersect(camera_.position, d, camera_.near, t_far_);
+    const int primitive = rays_.Intersect(camera_.position, d, camera_.near, t_far_, passed.span());
     if (primitive < 0) return hit;
     if (primitive < polygon_count()) {
       if (!OnPlane(primitive, x, y, &hit)) hit.polygon = -1;
@@ -154,7 +169,7 @@ class Frame {
     return true;
   }
 
-  Rgba Sky() const { return {scene_.sky.r, scene_.sky.g, scene_.sky.b, 1.0f}; }
+  Rgba Sky() const { return FrameSky(scene_.sky, settings_); }
 
   // Lambert sun plus ambient for the normal `n` on the camera's side.
   Rgba Light(const Material& mat, const Vec3& n) const {
@@ -213,8 +228,13 @@ class Frame {
         f.dvdy = static_cast<float>(0.5 * (q[3].z - q[0].z + q[2].z - q[1].z));
         texture = tex.Sampler(mode).Sample(f);
       }
+      if (scene_.textures[mat.texture]->has_alpha) {  // premultiplied texels (SceneTexture)
+        const float k = texture.a > 0 ? 1.0f / texture.a : 0.0f;
+        texture.r *= k, texture.g *= k, texture.b *= k;
+      }
       colour = colour * texture;
     }
+    const float alpha = mat.ShadedAlpha(colour.a);
     colour = colour * light;
     if (scene_.fog_density > 0) {
       const double distance =
@@ -222,7 +242,7 @@ class Frame {
       const float keep = static_cast<float>(std::exp(-scene_.fog_density * distance));
       colour = colour * keep + scene_.fog_color * (1.0f - keep);
     }
-    colour.a = 1.0f;
+    colour.a = alpha;
     return colour;
   }
 
@@ -232,6 +252,30 @@ class Frame {
     FragmentStats stats;
     size_t extra_rays = 0, subdivided = 0;
   };
+
+  // Primitive `polygon` over the square's quad `c`, composited over what lies behind it when it
+  // is transparent: its colour weighted by its alpha (over the pixel, like its colour), plus the
+  // square traced again past it weighted by 1 - alpha (the same compositing as the raster's).
+  Rgba ShadeLayer(int polygon, const std::array<Hit, 4>& c, double x, double y, double size,
+                  int depth, Local* local, const PassedThrough& passed) const {
+    Rgba colour = ShadeQuad(polygon, c, &local->integrator, &local->stats);
+    const float alpha = colour.a;
+    if (alpha >= 1.0f || passed.count == PassedThrough::kMaxLayers) {
+      colour.a = 1.0f;
+      return colour;
+    }
+    const PassedThrough next = passed.With(polygon);
+    const double cx[4] = {0, 1, 1, 0}, cy[4] = {0, 0, 1, 1};
+    std::array<Hit, 4> behind;
+    for (int k = 0; k < 4; ++k)
+      behind[k] = Trace(x + cx[k] * size, y + cy[k] * size, nullptr, next);
+    local->extra_rays += 4;
+    const Rgba back = ShadeSquare(x, y, size, behind, depth, local, next);
+    if (alpha <= 0.0f) return back;
+    const float keep = 1.0f - alpha;
+    return {alpha * colour.r + keep * back.r, alpha * colour.g + keep * back.g,
+            alpha * colour.b + keep * back.b, alpha + keep * back.a};
+  }
 
   // Corners on a curved surface whose normals spread by more than about 2 degrees: F1 bends the
   // pixel's projection, so the straight quad abcd through the corners' texture points would be a
@@ -248,17 +292,18 @@ class Frame {
 
   // The square (x, y) .. (x + size, y + size) of the screen with corner hits c (a, b, c, d:
   // top-left, top-right, bottom-right, bottom-left).
+  // `passed`: the transparent primitives the rays see through (ShadeLayer).
   Rgba ShadeSquare(double x, double y, double size, const std::array<Hit, 4>& c, int depth,
-                   Local* local) const {
+                   Local* local, const PassedThrough& passed = {}) const {
     const int p = c[0].polygon;
     if (SameSurface(c[0], c[1]) && SameSurface(c[0], c[2]) && SameSurface(c[0], c[3]) &&
         (depth >= options_.max_depth || !Bent(c)))
-      return p < 0 ? Sky() : ShadeQuad(p, c, &local->integrator, &local->stats);
+      return p < 0 ? Sky() : ShadeLayer(p, c, x, y, size, depth, local, passed);
     if (depth >= options_.max_depth) {
       // The deepest level: the primitive the centre ray meets, over the square's corners
       // projected on its plane (a curved primitive: its tangent plane at the centre hit).
       Vec3 point;
-      const Hit centre = Trace(x + 0.5 * size, y + 0.5 * size, &point);
+      const Hit centre = Trace(x + 0.5 * size, y + 0.5 * size, &point, passed);
       ++local->extra_rays;
       if (centre.polygon < 0) return Sky();
       const bool curved = centre.polygon >= polygon_count();
@@ -270,17 +315,20 @@ class Frame {
                                : OnPlane(centre.polygon, qx, qy, &q[k]);
         if (!ok) q[k] = centre;
       }
-      return ShadeQuad(centre.polygon, q, &local->integrator, &local->stats);
+      return ShadeLayer(centre.polygon, q, x, y, size, depth, local, passed);
     }
     // Five more corner rays split the square into four; each quarter weighs 1/4.
     const double h = 0.5 * size;
-    const Hit top = Trace(x + h, y), right = Trace(x + size, y + h),
-              bottom = Trace(x + h, y + size), left = Trace(x, y + h), mid = Trace(x + h, y + h);
+    const Hit top = Trace(x + h, y, nullptr, passed),
+              right = Trace(x + size, y + h, nullptr, passed),
+              bottom = Trace(x + h, y + size, nullptr, passed),
+              left = Trace(x, y + h, nullptr, passed), mid = Trace(x + h, y + h, nullptr, passed);
     local->extra_rays += 5;
-    const Rgba q0 = ShadeSquare(x, y, h, {c[0], top, mid, left}, depth + 1, local);
-    const Rgba q1 = ShadeSquare(x + h, y, h, {top, c[1], right, mid}, depth + 1, local);
-    const Rgba q2 = ShadeSquare(x + h, y + h, h, {mid, right, c[2], bottom}, depth + 1, local);
-    const Rgba q3 = ShadeSquare(x, y + h, h, {left, mid, bottom, c[3]}, depth + 1, local);
+    const Rgba q0 = ShadeSquare(x, y, h, {c[0], top, mid, left}, depth + 1, local, passed);
+    const Rgba q1 = ShadeSquare(x + h, y, h, {top, c[1], right, mid}, depth + 1, local, passed);
+    const Rgba q2 =
+        ShadeSquare(x + h, y + h, h, {mid, right, c[2], bottom}, depth + 1, local, passed);
+    const Rgba q3 = ShadeSquare(x, y + h, h, {left, mid, bottom, c[3]}, depth + 1, local, passed);
     return (q0 + q1 + q2 + q3) * 0.25f;
   }
 

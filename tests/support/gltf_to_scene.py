@@ -115,6 +115,14 @@ def main():
             out["baseColor"] = {"r": f32(factor[0]), "g": f32(factor[1]), "b": f32(factor[2])}
         elif info:
             out["baseColor"] = {"r": 1.0, "g": 1.0, "b": 1.0}
+        mode = m.get("alphaMode", "OPAQUE")
+        if mode in ("MASK", "BLEND"):
+            out["alphaMode"] = "ALPHA_MODE_" + mode
+        if mode == "MASK":
+            cutoff = m.get("alphaCutoff", 0.5)
+            out["alphaCutoff"] = f32(cutoff) if cutoff > 0 else 1.1754943508222875e-38
+        if factor and len(factor) > 3 and factor[3] != 1:
+            out["transparency"] = f32(1.0 - factor[3])
         maps.append(uv_map(info) if info else None)
         if info:
             image = gltf["textures"][info["index"]]["source"]

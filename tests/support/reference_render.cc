@@ -1,6 +1,9 @@
 #include "support/reference_render.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace aperture::testing {
 
@@ -30,6 +33,44 @@ Rgba DenseReferencePixel(const FrameGeometry& geo, const FlatColour& colour, Rgb
   }
   return {static_cast<float>(r / total), static_cast<float>(g / total),
           static_cast<float>(b / total), 1.0f};
+}
+
+Rgba DenseCompositedPixel(const FrameGeometry& geo, const FlatColour& colour, Rgba sky,
+                          AntiAliasing aa, int px, int py, int n) {
+  const double half = aa == AntiAliasing::kBox1 ? 0.5 : 1.0;
+  const double cx = px + 0.5, cy = py + 0.5;
+  double r = 0, g = 0, b = 0, a = 0, total = 0;
+  std::vector<std::pair<double, int>> hits;  // (1 / depth, polygon)
+  for (int j = 0; j < n; ++j) {
+    const double dy = -half + (j + 0.5) * (2 * half / n);
+    for (int i = 0; i < n; ++i) {
+      const double dx = -half + (i + 0.5) * (2 * half / n);
+      const double w = aa == AntiAliasing::kTent2 ? (1 - std::abs(dx)) * (1 - std::abs(dy)) : 1.0;
+      const double x = cx + dx, y = cy + dy;
+      hits.clear();
+      for (size_t k = 0; k < geo.polygons.size(); ++k) {
+        const ScreenPolygon& p = geo.polygons[k];
+        if (x < p.min_x || x > p.max_x || y < p.min_y || y > p.max_y || !p.Contains(x, y)) continue;
+        hits.push_back({p.inv_depth.At(x, y), static_cast<int>(k)});
+      }
+      std::sort(hits.begin(), hits.end(), [](const auto& u, const auto& v) { return u > v; });
+      double transmitted = 1, sr = 0, sg = 0, sb = 0, sa = 0;
+      for (const auto& [depth, k] : hits) {
+        const Rgba c = colour(k);
+        const double alpha = std::clamp<double>(c.a, 0, 1);
+        sr += transmitted * alpha * c.r, sg += transmitted * alpha * c.g;
+        sb += transmitted * alpha * c.b, sa += transmitted * alpha;
+        transmitted *= 1 - alpha;
+        if (transmitted == 0) break;
+      }
+      sr += transmitted * sky.r, sg += transmitted * sky.g, sb += transmitted * sky.b;
+      sa += transmitted * sky.a;
+      r += w * sr, g += w * sg, b += w * sb, a += w * sa;
+      total += w;
+    }
+  }
+  return {static_cast<float>(r / total), static_cast<float>(g / total),
+          static_cast<float>(b / total), static_cast<float>(a / total)};
 }
 
 }  // namespace aperture::testing

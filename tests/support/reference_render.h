@@ -18,4 +18,11 @@ using FlatColour = std::function<Rgba(int polygon)>;
 Rgba DenseReferencePixel(const FrameGeometry& geo, const FlatColour& colour, Rgba sky,
                          AntiAliasing aa, int px, int py, int n);
 
+// The same with transparency: at each sample every polygon containing it is composited front to
+// back with its colour's alpha (a flat alpha per polygon, so the result is the exact filtered
+// composite), over `sky` (whose alpha is the result's where nothing covers). Returns the
+// filtered colour and alpha (1 - what reaches a transparent sky).
+Rgba DenseCompositedPixel(const FrameGeometry& geo, const FlatColour& colour, Rgba sky,
+                          AntiAliasing aa, int px, int py, int n);
+
 }  // namespace aperture::testing

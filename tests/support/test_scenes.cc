@@ -21,6 +21,10 @@ v1::Scene MakeFlatScene(const std::vector<FlatPolygon>& polygons, Rgba sky) {
     m->mutable_base_color()->set_r(polygons[i].colour.r);
     m->mutable_base_color()->set_g(polygons[i].colour.g);
     m->mutable_base_color()->set_b(polygons[i].colour.b);
+    m->set_alpha_mode(polygons[i].alpha_mode);
+    m->set_alpha_cutoff(polygons[i].alpha_cutoff);
+    if (polygons[i].alpha_mode != v1::ALPHA_MODE_OPAQUE)
+      m->set_transparency(1.0f - polygons[i].colour.a);
     v1::Polygon* p = mesh->add_polygons();
     p->set_material_id(m->id());
     for (const Vec3& v : polygons[i].vertices) {

@@ -11,7 +11,9 @@ namespace aperture::testing {
 
 struct FlatPolygon {
   std::vector<Vec3> vertices;
-  Rgba colour;
+  Rgba colour;  // a: the material's alpha (1 - transparency) when alpha_mode is MASK or BLEND
+  v1::AlphaMode alpha_mode = v1::ALPHA_MODE_OPAQUE;
+  float alpha_cutoff = 0;  // MASK: 0 is the default, 0.5
 };
 
 // Unlit, untextured polygons (one material each) over a sky colour; no fog.

@@ -173,11 +173,34 @@ TEST_F(GltfModel, ASceneFilePlacesModelsAsObjects) {
 }
 
 TEST_F(GltfModel, WhatIsNotDrawnIsReportedOnce) {
-  const std::string bad =
-      Malformed("\"name\": \"grass\",", "\"name\": \"grass\", \"alphaMode\": \"BLEND\",");
+  const std::string bad = Malformed("\"wrapS\": 10497", "\"wrapS\": 33071");
   const Result r = Render(bad, kCamera, "x.exr");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("1 BLEND materials drawn opaque"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 textures with clamped or mirrored wrapping drawn repeated"),
+            std::string::npos)
+      << r.output;
+}
+
+// alphaMode BLEND with baseColorFactor's alpha, and MASK with alphaCutoff, as the independent
+// reading maps them, pixel for pixel; and what each draws differs from the opaque model.
+TEST_F(GltfModel, AlphaModesMatchTheIndependentReading) {
+  const std::vector<float> opaque =
+      RenderBothAndCompare(Path("hangar.gltf"), Reference(Path("hangar.gltf")), kCamera);
+  ASSERT_FALSE(opaque.empty());
+  // The hall's material, its factor's alpha 1 -> 0.5.
+  const std::string hall =
+      "\"pbrMetallicRoughness\": {\n    \"baseColorFactor\": [\n     0.9,\n     0.8,\n     0.7,\n  "
+      "   "
+      "1.0\n    ],";
+  const std::string half = "\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.9, 0.8, 0.7, 0.5],";
+  for (const std::string mode :
+       {"\"alphaMode\": \"BLEND\", ", "\"alphaMode\": \"MASK\", \"alphaCutoff\": 0.55, "}) {
+    SCOPED_TRACE(mode);
+    const std::string bad = Malformed(hall, mode + half);
+    const std::vector<float> a = RenderBothAndCompare(bad, Reference(bad), kCamera);
+    ASSERT_EQ(a.size(), opaque.size());
+    EXPECT_NE(a, opaque);
+  }
 }
 
 // Issue 24's acceptance: models of Debian's assimp-testmodels package (textures, embedded data,
