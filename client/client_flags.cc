@@ -23,7 +23,8 @@ ABSL_FLAG(int, split, 0,
           "render: cut the frame into this many regions of equal predicted cost (PlanRegions) "
           "and render them on --servers at once, then assemble one EXR (0: one server)");
 ABSL_FLAG(std::string, scene, "demo",
-          "'demo' (built-in airfield), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
+          "'demo' (built-in airfield), 'airport' (a real airport's map, cut-out trees), a scene "
+          "JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: the demo's "
           "approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");

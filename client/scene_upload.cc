@@ -27,7 +27,8 @@ absl::StatusOr<std::string> ReadFile(const std::string& path) {
 }
 
 bool IsBuiltinScene(const std::string& argument) {
-  return argument == "demo" || argument == "triangles" || argument == "skewed";
+  return argument == "demo" || argument == "airport" || argument == "triangles" ||
+         argument == "skewed";
 }
 
 absl::StatusOr<v1::Scene> ReadScene(const std::string& argument, std::vector<GltfCamera>* cameras) {

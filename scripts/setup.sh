@@ -7,6 +7,9 @@ scripts/install-deps.sh
 scripts/build.sh
 mkdir -p out
 build/engine/aperture-render --scene demo -o out/demo.exr
+# The real airport: Schiphol's runways, taxiways and aprons from OpenStreetMap as a packed vector
+# texture (seed 001), cut-out trees and a glass tower cab (texture alpha).
+build/engine/aperture-render --scene airport -o out/airport.exr
 
 # The service: a server on a free loopback port with a store of its own under out/, the client
 # renders the same frame through it; the server is stopped (SIGTERM) whatever happens.
@@ -32,5 +35,5 @@ build/client/aperture sim --server "$address" --scene demo --size 1280x720 --rat
 kill -TERM "$server_pid"
 wait "$server_pid" || true
 trap - EXIT
-echo "setup: done. Open out/demo.png (preview) or out/demo.exr; out/demo-service.exr came" \
+echo "setup: done. Open out/demo.png (preview) or out/demo.exr, and out/airport.png; out/demo-service.exr came" \
   "through the render service (server log: out/server.log)."

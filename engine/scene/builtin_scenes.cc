@@ -2,6 +2,7 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "scene/airport_scene.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/demo_scene.h"
 
@@ -9,6 +10,7 @@ namespace aperture {
 
 absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   if (name == "demo") return BuiltinScene{MakeDemoScene(), DemoCamera()};
+  if (name == "airport") return BuiltinScene{MakeAirportScene(), DemoCamera()};
   // The benchmark scenes are laid out around a camera at the origin looking along -z.
   if (name == "triangles") return BuiltinScene{MakeTriangleFieldScene(10000), Camera{}};
   if (name == "skewed") return BuiltinScene{MakeSkewedCityScene(), Camera{}};
@@ -19,8 +21,8 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
           absl::StrCat("built-in scene '", name, "': tris-N takes N in 1..", kMaxTrisCount));
     return BuiltinScene{MakeTrisScene(count), Camera{}};
   }
-  return absl::InvalidArgumentError(
-      absl::StrCat("unknown built-in scene '", name, "' (demo, triangles, skewed, tris-N)"));
+  return absl::InvalidArgumentError(absl::StrCat("unknown built-in scene '", name,
+                                                 "' (demo, airport, triangles, skewed, tris-N)"));
 }
 
 }  // namespace aperture

@@ -1,5 +1,6 @@
 // The scenes built into every tool and the server, by name: "demo" (the airfield on final
-// approach), "triangles" (10,000 random triangles), "skewed" (a dense city block in one corner
+// approach), "airport" (the same approach to a real airport's map, scene/airport_scene.h),
+// "triangles" (10,000 random triangles), "skewed" (a dense city block in one corner
 // of the view) and "tris-N" (issue 19's peer-benchmark scene of N triangles painted in order).
 // Each comes with the camera it is meant to be seen from.
 #pragma once

@@ -32,7 +32,8 @@
 #include "trace/trace_renderer.h"
 
 ABSL_FLAG(std::string, scene, "demo",
-          "'demo' (built-in airfield), 'triangles' (10,000 random triangles), 'skewed' (a city "
+          "'demo' (built-in airfield), 'airport' (a real airport's map, cut-out trees), "
+          "'triangles' (10,000 random triangles), 'skewed' (a city "
           "block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
           "benchmark's), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,

@@ -33,7 +33,12 @@ Rgba PackedTextureSampler::AreaMean(double u0, double v0, double u1, double v1) 
   if (!(u1 > u0) || !(v1 > v0)) return Nearest(u0, v0);
   // Whole periods far from the origin: shift so the integral sees small coordinates.
   const double su = std::floor(u0), sv = std::floor(v0);
-  const AreaSum s = area_.Integrate((u0 - su) * w, (v0 - sv) * h, (u1 - su) * w, (v1 - sv) * h);
+  const double x0 = (u0 - su) * w, y0 = (v0 - sv) * h, x1 = (u1 - su) * w, y1 = (v1 - sv) * h;
+  // Within one texel the mean is that texel's colour: one run lookup instead of the descent
+  // (most footprints near a low camera are a fraction of a texel).
+  if (std::floor(x0) == std::ceil(x1) - 1 && std::floor(y0) == std::ceil(y1) - 1)
+    return Nearest(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+  const AreaSum s = area_.Integrate(x0, y0, x1, y1);
   if (!(s.area > 0)) return Nearest(u0, v0);
   const double k = 1.0 / (255.0 * s.area);
   return {static_cast<float>(s.channels[0] * k), static_cast<float>(s.channels[1] * k),

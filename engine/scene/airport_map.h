@@ -1,0 +1,22 @@
+// The built-in airport's ground map: Amsterdam Schiphol's aeroway features from OpenStreetMap
+// (© OpenStreetMap contributors, ODbL 1.0; ../shared/data/vector/osm_eham_schiphol_8192.png,
+// 9.16 km square, 1.12 m a texel) packed as a seed 001 vector texture by `aperture-tex pack`
+// (engine/scene/data/eham_schiphol_8192.apv, 465 KB), embedded in the binary so that every tool
+// and the server has it without data files.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+namespace aperture {
+
+// The .apv file's bytes.
+std::span<const uint8_t> AirportMapApv();
+
+// What the map shows, in its texel units (8192 a side): the south end of runway 18R/36L (the
+// Polderbaan) and its direction towards the north end, measured on the map.
+inline constexpr double kAirportMapMetres = 9160;  // one side of the map
+inline constexpr double kPolderbaanSouthX = 1089.5, kPolderbaanSouthY = 3990;
+inline constexpr double kPolderbaanNorthX = 1278.8, kPolderbaanNorthY = 594;
+
+}  // namespace aperture
