@@ -130,5 +130,42 @@ TEST(PackedSampler, NearestAndAreaModes) {
   EXPECT_NEAR(mean.g, whole.channels[1] / (255.0 * 200), 1e-6);
 }
 
+// Footprints 16 or more texels across have their edges snapped to aligned blocks of at most 1/8
+// of their shorter side (the cost bound of far, grazing pixels); smaller ones are exact.
+TEST(PackedSampler, LargeFootprintsStayCloseToTheExactMean) {
+  const IndexedImage image = RandomIndexedImage(512, 512, 9, 11, true);
+  auto packed = PackTexture(image, Curve::kHilbert);
+  ASSERT_TRUE(packed.ok());
+  const PackedTextureSampler area(packed->view(), PackedSampling::kArea);
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double sum_error = 0;
+  int large = 0;
+  for (int i = 0; i < 400; ++i) {
+    TextureFootprint f;
+    f.u = unit(rng) * 3 - 1;
+    f.v = unit(rng) * 3 - 1;
+    f.dudx = static_cast<float>(std::exp2(unit(rng) * 8) / 512);  // 1 to 256 texels
+    f.dvdy = static_cast<float>(std::exp2(unit(rng) * 8) / 512);
+    const double hu = 0.5 * f.dudx, hv = 0.5 * f.dvdy;
+    const Rgba exact = area.AreaMean(f.u - hu, f.v - hv, f.u + hu, f.v + hv);
+    const Rgba got = area.Sample(f);
+    const double shorter = std::min(f.dudx, f.dvdy) * 512.0;
+    if (shorter < 16) {
+      EXPECT_EQ(got, exact) << "footprint " << shorter << " texels across";
+      continue;
+    }
+    ++large;
+    // Each edge moves by at most 1/16 of the shorter side, so at most about a quarter of the
+    // rectangle changes.
+    for (float d : {got.r - exact.r, got.g - exact.g, got.b - exact.b, got.a - exact.a}) {
+      EXPECT_LE(std::fabs(d), 0.27) << "footprint " << shorter << " texels across";
+      sum_error += std::fabs(d) / 4;
+    }
+  }
+  ASSERT_GT(large, 50);
+  EXPECT_LT(sum_error / large, 0.005) << "mean error over " << large << " large footprints";
+}
+
 }  // namespace
 }  // namespace aperture::packed

@@ -49,7 +49,20 @@ Rgba PackedTextureSampler::Sample(const TextureFootprint& f) const {
   if (mode_ == PackedSampling::kNearest) return Nearest(f.u, f.v);
   const double half_u = 0.5 * (std::fabs(f.dudx) + std::fabs(f.dudy));
   const double half_v = 0.5 * (std::fabs(f.dvdx) + std::fabs(f.dvdy));
-  return AreaMean(f.u - half_u, f.v - half_v, f.u + half_u, f.v + half_v);
+  double u0 = f.u - half_u, v0 = f.v - half_v, u1 = f.u + half_u, v1 = f.v + half_v;
+  // A footprint many texels across (far away, at grazing angles) costs the integral's descent
+  // along its whole perimeter in texels. Its edges are moved to the nearest multiple of an aligned
+  // block at most 1/8 of its shorter side, so the descent stops at blocks of that size: the cost
+  // falls with the footprint's size, and the rectangle (itself the footprint's bounding box) grows
+  // or shrinks by at most 1/8 of its area.
+  const double w = texture_.width(), h = texture_.height();
+  const double shorter = std::min((u1 - u0) * w, (v1 - v0) * h);
+  if (shorter >= 16) {
+    const double block = std::exp2(std::floor(std::log2(shorter / 8)));
+    auto snap = [&](double t, double size) { return std::round(t * size / block) * block / size; };
+    u0 = snap(u0, w), u1 = snap(u1, w), v0 = snap(v0, h), v1 = snap(v1, h);
+  }
+  return AreaMean(u0, v0, u1, v1);
 }
 
 void PackedTextureSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
