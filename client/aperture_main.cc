@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
   aperture::HandleHelpAndVersion(
       argc, argv, "aperture",
       "client of aperture-server.\n"
-      "  aperture render --server ADDR --scene demo|FILE.json --camera X,Y,Z,YAW,PITCH,ROLL "
+      "  aperture render --server ADDR --scene NAME|FILE.json|MODEL.glb --camera "
+      "X,Y,Z,YAW,PITCH,ROLL "
       "--size WxH -o frame.exr\n"
       "  aperture render --split K --servers A,B,... [same options]: one frame over servers\n"
       "  aperture load --server ADDR --concurrency N (--requests M | --duration S) --size WxH "

@@ -28,8 +28,14 @@
 #             latency against two frame times of the sustained rate, the median latency of the
 #             first and the last fifth of the frames (one camera, the aircraft taxiing: the same
 #             work in every frame), skipped frames.
+#   content   what real content costs (issue 24): the built-in demo, the built-in airport and the
+#             largest glTF model of Debian's assimp-testmodels (CONTENT_MODEL, CONTENT_CAMERA),
+#             each loaded by a server on an empty store (cold: its tables are built) and by a new
+#             server on that store (warm: mapped), the LoadScene ms of each, then 1920x1080 frames
+#             of the three interleaved, ROUNDS rounds: the server's raster ms and the client's
+#             round trip (median), and each scene's raster against the demo's.
 # Usage: scripts/bench-service.sh [overhead|restart|load|soak|split|node|sim|moving|floors|
-#                                  overload|all]   (default all)
+#                                  overload|content|all]   (default all)
 # Environment: LOAD_S (default 60), SOAK_MIN (default 5), ROUNDS (default 5), NODE_S (default 10),
 # BEFORE_DIR (unset).
 set -euo pipefail
@@ -331,9 +337,67 @@ overload() {
   done
 }
 
+content() {
+  local model="${CONTENT_MODEL:-/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb}"
+  local model_camera="${CONTENT_CAMERA:-0,150,900,0,-10,0}"
+  echo "== content: demo, airport and $(basename "$model") at 1920x1080, server --threads 2"
+  local names=(demo airport model) scenes=(demo airport "$model") cameras=("" "" "$model_camera")
+  # LoadScene ms of one scene from the server's log (its only load).
+  load_ms() { awk '/rpc=LoadScene/ {for (i = 1; i <= NF; i++) if ($i ~ /^ms=/) print substr($i, 4)}' "$1" | head -1; }
+  for i in 0 1 2; do
+    local camera_flag=()
+    [ -n "${cameras[$i]}" ] && camera_flag=(--camera "${cameras[$i]}")
+    for store in cold warm; do
+      start_server "$work/store-content-$i"
+      "$client_bin" render --server "$address" --scene "${scenes[$i]}" "${camera_flag[@]}" \
+        --size 64x36 -o "$work/c.exr" >/dev/null 2>>"$work/content.err"
+      stop_server
+      echo "${names[$i]}: LoadScene $store store $(load_ms "${log_of_last_server}.err") ms"
+    done
+  done
+  start_server "$work/store-content-all" --max-queue 8
+  for i in 0 1 2; do  # loads (and warms) each scene once
+    local camera_flag=()
+    [ -n "${cameras[$i]}" ] && camera_flag=(--camera "${cameras[$i]}")
+    "$client_bin" render --server "$address" --scene "${scenes[$i]}" "${camera_flag[@]}" \
+      --size 64x36 -o "$work/c.exr" >/dev/null 2>>"$work/content.err"
+  done
+  : >"$work/content.txt"
+  for _ in $(seq 1 "$rounds"); do
+    for i in 0 1 2; do
+      local camera_flag=()
+      [ -n "${cameras[$i]}" ] && camera_flag=(--camera "${cameras[$i]}")
+      line=$("$client_bin" render --server "$address" --scene "${scenes[$i]}" "${camera_flag[@]}" \
+        --size 1920x1080 -o "$work/c.exr" 2>>"$work/content.err")
+      echo "${names[$i]} $(echo "$line" | ms_of raster) $(echo "$line" | ms_of "round trip")" \
+        >>"$work/content.txt"
+    done
+  done
+  stop_server
+  awk '
+    function median(list, n,   sorted, i, j, t) {
+      for (i = 1; i <= n; i++) sorted[i] = list[i]
+      for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++)
+        if (sorted[j] < sorted[i]) { t = sorted[i]; sorted[i] = sorted[j]; sorted[j] = t }
+      return (n % 2) ? sorted[(n + 1) / 2] : (sorted[n / 2] + sorted[n / 2 + 1]) / 2
+    }
+    { n[$1]++; raster[$1, n[$1]] = $2; trip[$1, n[$1]] = $3 }
+    END {
+      split("demo airport model", order, " ")
+      for (k = 1; k <= 3; k++) {
+        s = order[k]
+        for (i = 1; i <= n[s]; i++) { r[i] = raster[s, i]; t[i] = trip[s, i] }
+        mr[s] = median(r, n[s]); mt[s] = median(t, n[s])
+        printf "%s 1920x1080: raster %.1f ms, round trip %.1f ms (median of %d); raster %.2fx the demo\n",
+          s, mr[s], mt[s], n[s], mr[s] / mr["demo"]
+      }
+    }' "$work/content.txt"
+}
+
 case "$what" in
-  overhead | restart | load | soak | split | node | sim | moving | floors | overload) "$what" ;;
-  all) overhead; restart; load; soak; split; node; sim; moving; floors; overload ;;
-  *) echo "usage: $0 [overhead|restart|load|soak|split|node|sim|moving|floors|overload|all]" >&2
+  overhead | restart | load | soak | split | node | sim | moving | floors | overload | content)
+    "$what" ;;
+  all) overhead; restart; load; soak; split; node; sim; moving; floors; overload; content ;;
+  *) echo "usage: $0 [overhead|restart|load|soak|split|node|sim|moving|floors|overload|content|all]" >&2
      exit 2 ;;
 esac

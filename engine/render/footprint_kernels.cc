@@ -63,6 +63,10 @@ __attribute__((target("avx2"))) void RowFootprintsAvx2Kernel(const ScreenPolygon
     _mm_store_ps(out.dvdy + i,
                  _mm256_cvtpd_ps(_mm256_mul_pd(_mm256_sub_pd(v_b, _mm256_mul_pd(z_b, v)), s)));
   }
+  // GCC emits no vzeroupper here (the scalar tail is inlined), and the upper halves left dirty
+  // made every legacy-SSE instruction after the kernel stall: glibc's exp() in the fog took 30 %
+  // of a frame whose sampler is not AVX (the airport's packed map).
+  _mm256_zeroupper();
   RowFootprintsFrom(i, p, min_inv_depth, aperture, run, out, inv_depth);
 }
 

@@ -362,7 +362,7 @@ int Run() {
 int main(int argc, char** argv) {
   aperture::HandleHelpAndVersion(
       argc, argv, "aperture-render",
-      "renders one frame locally.\n  aperture-render --scene demo|FILE.json --camera "
+      "renders one frame locally.\n  aperture-render --scene NAME|FILE.json|MODEL.glb --camera "
       "X,Y,Z,YAW,PITCH,ROLL --fov 60 --size 1920x1080 --aa box2 -o frame.exr");
   aperture::DashedFlagNames args(argc, argv);
   // Engine log lines (tables built, stores opened) on stderr, stdout kept for the frame's report;
