@@ -12,6 +12,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
+#include "scene_upload.h"
 
 namespace aperture {
 namespace {
@@ -45,9 +46,9 @@ absl::StatusOr<BatchJob> ReadBatchJob(const std::string& path) {
 
   BatchJob job;
   if (std::string scene = text_field("scene"); !scene.empty()) {
-    // A scene file is relative to the job file.
+    // A scene file is relative to the job file; a built-in scene is a name.
     const std::filesystem::path p(scene);
-    job.scene = scene == "demo" || p.is_absolute()
+    job.scene = IsBuiltinScene(scene) || p.is_absolute()
                     ? scene
                     : (std::filesystem::path(path).parent_path() / p).string();
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "absl/flags/flag.h"
 #include "absl/strings/str_cat.h"
@@ -24,11 +25,6 @@ absl::StatusOr<std::string> ReadFile(const std::string& path) {
   std::ostringstream content;
   content << in.rdbuf();
   return std::move(content).str();
-}
-
-bool IsBuiltinScene(const std::string& argument) {
-  return argument == "demo" || argument == "airport" || argument == "triangles" ||
-         argument == "skewed";
 }
 
 absl::StatusOr<v1::Scene> ReadScene(const std::string& argument, std::vector<GltfCamera>* cameras) {
@@ -96,6 +92,16 @@ absl::StatusOr<std::filesystem::path> TexturePath(const std::string& scene_file,
 }
 
 }  // namespace
+
+bool IsBuiltinScene(const std::string& argument) {
+  if (argument == "demo" || argument == "airport" || argument == "triangles" ||
+      argument == "skewed")
+    return true;
+  // tris-N: the server checks N's range and names it when it is out of range.
+  constexpr std::string_view kTris = "tris-";
+  return argument.size() > kTris.size() && argument.compare(0, kTris.size(), kTris) == 0 &&
+         argument.find_first_not_of("0123456789", kTris.size()) == std::string::npos;
+}
 
 absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
                                                 const std::string& scene_argument) {

@@ -1,6 +1,6 @@
-// Gets a scene onto a server: a built-in scene by name (demo, triangles, skewed: the server builds
-// it), or a scene JSON file or glTF model whose image textures are uploaded (skipping those the
-// server already has) and then referenced by hash.
+// Gets a scene onto a server: a built-in scene by name (demo, airport, triangles, skewed, tris-N:
+// the server builds it), or a scene JSON file or glTF model whose image textures are uploaded
+// (skipping those the server already has) and then referenced by hash.
 #pragma once
 
 #include <optional>
@@ -21,6 +21,9 @@ struct SceneOnServer {
   std::vector<GltfCamera> model_cameras;     // a glTF model's cameras, for --camera NAME
   std::vector<v1::NamedObject> objects;      // what a SceneUpdate can move, as loaded
 };
+
+// Whether the argument names a built-in scene (the server builds it) rather than a file.
+bool IsBuiltinScene(const std::string& argument);
 
 // A built-in scene's name or the path of a scene file (proto3 JSON of aperture.v1.Scene).
 absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,

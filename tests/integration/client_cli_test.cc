@@ -123,6 +123,39 @@ TEST_F(ClientTest, FrameEqualsWhatApertureRenderWrites) {
   EXPECT_TRUE(a == b) << "the service's pixels differ from aperture-render's";
 }
 
+// Every built-in scene is a name the server builds, from `aperture render` and from a batch job
+// alike (a job's scene was once taken for a file beside the job unless it was "demo").
+TEST_F(ClientTest, BuiltinScenesByNameRenderAsTheyDoLocally) {
+  for (const std::string scene : {"airport", "tris-40"}) {
+    const std::string local = (dir_ / ("local-" + scene + ".exr")).string();
+    const CommandResult rendered =
+        RunCommand({APERTURE_RENDER_BIN, "--scene=" + scene, "--size=96x54", "--nopreview",
+                    "--threads=2", "-o", local},
+                   60);
+    ASSERT_EQ(rendered.exit_code, 0) << rendered.err;
+    const std::string remote = (dir_ / ("remote-" + scene + ".exr")).string();
+    const CommandResult served =
+        Client({"render", "--scene=" + scene, "--size=96x54", "-o=" + remote});
+    ASSERT_EQ(served.exit_code, 0) << scene << ": " << served.err;
+    EXPECT_THAT(served.out, HasSubstr("textures uploaded 0, already on the server 0"));
+    int lw = 0, lh = 0, rw = 0, rh = 0;
+    const std::vector<float> a = Pixels(local, &lw, &lh);
+    ASSERT_FALSE(a.empty());
+    EXPECT_TRUE(a == Pixels(remote, &rw, &rh)) << scene << ": the service's pixels differ";
+  }
+  const std::filesystem::path jobs = dir_ / "builtin_jobs";
+  std::filesystem::create_directories(jobs);
+  const std::string job = (jobs / "tris.json").string();
+  std::ofstream(job) << R"({"scene": "tris-40", "size": "48x27",
+      "path": {"from": "0,1.7,0,0,-10,0", "to": "0,1.7,-50,0,-10,0", "frames": 2}})";
+  const CommandResult batch =
+      RunCommand({APERTURE_CLIENT_BIN, "batch", job, "--servers=" + server_->address(),
+                  "-o=" + (jobs / "frames").string(), "--nocontact_sheet"},
+                 60);
+  EXPECT_EQ(batch.exit_code, 0) << batch.out << batch.err;
+  EXPECT_THAT(batch.out, HasSubstr("2 rendered"));
+}
+
 // Issue 23, part 5: a scene file cannot make the client upload files outside its folder.
 TEST_F(ClientTest, TexturePathsOutsideTheSceneFilesFolderAreRefused) {
   const std::filesystem::path folder = dir_ / "scenes";
