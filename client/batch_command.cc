@@ -213,10 +213,19 @@ int RunBatch(const std::string& job_path) {
   auto base = FrameRequestFromFlags(loaded);
   if (!base.ok()) return fail(base.status());
 
-  // gRPC's round_robin policy spreads the frames over the servers; a failed frame is retried,
-  // and the policy sends the retry to the next server.
+  // gRPC's round_robin policy spreads the frames over the servers the scene was loaded on (the
+  // `ipv4:` resolver over those addresses, not `dns:///NAME`: every server must hold the scene
+  // before a frame reaches it, and a name resolved again could route frames to a server that
+  // joined after the loads). gRPC itself retries UNAVAILABLE (a server gone or restarting) with
+  // backoff, and round_robin sends the retry to the next server; the loop below retries what
+  // another attempt can fix beyond that (RESOURCE_EXHAUSTED, DEADLINE_EXCEEDED, ...).
   grpc::ChannelArguments args;
-  args.SetLoadBalancingPolicyName("round_robin");
+  args.SetServiceConfigJSON(R"({
+    "loadBalancingConfig": [{"round_robin": {}}],
+    "methodConfig": [{
+      "name": [{"service": "aperture.v1.Render", "method": "RenderFrame"}],
+      "retryPolicy": {"maxAttempts": 4, "initialBackoff": "0.05s", "maxBackoff": "1s",
+                      "backoffMultiplier": 2, "retryableStatusCodes": ["UNAVAILABLE"]}}]})");
   auto stub =
       v1::Render::NewStub(MakeChannel(absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), args));
 

@@ -10,6 +10,7 @@
 #include "absl/flags/flag.h"
 #include "absl/strings/ascii.h"
 #include "client_flags.h"
+#include "keepalive.h"
 
 namespace aperture {
 namespace {
@@ -98,6 +99,8 @@ std::string BearerToken() {
 std::shared_ptr<grpc::Channel> MakeChannel(const std::string& target, grpc::ChannelArguments args) {
   args.SetMaxReceiveMessageSize(-1);
   args.SetMaxSendMessageSize(-1);
+  args.SetInt(GRPC_ARG_KEEPALIVE_TIME_MS, keepalive::kTimeMs);
+  args.SetInt(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, keepalive::kTimeoutMs);
   const std::string token = BearerToken();
   if (token.empty()) return grpc::CreateCustomChannel(target, ClientCredentials(), args);
   std::vector<std::unique_ptr<grpc::experimental::ClientInterceptorFactoryInterface>> interceptors;

@@ -145,7 +145,7 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(const SceneOnServer
     options.set_raytrace_delta(absl::GetFlag(FLAGS_delta));
     const int depth = absl::GetFlag(FLAGS_max_depth);
     if (depth < 0) return absl::InvalidArgumentError("--max_depth must be 0..8");
-    options.set_raytrace_max_depth(static_cast<uint32_t>(depth));
+    options.mutable_raytrace_max_depth()->set_value(static_cast<uint32_t>(depth));
   }
   auto compression = Lookup<v1::ExrCompression>("compression", absl::GetFlag(FLAGS_compression),
                                                 {{"none", v1::EXR_COMPRESSION_NONE},

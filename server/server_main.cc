@@ -29,6 +29,7 @@
 #include "auth_tokens.h"
 #include "cli_usage.h"
 #include "flag_names.h"
+#include "keepalive.h"
 #include "large_buffers.h"
 #include "render_service.h"
 #include "scene_store.h"
@@ -222,6 +223,10 @@ int Run() {
   builder.AddListeningPort(listen, credentials, &port);
   builder.SetMaxReceiveMessageSize(static_cast<int>(limits.max_message_bytes));
   builder.SetMaxSendMessageSize(-1);  // frames: 3840x2160 float RGBA is ~130 MB uncompressed
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, keepalive::kTimeMs);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, keepalive::kTimeoutMs);
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS,
+                             keepalive::kServerMinPingIntervalMs);
   builder.RegisterService(&service);
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {

@@ -27,10 +27,11 @@ absl::StatusOr<ModeOptions> ModeOptionsFromProto(const v1::RenderOptions& option
     m.trace.fragments.delta = options.raytrace_delta();
   }
   if (options.has_raytrace_max_depth()) {
-    if (options.raytrace_max_depth() > 8)
-      return absl::InvalidArgumentError(absl::StrCat(
-          "options.raytrace_max_depth is ", options.raytrace_max_depth(), "; must be 0..8"));
-    m.trace.max_depth = static_cast<int>(options.raytrace_max_depth());
+    if (options.raytrace_max_depth().value() > 8)
+      return absl::InvalidArgumentError(absl::StrCat("options.raytrace_max_depth is ",
+                                                     options.raytrace_max_depth().value(),
+                                                     "; must be 0..8"));
+    m.trace.max_depth = static_cast<int>(options.raytrace_max_depth().value());
   }
   return m;
 }

@@ -103,7 +103,7 @@ TEST_F(ServiceTest, RaytraceOptionErrorsNameTheField) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(status.error_message(), HasSubstr("options.raytrace_delta is -1"));
   request = SphereFrame(id, test);
-  request.mutable_options()->set_raytrace_max_depth(9);
+  request.mutable_options()->mutable_raytrace_max_depth()->set_value(9);
   status = Render(request, 10);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(status.error_message(), HasSubstr("options.raytrace_max_depth is 9"));
@@ -114,7 +114,7 @@ TEST_F(ServiceTest, RaytraceOptionErrorsNameTheField) {
   EXPECT_THAT(status.error_message(), HasSubstr("options.mode has unknown value 7"));
   // max_depth 0 is a valid depth (set, not defaulted).
   request = SphereFrame(id, test);
-  request.mutable_options()->set_raytrace_max_depth(0);
+  request.mutable_options()->mutable_raytrace_max_depth()->set_value(0);
   request.mutable_options()->set_raytrace_delta(0.3);
   status = Render(request, 30);
   EXPECT_TRUE(status.ok()) << status.error_message();
