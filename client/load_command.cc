@@ -9,11 +9,11 @@
 #include "absl/flags/flag.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_join.h"
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
 #include "latency_stats.h"
+#include "report_json.h"
 #include "request_flags.h"
 #include "scene_upload.h"
 
@@ -69,15 +69,15 @@ int RunLoad() {
   for (const auto& [code, n] : errors) failed += n;
   const double throughput = static_cast<double>(s.count) / seconds;
   if (absl::GetFlag(FLAGS_json)) {
-    std::string by_code = absl::StrJoin(errors, ", ", [](std::string* out, const auto& e) {
-      absl::StrAppend(out, "\"", e.first, "\": ", e.second);
-    });
-    std::printf(
-        "{\"concurrency\": %d, \"seconds\": %.3f, \"ok\": %zu, \"failed\": %d, "
-        "\"frames_per_s\": %.3f, \"latency_ms\": {\"p50\": %.3f, \"p90\": %.3f, "
-        "\"p99\": %.3f, \"max\": %.3f, \"mean\": %.3f}, \"errors\": {%s}}\n",
-        concurrency, seconds, s.count, failed, throughput, s.p50, s.p90, s.p99, s.max, s.mean,
-        by_code.c_str());
+    v1::LoadReport report;
+    report.set_concurrency(static_cast<uint32_t>(concurrency));
+    report.set_seconds(Rounded(seconds));
+    report.set_ok(static_cast<uint32_t>(s.count));
+    report.set_failed(static_cast<uint32_t>(failed));
+    report.set_frames_per_s(Rounded(throughput));
+    *report.mutable_latency_ms() = LatencyReport(s);
+    for (const auto& [code, n] : errors) (*report.mutable_errors())[code] = n;
+    std::printf("%s\n", ReportJson(report).c_str());
   } else {
     std::printf("%zu frames ok, %d failed in %.2f s at concurrency %d: %.2f frames/s\n", s.count,
                 failed, seconds, concurrency, throughput);

@@ -9,12 +9,11 @@
 
 #include "absl/flags/flag.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
-#include "absl/strings/str_join.h"
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
 #include "latency_stats.h"
+#include "report_json.h"
 #include "request_flags.h"
 #include "scene_upload.h"
 #include "sim_channels.h"
@@ -122,15 +121,20 @@ size_t WorstChannel(const std::vector<ChannelReport>& reports) {
   return worst;
 }
 
-std::string Json(const ChannelReport& r, double rate) {
-  return absl::StrFormat(
-      "\"frames\": %zu, \"rate_hz\": %.3f, \"achieved_hz\": %.3f, \"ok\": %zu, \"late\": %zu, "
-      "\"skipped\": %zu, \"dropped\": %zu, \"latency_ms\": {\"p50\": %.3f, \"p90\": %.3f, "
-      "\"p99\": %.3f, \"max\": %.3f}, \"p50_first_fifth_ms\": %.3f, \"p50_last_fifth_ms\": %.3f, "
-      "\"status\": \"%s\"",
-      r.frames, rate, r.achieved_hz, r.latency.count, r.late, r.skipped, r.dropped, r.latency.p50,
-      r.latency.p90, r.latency.p99, r.latency.max, r.first_fifth_p50, r.last_fifth_p50,
-      r.status.ok() ? "OK" : r.status.error_message().c_str());
+// The channel's figures; SimReport's first fields are SimChannelReport's, field for field.
+template <typename Report>
+void FillReport(const ChannelReport& r, double rate, Report& out) {
+  out.set_frames(static_cast<uint32_t>(r.frames));
+  out.set_rate_hz(Rounded(rate));
+  out.set_achieved_hz(Rounded(r.achieved_hz));
+  out.set_ok(static_cast<uint32_t>(r.latency.count));
+  out.set_late(static_cast<uint32_t>(r.late));
+  out.set_skipped(static_cast<uint32_t>(r.skipped));
+  out.set_dropped(static_cast<uint32_t>(r.dropped));
+  *out.mutable_latency_ms() = LatencyReport(r.latency);
+  out.set_p50_first_fifth_ms(Rounded(r.first_fifth_p50));
+  out.set_p50_last_fifth_ms(Rounded(r.last_fifth_p50));
+  out.set_status(r.status.ok() ? "OK" : r.status.error_message());
 }
 
 void PrintText(const ChannelReport& r, double rate, const std::string& label) {
@@ -197,14 +201,13 @@ int RunSim() {
   const size_t worst = WorstChannel(reports);
   if (absl::GetFlag(FLAGS_json)) {
     // The top-level figures are the worst channel's (all of them when there is one channel).
-    std::string json = absl::StrCat("{", Json(reports[worst], rate));
+    v1::SimReport report;
+    FillReport(reports[worst], rate, report);
     if (channels > 1) {
-      std::vector<std::string> each;
-      for (const ChannelReport& r : reports) each.push_back(absl::StrCat("{", Json(r, rate), "}"));
-      absl::StrAppend(&json, ", \"worst_channel\": ", worst, ", \"channels\": [",
-                      absl::StrJoin(each, ", "), "]");
+      report.set_worst_channel(static_cast<uint32_t>(worst));
+      for (const ChannelReport& r : reports) FillReport(r, rate, *report.add_channels());
     }
-    std::printf("%s}\n", json.c_str());
+    std::printf("%s\n", ReportJson(report).c_str());
   } else if (channels == 1) {
     PrintText(reports[0], rate, "");
   } else {

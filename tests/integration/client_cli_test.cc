@@ -5,6 +5,7 @@
 // Protobuf's headers before OpenImageIO's, whose farmhash.h #undefs the bswap_32 and bswap_64
 // that protobuf's port.h needs.
 // clang-format off
+#include <google/protobuf/util/json_util.h>
 #include <grpcpp/grpcpp.h>
 #include "aperture/v1/render_service.grpc.pb.h"
 // clang-format on
@@ -24,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "aperture/v1/client_reports.pb.h"
 #include "integration/server_process.h"
 #include "integration/service_fixture.h"
 
@@ -80,6 +82,16 @@ std::string WriteGroundScene(const std::filesystem::path& dir) {
       {"x": 500, "y": 0, "z": 500}, {"x": 500, "y": 0, "z": -500}]}]}],
     "objects": [{"meshId": "ground"}]})";
   return path;
+}
+
+// The --json report on the command's stdout, read with protobuf's JSON parser (unknown fields
+// refused: the output must match its schema, proto/aperture/v1/client_reports.proto).
+template <typename Report>
+Report ParseReport(const std::string& out) {
+  Report report;
+  const auto status = google::protobuf::util::JsonStringToMessage(out, &report);
+  EXPECT_TRUE(status.ok()) << status.ToString() << "\n" << out;
+  return report;
 }
 
 std::vector<float> Pixels(const std::string& path, int* width, int* height) {
@@ -341,9 +353,13 @@ TEST_F(ClientTest, LoadReportsThroughputAndLatency) {
       Client({"load", "--scene=" + WriteGroundScene(dir_), "--camera=0,1.7,0,0,-10,0",
               "--concurrency=2", "--requests=6", "--size=64x48", "--json"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_THAT(result.out, HasSubstr("\"ok\": 6"));
-  EXPECT_THAT(result.out, HasSubstr("\"failed\": 0"));
-  EXPECT_THAT(result.out, HasSubstr("\"p99\""));
+  const v1::LoadReport report = ParseReport<v1::LoadReport>(result.out);
+  EXPECT_EQ(report.ok(), 6u);
+  EXPECT_EQ(report.failed(), 0u);
+  EXPECT_EQ(report.concurrency(), 2u);
+  EXPECT_GT(report.latency_ms().p99(), 0);
+  EXPECT_GE(report.latency_ms().p99(), report.latency_ms().p50());
+  EXPECT_GT(report.frames_per_s(), 0);
 }
 
 TEST_F(ClientTest, LoadExitsOneWhenRequestsFailed) {
@@ -351,7 +367,9 @@ TEST_F(ClientTest, LoadExitsOneWhenRequestsFailed) {
   const CommandResult result = Client(
       {"load", "--scene=demo", "--concurrency=1", "--requests=2", "--size=9000x9000", "--json"});
   EXPECT_EQ(result.exit_code, 1) << result.out << result.err;
-  EXPECT_THAT(result.out, HasSubstr("\"failed\": 2"));
+  const v1::LoadReport report = ParseReport<v1::LoadReport>(result.out);
+  EXPECT_EQ(report.failed(), 2u);
+  EXPECT_EQ(report.errors().at("INVALID_ARGUMENT"), 2u);
 }
 
 TEST_F(ClientTest, SimStreamsFramesAtARate) {
@@ -359,9 +377,12 @@ TEST_F(ClientTest, SimStreamsFramesAtARate) {
       Client({"sim", "--scene=" + WriteGroundScene(dir_), "--camera=0,1.7,0,0,-10,0", "--rate=20",
               "--frames=8", "--size=64x48", "--json"});
   ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
-  EXPECT_THAT(result.out, HasSubstr("\"frames\": 8"));
-  EXPECT_THAT(result.out, HasSubstr("\"ok\": 8"));
-  EXPECT_THAT(result.out, HasSubstr("\"dropped\": 0"));
+  const v1::SimReport report = ParseReport<v1::SimReport>(result.out);
+  EXPECT_EQ(report.frames(), 8u);
+  EXPECT_EQ(report.ok(), 8u);
+  EXPECT_EQ(report.dropped(), 0u);
+  EXPECT_EQ(report.status(), "OK");
+  EXPECT_TRUE(report.channels().empty());
 }
 
 // Three channels of a JSON-lines path (a camera and an update on its first line): their last
@@ -383,9 +404,11 @@ TEST_F(ClientTest, SimChannelsTileOneWideViewAndFlyAJsonPath) {
               "--size=64x40", "--filter=trilinear", "--float_pixels",
               "--last_frames=" + last.string(), "--json"});
   ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
-  EXPECT_THAT(result.out, HasSubstr("\"frames\": 2"));  // the path's two frames
-  EXPECT_THAT(result.out, HasSubstr("\"worst_channel\""));
-  EXPECT_THAT(result.out, HasSubstr("\"channels\": [{"));
+  const v1::SimReport report = ParseReport<v1::SimReport>(result.out);
+  EXPECT_EQ(report.frames(), 2u);  // the path's two frames
+  EXPECT_LT(report.worst_channel(), 3u);
+  ASSERT_EQ(report.channels_size(), 3);
+  for (const v1::SimChannelReport& channel : report.channels()) EXPECT_EQ(channel.frames(), 2u);
 
   // The same frame from one camera: 3 x 64 pixels wide, its frustum the three channels' union.
   auto stub = v1::Render::NewStub(
@@ -450,8 +473,9 @@ TEST_F(ClientTest, SimFliesTheDocumentedExamplePath) {
       {"sim", "--scene=demo", std::string("--path=") + APERTURE_EXAMPLES_DIR + "/taxi-in-fog.jsonl",
        "--rate=20", "--size=32x20", "--filter=trilinear", "--json"});
   ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
-  EXPECT_THAT(result.out, HasSubstr("\"frames\": 7"));
-  EXPECT_THAT(result.out, HasSubstr("\"dropped\": 0"));
+  const v1::SimReport report = ParseReport<v1::SimReport>(result.out);
+  EXPECT_EQ(report.frames(), 7u);
+  EXPECT_EQ(report.dropped(), 0u);
 }
 
 TEST_F(ClientTest, SimPathErrorsNameTheFileAndLine) {
