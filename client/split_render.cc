@@ -23,6 +23,8 @@
 #include "scene_upload.h"
 // After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 namespace aperture {
@@ -44,8 +46,9 @@ struct RegionResult {
   double round_trip_ms = 0;
 };
 
-// The region's EXR decoded to float RGBA and pasted into `frame` (width x height x 4).
-absl::Status Paste(const RegionResult& r, int width, std::vector<float>& frame) {
+// The region's EXR, checked to lie where it was planned: its data window is the region, its
+// display window the whole frame (the server writes regions that way).
+absl::StatusOr<OIIO::ImageBuf> ReadRegion(const RegionResult& r, const v1::RenderOptions& options) {
   const std::string& exr = r.response.exr();
   OIIO::Filesystem::IOMemReader reader(exr.data(), exr.size());
   OIIO::ImageSpec config;
@@ -55,32 +58,19 @@ absl::Status Paste(const RegionResult& r, int width, std::vector<float>& frame) 
   if (!in) return absl::DataLossError("a region's EXR does not open: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   const v1::PixelRegion& region = r.plan.region();
-  if (spec.width != static_cast<int>(region.width()) ||
-      spec.height != static_cast<int>(region.height()) || spec.nchannels != 4)
-    return absl::DataLossError(absl::StrCat("region at row ", region.y(), " came back ", spec.width,
-                                            "x", spec.height, "x", spec.nchannels));
-  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * 4);
-  if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data()))
+  if (spec.x != static_cast<int>(region.x()) || spec.y != static_cast<int>(region.y()) ||
+      spec.width != static_cast<int>(region.width()) ||
+      spec.height != static_cast<int>(region.height()) || spec.nchannels != 4 ||
+      spec.full_width != static_cast<int>(options.width()) ||
+      spec.full_height != static_cast<int>(options.height()))
+    return absl::DataLossError(absl::StrCat("region at row ", region.y(), " came back as ",
+                                            spec.width, "x", spec.height, "x", spec.nchannels,
+                                            " at (", spec.x, ", ", spec.y, ") in a ",
+                                            spec.full_width, "x", spec.full_height, " frame"));
+  OIIO::ImageBuf image(spec);
+  if (!in->read_image(0, 0, 0, 4, spec.format, image.localpixels()))
     return absl::DataLossError("a region's EXR does not decode: " + in->geterror());
-  for (int y = 0; y < spec.height; ++y)
-    std::copy_n(pixels.begin() + static_cast<ptrdiff_t>(y) * spec.width * 4, spec.width * 4,
-                frame.begin() + (static_cast<ptrdiff_t>(region.y() + y) * width + region.x()) * 4);
-  return absl::OkStatus();
-}
-
-absl::Status WriteFrame(const std::vector<float>& frame, const v1::RenderOptions& options,
-                        const std::string& path) {
-  OIIO::ImageSpec spec(
-      static_cast<int>(options.width()), static_cast<int>(options.height()), 4,
-      options.pixel_type() == v1::PIXEL_TYPE_FLOAT ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
-  spec.attribute("compression", absl::GetFlag(FLAGS_compression));
-  spec.attribute("Software", "Aperture (split render)");
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out || !out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, frame.data()) ||
-      !out->close())
-    return absl::InternalError(
-        absl::StrCat("cannot write ", path, ": ", out ? out->geterror() : OIIO::geterror()));
-  return absl::OkStatus();
+  return image;
 }
 
 }  // namespace
@@ -149,18 +139,37 @@ int RunSplitRender() {
   for (std::thread& t : threads) t.join();
   const double wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 
+  // The frame assembled by the regions' data windows (OpenImageIO's paste), with the header of
+  // the slowest region: scene, camera, mode and software as every region has them, the render
+  // times of the region that decided when the frame was done.
   const v1::RenderOptions& options = request->options();
-  std::vector<float> frame(size_t{options.width()} * options.height() * 4, 0.0f);
+  OIIO::ImageBuf frame;
   double slowest = 0, sum = 0;
   for (size_t i = 0; i < results.size(); ++i) {
     const RegionResult& r = results[i];
     if (!r.status.ok())
       return fail(absl::Status(r.status.code(),
                                absl::StrCat(servers[r.server].address, ": ", r.status.message())));
-    if (auto s = Paste(r, static_cast<int>(options.width()), frame); !s.ok()) return fail(s);
+    auto region = ReadRegion(r, options);
+    if (!region.ok()) return fail(region.status());
     const v1::FrameTimings& t = r.response.timings();
     const double render_ms = t.setup_ms() + t.raster_ms();
-    slowest = std::max(slowest, render_ms);
+    if (i == 0 || render_ms > slowest) {
+      OIIO::ImageSpec spec = region->spec();
+      spec.x = spec.y = 0;
+      spec.width = spec.full_width;
+      spec.height = spec.full_height;
+      if (i == 0) {
+        frame.reset(spec, OIIO::InitializePixels::Yes);
+      } else {  // the header only: the pixels stay
+        frame.specmod().extra_attribs = spec.extra_attribs;
+      }
+      slowest = render_ms;
+    }
+    // OpenImageIO's paste moves the source by the offset given, from where its data window lies:
+    // offset 0 puts each region at its place in the frame.
+    if (!OIIO::ImageBufAlgo::paste(frame, 0, 0, 0, 0, *region))
+      return fail(absl::InternalError("pasting a region: " + frame.geterror()));
     sum += render_ms;
     std::printf(
         "region %zu: rows %u..%u on %s: predicted %.2f ms, render %.2f ms (setup + raster), "
@@ -169,8 +178,10 @@ int RunSplitRender() {
         servers[r.server].address.c_str(), r.plan.predicted_ms(), render_ms, t.encode_ms(),
         r.round_trip_ms);
   }
+  frame.specmod().attribute("aperture:split_regions", static_cast<int>(results.size()));
   const std::string out = absl::GetFlag(FLAGS_o);
-  if (auto s = WriteFrame(frame, options, out); !s.ok()) return fail(s);
+  if (!frame.write(out))
+    return fail(absl::InternalError(absl::StrCat("cannot write ", out, ": ", frame.geterror())));
   std::printf(
       "split %ux%u into %zu regions over %zu servers: slowest region %.2f ms, mean %.2f "
       "ms, slowest / mean %.3f; all regions back in %.2f ms\n",

@@ -268,8 +268,8 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
   timings.set_setup_ms((*frame)->stats.setup_ms + traced_build_ms);
   timings.set_raster_ms((*frame)->stats.raster_ms);
   ExrOptions exr = job->exr;
-  exr.metadata.scene_name = scene->name;
-  exr.metadata.render_ms = (*frame)->stats.setup_ms + (*frame)->stats.raster_ms;
+  exr.metadata = FrameMetadata(scene->name, job->camera, **frame, job->settings.width,
+                               job->settings.height, job->mode.raytrace ? "raytrace" : "raster");
   return EncodeFrameFn([this, frame, exr, start](v1::RenderFrameResponse* out) -> absl::Status {
     const auto encode_start = Clock::now();
     // Compressed in parallel on the render arena's threads: encode and render share the cores.

@@ -83,6 +83,7 @@ class ChunkWriter {
         deflate_(options.compression == ExrCompression::kZip ||
                  options.compression == ExrCompression::kZips),
         zip_level_(options.zip_level),
+        y0_(options.metadata.y),
         sink_(sink) {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.user_data = &sink_;
@@ -137,25 +138,35 @@ class ChunkWriter {
  private:
   exr_result_t WriteHeader(const ExrOptions& options) {
     exr_result_t r = exr_add_part(context_, "", EXR_STORAGE_SCANLINE, &part_);
+    // The data window is where the image lies in its frame, the display window the whole frame.
+    const ExrMetadata& m = options.metadata;
+    exr_attr_box2i_t data, display;
+    data.min.x = m.x;
+    data.min.y = y0_;
+    data.max.x = m.x + image_.width() - 1;
+    data.max.y = y0_ + image_.height() - 1;
+    display = data;
+    if (m.frame_width > 0) {
+      display.min.x = display.min.y = 0;
+      display.max.x = m.frame_width - 1;
+      display.max.y = m.frame_height - 1;
+    }
+    exr_attr_v2f_t centre;
+    centre.x = centre.y = 0.0f;
     if (r == EXR_ERR_SUCCESS)
-      r = exr_initialize_required_attr_simple(context_, part_, image_.width(), image_.height(),
-                                              CoreCompression(options.compression));
+      r = exr_initialize_required_attr(context_, part_, &display, &data, 1.0f, &centre, 1.0f,
+                                       EXR_LINEORDER_INCREASING_Y,
+                                       CoreCompression(options.compression));
     if (r == EXR_ERR_SUCCESS) r = exr_set_zip_compression_level(context_, part_, options.zip_level);
     const exr_pixel_type_t type = half_ ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
     for (const char* name : {"R", "G", "B", "A"})
       if (r == EXR_ERR_SUCCESS)
         r = exr_add_channel(context_, part_, name, type, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
-    const ExrMetadata& m = options.metadata;
-    auto text = [&](const char* name, const std::string& value) {
-      if (r == EXR_ERR_SUCCESS) r = exr_attr_set_string(context_, part_, name, value.c_str());
-    };
-    if (!m.scene_name.empty()) text("aperture:scene", m.scene_name);
-    if (!m.camera.empty()) text("aperture:camera", m.camera);
-    if (r == EXR_ERR_SUCCESS)
-      r = exr_attr_set_float(context_, part_, "aperture:render_ms",
-                             static_cast<float>(m.render_ms));
-    text("Software", "Aperture");
-    for (const auto& [key, value] : m.extra) text(key.c_str(), value);
+    for (const ExrAttribute& a : HeaderAttributes(m)) {
+      if (r != EXR_ERR_SUCCESS) break;
+      r = a.is_number ? exr_attr_set_float(context_, part_, a.name.c_str(), a.number)
+                      : exr_attr_set_string(context_, part_, a.name.c_str(), a.text.c_str());
+    }
     if (r == EXR_ERR_SUCCESS) r = exr_write_header(context_);
     if (r == EXR_ERR_SUCCESS) r = exr_get_scanlines_per_chunk(context_, part_, &lines_per_chunk_);
     return r;
@@ -169,7 +180,7 @@ class ChunkWriter {
     for (int i = 0; i < batch.chunks && batch.result == EXR_ERR_SUCCESS; ++i) {
       const int y = (batch.first_chunk + i) * lines_per_chunk_;
       exr_chunk_info_t chunk;
-      exr_result_t r = exr_write_scanline_chunk_info(context_, part_, y, &chunk);
+      exr_result_t r = exr_write_scanline_chunk_info(context_, part_, y0_ + y, &chunk);
       if (r == EXR_ERR_SUCCESS)
         r = initialized ? exr_encoding_update(context_, part_, &chunk, &encode)
                         : exr_encoding_initialize(context_, part_, &chunk, &encode);
@@ -216,8 +227,8 @@ class ChunkWriter {
     size_t at = 0;
     for (int i = 0; i < batch.chunks && result_ == EXR_ERR_SUCCESS; ++i) {
       const int y = (batch.first_chunk + i) * lines_per_chunk_;
-      result_ =
-          exr_write_scanline_chunk(context_, part_, y, batch.bytes.data() + at, batch.sizes[i]);
+      result_ = exr_write_scanline_chunk(context_, part_, y0_ + y, batch.bytes.data() + at,
+                                         batch.sizes[i]);
       at += batch.sizes[i];
     }
     std::string().swap(batch.bytes);  // written: free it now, not when the frame is done
@@ -227,6 +238,7 @@ class ChunkWriter {
   const bool half_;
   const bool deflate_;  // zip and zips by libdeflate (io/exr_deflate.h)
   const int zip_level_;
+  const int y0_;  // the data window's first row: chunks are addressed in frame rows
   Sink& sink_;
   exr_context_t context_ = nullptr;
   int part_ = 0;

@@ -30,11 +30,19 @@ absl::Status EncodeThroughOpenImageIO(const Image& image, const ExrOptions& opti
       options.pixel_type == ExrPixelType::kHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
   spec.attribute("compression", ExrCompressionName(options.compression));
   const ExrMetadata& m = options.metadata;
-  if (!m.scene_name.empty()) spec.attribute("aperture:scene", m.scene_name);
-  if (!m.camera.empty()) spec.attribute("aperture:camera", m.camera);
-  spec.attribute("aperture:render_ms", static_cast<float>(m.render_ms));
-  spec.attribute("Software", "Aperture");
-  for (const auto& [key, value] : m.extra) spec.attribute(key, value);
+  if (m.frame_width > 0) {  // the data window inside the whole frame's display window
+    spec.x = m.x;
+    spec.y = m.y;
+    spec.full_x = spec.full_y = 0;
+    spec.full_width = m.frame_width;
+    spec.full_height = m.frame_height;
+  }
+  for (const ExrAttribute& a : HeaderAttributes(m)) {
+    if (a.is_number)
+      spec.attribute(a.name, a.number);
+    else
+      spec.attribute(a.name, a.text);
+  }
   void* p = &proxy;
   spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
   if (!out->open("frame.exr", spec) ||

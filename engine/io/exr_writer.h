@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "io/exr_header.h"
 #include "texture/image.h"
 
 namespace aperture {
@@ -17,13 +18,6 @@ enum class ExrPixelType { kHalf, kFloat };
 
 const char* ExrCompressionName(ExrCompression c);
 absl::StatusOr<ExrCompression> ParseExrCompression(const std::string& name);
-
-struct ExrMetadata {
-  std::string scene_name;
-  std::string camera;  // "X,Y,Z,YAW,PITCH,ROLL fov=..."
-  double render_ms = 0;
-  std::vector<std::pair<std::string, std::string>> extra;  // more string attributes
-};
 
 struct ExrOptions {
   ExrPixelType pixel_type = ExrPixelType::kHalf;
@@ -36,7 +30,7 @@ struct ExrOptions {
   // and render share the cores instead of oversubscribing them). dwaa, which OpenEXR 3.1's core
   // library cannot write, goes through OpenImageIO on the calling thread.
   int threads = 0;
-  ExrMetadata metadata;
+  ExrMetadata metadata;  // the header, and where the image lies in its frame
 };
 
 absl::Status WriteExrFile(const Image& image, const ExrOptions& options, const std::string& path);

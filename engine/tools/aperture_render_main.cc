@@ -285,11 +285,8 @@ int Run() {
     }
     const FrameStats& stats = best->stats;
 
-    exr.metadata.scene_name = built->name;
-    exr.metadata.camera = absl::StrFormat(
-        "%g,%g,%g,%g,%g,%g fov=%g", camera.position.x, camera.position.y, camera.position.z,
-        camera.yaw_deg, camera.pitch_deg, camera.roll_deg, camera.vertical_fov_deg);
-    exr.metadata.render_ms = stats.setup_ms + stats.raster_ms;
+    exr.metadata = FrameMetadata(built->name, camera, *best, settings.width, settings.height,
+                                 traced ? "raytrace" : "raster");
     std::string out = absl::GetFlag(FLAGS_o);
     if (modes.size() > 1 && traced) {  // both: the raytraced frame next to the raster one
       std::filesystem::path path(out);

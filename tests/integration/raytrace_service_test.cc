@@ -35,8 +35,8 @@ std::vector<float> Decode(const std::string& exr, int* width, int* height) {
     *width = image.spec().width;
     *height = image.spec().height;
     pixels.resize(static_cast<size_t>(*width) * *height * 4);
-    image.get_pixels(OIIO::ROI(0, *width, 0, *height, 0, 1, 0, 4), OIIO::TypeDesc::FLOAT,
-                     pixels.data());
+    // A region's data window lies at its place in the frame: read the window, wherever it is.
+    image.get_pixels(image.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
   }
   std::filesystem::remove(path);
   return pixels;

@@ -82,6 +82,69 @@ TEST_F(SplitRenderTest, TheAssembledFrameEqualsOneServersFrame) {
   size_t differing = 0;
   for (size_t i = 0; i < p.size(); ++i) differing += p[i] != q[i];
   EXPECT_EQ(differing, 0u) << "the assembled frame differs from the single-server frame";
+
+  // The assembled frame keeps the header every producer writes (issue 25, part 7).
+  auto split_file = OIIO::ImageInput::open((dir_ / "split.exr").string());
+  auto single_file = OIIO::ImageInput::open((dir_ / "single.exr").string());
+  ASSERT_TRUE(split_file && single_file) << OIIO::geterror();
+  const OIIO::ImageSpec &split_spec = split_file->spec(), &single_spec = single_file->spec();
+  for (const char* name : {"aperture:scene", "aperture:camera", "aperture:mode", "Software"}) {
+    EXPECT_FALSE(single_spec.get_string_attribute(name).empty()) << name;
+    EXPECT_EQ(split_spec.get_string_attribute(name), single_spec.get_string_attribute(name))
+        << name;
+  }
+  EXPECT_EQ(split_spec.get_int_attribute("aperture:split_regions"), 3);
+  EXPECT_GT(split_spec.get_float_attribute("aperture:render_ms"), 0.0f);
+  EXPECT_EQ(split_spec.full_width, 240);
+  EXPECT_EQ(split_spec.x, 0);
+}
+
+// A region rendered alone opens at its place in the frame: oiiotool reads its data window inside
+// the whole frame's display window, and its pixels are the whole frame's there.
+TEST_F(SplitRenderTest, ARegionOpensAtItsPlaceInTheFrame) {
+  const std::vector<std::string> frame = {"--scene=skewed", "--size=240x160", "--aa=tent2"};
+  std::vector<std::string> band = {"render", "--server=" + a_->address(), "--region=40,60,100x50",
+                                   "-o=" + (dir_ / "band.exr").string()};
+  band.insert(band.end(), frame.begin(), frame.end());
+  const CommandResult part = Client(band);
+  ASSERT_EQ(part.exit_code, 0) << part.out << part.err;
+  std::vector<std::string> single = {"render", "--server=" + a_->address(),
+                                     "-o=" + (dir_ / "whole.exr").string()};
+  single.insert(single.end(), frame.begin(), frame.end());
+  ASSERT_EQ(Client(single).exit_code, 0);
+
+  const CommandResult info =
+      RunCommand({"/usr/bin/oiiotool", "--info", "-v", (dir_ / "band.exr").string()}, 30);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_THAT(info.out, ::testing::ContainsRegex("100 x +50, 4 channel"));
+  EXPECT_THAT(info.out, HasSubstr("full/display size: 240 x 160"));
+  EXPECT_THAT(info.out, HasSubstr("pixel data origin: x=40, y=60"));
+
+  // Pasted by oiiotool over a black frame at its data window, it equals the whole frame there.
+  const std::string pasted = (dir_ / "pasted.exr").string();
+  const CommandResult paste =
+      RunCommand({"/usr/bin/oiiotool", (dir_ / "whole.exr").string(), "--mulc", "0",
+                  (dir_ / "band.exr").string(), "--over", "-o", pasted},
+                 30);
+  ASSERT_EQ(paste.exit_code, 0) << paste.err;
+  int bw = 0, bh = 0, ww = 0, wh = 0;
+  const std::vector<float> p = Pixels(pasted, &bw, &bh);
+  const std::vector<float> q = Pixels((dir_ / "whole.exr").string(), &ww, &wh);
+  ASSERT_EQ(bw, 240);
+  ASSERT_EQ(p.size(), q.size());
+  size_t differing = 0, outside = 0;
+  for (int y = 0; y < 160; ++y)
+    for (int x = 0; x < 240; ++x)
+      for (int c = 0; c < 4; ++c) {
+        const size_t i = (static_cast<size_t>(y) * 240 + x) * 4 + c;
+        const bool inside = x >= 40 && x < 140 && y >= 60 && y < 110;
+        if (inside)
+          differing += p[i] != q[i];
+        else
+          outside += p[i] != 0.0f;
+      }
+  EXPECT_EQ(differing, 0u) << "the region's pixels are not the frame's at its place";
+  EXPECT_EQ(outside, 0u) << "the region covers pixels outside its place";
 }
 
 TEST_F(SplitRenderTest, PlanRegionsTilesTheFrameAndChecksItsInput) {

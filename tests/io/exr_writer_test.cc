@@ -54,6 +54,38 @@ class ExrWriterTest : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
+// A region of a frame is written with its data window at its place inside the whole frame's
+// display window (issue 25, part 7), by both encoders; its rows are those of the region.
+TEST_F(ExrWriterTest, ARegionLiesAtItsPlaceInTheFrame) {
+  const Image img = Gradient(50, 37);  // 37 rows: chunks of 16 (zip) end mid-chunk
+  for (ExrCompression c :
+       {ExrCompression::kNone, ExrCompression::kZip, ExrCompression::kPiz, ExrCompression::kDwaa}) {
+    ExrOptions options;
+    options.compression = c;
+    options.pixel_type = ExrPixelType::kFloat;
+    options.metadata.x = 30;
+    options.metadata.y = 21;  // not a multiple of any chunk height
+    options.metadata.frame_width = 100;
+    options.metadata.frame_height = 80;
+    const std::string path = (dir_ / (std::string(ExrCompressionName(c)) + ".exr")).string();
+    ASSERT_TRUE(WriteExrFile(img, options, path).ok()) << ExrCompressionName(c);
+    ReadBack r = ReadExr(path);
+    EXPECT_EQ(r.spec.x, 30) << ExrCompressionName(c);
+    EXPECT_EQ(r.spec.y, 21);
+    EXPECT_EQ(r.spec.width, 50);
+    EXPECT_EQ(r.spec.height, 37);
+    EXPECT_EQ(r.spec.full_x, 0);
+    EXPECT_EQ(r.spec.full_y, 0);
+    EXPECT_EQ(r.spec.full_width, 100);
+    EXPECT_EQ(r.spec.full_height, 80);
+    ASSERT_EQ(r.pixels.size(), img.texels().size() * 4);
+    float worst = 0;
+    for (size_t i = 0; i < r.pixels.size(); ++i)
+      worst = std::max(worst, std::abs(r.pixels[i] - (&img.texels()[i / 4].r)[i % 4]));
+    EXPECT_LE(worst, c == ExrCompression::kDwaa ? 2e-2f : 0.0f) << ExrCompressionName(c);
+  }
+}
+
 TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
   const Image img = Gradient(67, 41);
   for (ExrCompression c : {ExrCompression::kNone, ExrCompression::kRle, ExrCompression::kZips,
@@ -64,7 +96,9 @@ TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
       options.pixel_type = type;
       options.metadata.scene_name = "gradient";
       options.metadata.camera = "0,1,0,0,-5,0 fov=60";
-      options.metadata.render_ms = 12.5;
+      options.metadata.mode = "raster";
+      options.metadata.setup_ms = 2.5;
+      options.metadata.raster_ms = 10;
       const std::string path = (dir_ / (std::string(ExrCompressionName(c)) + ".exr")).string();
       ASSERT_TRUE(WriteExrFile(img, options, path).ok());
       ReadBack r = ReadExr(path);
@@ -75,7 +109,16 @@ TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
       EXPECT_EQ(r.spec.get_string_attribute("compression"), ExrCompressionName(c));
       EXPECT_EQ(r.spec.get_string_attribute("aperture:scene"), "gradient");
       EXPECT_EQ(r.spec.get_string_attribute("aperture:camera"), "0,1,0,0,-5,0 fov=60");
+      EXPECT_EQ(r.spec.get_string_attribute("aperture:mode"), "raster");
+      EXPECT_FLOAT_EQ(r.spec.get_float_attribute("aperture:setup_ms"), 2.5f);
+      EXPECT_FLOAT_EQ(r.spec.get_float_attribute("aperture:raster_ms"), 10.0f);
       EXPECT_FLOAT_EQ(r.spec.get_float_attribute("aperture:render_ms"), 12.5f);
+      EXPECT_EQ(r.spec.get_string_attribute("Software"), "Aperture " APERTURE_VERSION);
+      // A whole frame: the data window is the display window.
+      EXPECT_EQ(r.spec.x, 0);
+      EXPECT_EQ(r.spec.y, 0);
+      EXPECT_EQ(r.spec.full_width, 67);
+      EXPECT_EQ(r.spec.full_height, 41);
       // Lossless codecs keep half precision (dwaa is lossy).
       const float tolerance = c == ExrCompression::kDwaa    ? 2e-2f
                               : type == ExrPixelType::kHalf ? 1e-3f
