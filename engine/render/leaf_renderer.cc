@@ -22,6 +22,25 @@ bool LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
   return true;
 }
 
+void LeafRenderer::ShadeEntries() {
+  order_.resize(entries_.size());
+  for (size_t i = 0; i < order_.size(); ++i) order_[i] = i;
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&](size_t a, size_t b) { return entries_[a].polygon < entries_[b].polygon; });
+  colours_.resize(entries_.size());
+  for (size_t begin = 0; begin < order_.size();) {
+    const int polygon = entries_[order_[begin]].polygon;
+    size_t end = begin;
+    points_.clear();
+    for (; end < order_.size() && entries_[order_[end]].polygon == polygon; ++end)
+      points_.push_back(entries_[order_[end]].point);
+    batch_.resize(points_.size());
+    shader_.ShadeMany(polygon, points_.data(), static_cast<int>(points_.size()), batch_.data());
+    for (size_t i = begin; i < end; ++i) colours_[order_[i]] = batch_[i - begin];
+    begin = end;
+  }
+}
+
 bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   for (int p : leaf.polygons)
     if (geo_.polygons[p].transparent) return RenderMixedTransparent(leaf, image);
@@ -80,23 +99,7 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   }
   pixel_begin_.push_back(entries_.size());
 
-  // Shade every polygon's points in one batch (the texture filters sample batches faster).
-  order_.resize(entries_.size());
-  for (size_t i = 0; i < order_.size(); ++i) order_[i] = i;
-  std::stable_sort(order_.begin(), order_.end(),
-                   [&](size_t a, size_t b) { return entries_[a].polygon < entries_[b].polygon; });
-  colours_.resize(entries_.size());
-  for (size_t begin = 0; begin < order_.size();) {
-    const int polygon = entries_[order_[begin]].polygon;
-    size_t end = begin;
-    points_.clear();
-    for (; end < order_.size() && entries_[order_[end]].polygon == polygon; ++end)
-      points_.push_back(entries_[order_[end]].point);
-    batch_.resize(points_.size());
-    shader_.ShadeMany(polygon, points_.data(), static_cast<int>(points_.size()), batch_.data());
-    for (size_t i = begin; i < end; ++i) colours_[order_[i]] = batch_[i - begin];
-    begin = end;
-  }
+  ShadeEntries();
 
   for (int py = 0; py < r.height(); ++py) {
     for (int px = 0; px < r.width(); ++px) {
@@ -197,22 +200,7 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
   }
   pixel_begin_.push_back(entries_.size());
 
-  order_.resize(entries_.size());
-  for (size_t i = 0; i < order_.size(); ++i) order_[i] = i;
-  std::stable_sort(order_.begin(), order_.end(),
-                   [&](size_t a, size_t b) { return entries_[a].polygon < entries_[b].polygon; });
-  colours_.resize(entries_.size());
-  for (size_t begin = 0; begin < order_.size();) {
-    const int polygon = entries_[order_[begin]].polygon;
-    size_t end = begin;
-    points_.clear();
-    for (; end < order_.size() && entries_[order_[end]].polygon == polygon; ++end)
-      points_.push_back(entries_[order_[end]].point);
-    batch_.resize(points_.size());
-    shader_.ShadeMany(polygon, points_.data(), static_cast<int>(points_.size()), batch_.data());
-    for (size_t i = begin; i < end; ++i) colours_[order_[i]] = batch_[i - begin];
-    begin = end;
-  }
+  ShadeEntries();
 
   for (int py = 0; py < r.height(); ++py) {
     for (int px = 0; px < r.width(); ++px) {

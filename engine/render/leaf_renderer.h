@@ -30,6 +30,9 @@ class LeafRenderer {
 
  private:
   bool RenderMixed(const LeafWindow& leaf, Image& image);
+  // Shades every entry's point into colours_, each polygon's points in one batch (the texture
+  // filters sample batches faster).
+  void ShadeEntries();
   // A mixed leaf with MASK or BLEND polygons (ScreenPolygon::transparent), composited exactly.
   bool RenderMixedTransparent(const LeafWindow& leaf, Image& image);
   // The transparent polygons of `leaf` that reach the cell centred at (cx, cy), nearest at its

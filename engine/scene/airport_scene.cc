@@ -151,17 +151,7 @@ v1::Scene BuildAirportScene() {
   for (int i = 0; i < 5; ++i)
     for (int j = 0; j < 4; ++j) AddTree(trees, 140 + i * 14.0, -300 - j * 17.0, 10 + (i + j) % 4);
 
-  v1::Mesh* aircraft = scene.add_meshes();
-  aircraft->set_id("aircraft");
-  aircraft->set_material_id("livery");
-  AddAircraft(aircraft);
-  for (const v1::Mesh& mesh : scene.meshes()) {
-    v1::Object* object = scene.add_objects();
-    object->set_mesh_id(mesh.id());
-    if (mesh.id() != "aircraft") continue;
-    object->set_name(kDemoAircraft);
-    *object->mutable_transform() = DemoAircraftAt(0);
-  }
+  AddAircraftAndObjects(scene);
   return scene;
 }
 

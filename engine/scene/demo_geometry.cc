@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "scene/demo_scene.h"
 #include "texture/procedural.h"
 
 namespace aperture::demo {
@@ -81,6 +82,20 @@ void AddAircraft(v1::Mesh* mesh) {
   AddSolidBox(mesh, {7, 1.0, -4}, {9, 2.3, 0});
   for (const Vec3& at : {Vec3{0, 0, -14}, Vec3{-3, 0, 1}, Vec3{3, 0, 1}})  // gear legs
     AddSolidBox(mesh, {at.x - 0.3, 0, at.z - 0.3}, {at.x + 0.3, 1.15, at.z + 0.3});
+}
+
+void AddAircraftAndObjects(v1::Scene& scene) {
+  v1::Mesh* aircraft = scene.add_meshes();
+  aircraft->set_id("aircraft");
+  aircraft->set_material_id("livery");
+  AddAircraft(aircraft);
+  for (const v1::Mesh& mesh : scene.meshes()) {
+    v1::Object* object = scene.add_objects();
+    object->set_mesh_id(mesh.id());
+    if (mesh.id() != "aircraft") continue;
+    object->set_name(kDemoAircraft);
+    *object->mutable_transform() = DemoAircraftAt(0);
+  }
 }
 
 v1::Material* AddMaterial(v1::Scene& scene, const char* id, float r, float g, float b,

@@ -95,19 +95,7 @@ v1::Scene BuildDemoScene() {
     }
   }
 
-  // The aircraft is the one object that moves (a live channel's updates name it); every other
-  // mesh stands once where it was built.
-  v1::Mesh* aircraft = scene.add_meshes();
-  aircraft->set_id("aircraft");
-  aircraft->set_material_id("livery");
-  AddAircraft(aircraft);
-  for (const v1::Mesh& mesh : scene.meshes()) {
-    v1::Object* object = scene.add_objects();
-    object->set_mesh_id(mesh.id());
-    if (mesh.id() != "aircraft") continue;
-    object->set_name(kDemoAircraft);
-    *object->mutable_transform() = DemoAircraftAt(0);
-  }
+  AddAircraftAndObjects(scene);
   return scene;
 }
 
