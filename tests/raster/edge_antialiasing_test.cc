@@ -14,24 +14,15 @@ namespace aperture {
 namespace {
 
 using testing::FlatPolygon;
+using testing::OriginCamera;
+using testing::PointAtPixel;
 
 constexpr int kWidth = 40, kHeight = 30;
 constexpr int kSamplesPerAxis = 256;  // 65,536 samples per aperture
 const Rgba kSky{0.1f, 0.2f, 0.9f, 1};
 
-Camera TestCamera() {
-  Camera c;  // at the origin looking along -z
-  c.vertical_fov_deg = 60;
-  return c;
-}
-
 // Screen point (pixels) to a world point on the plane z = -depth.
-Vec3 At(double px, double py, double depth) {
-  const FrustumTangents f = ResolveFrustum(TestCamera(), kWidth, kHeight);
-  const double x = f.left + px / kWidth * (f.right - f.left);
-  const double y = f.top - py / kHeight * (f.top - f.bottom);
-  return {x * depth, y * depth, -depth};
-}
+Vec3 At(double px, double py, double depth) { return PointAtPixel(kWidth, kHeight, px, py, depth); }
 
 struct Errors {
   double max_edge = 0, rmse_edge = 0;
@@ -46,10 +37,10 @@ Errors Compare(const std::vector<FlatPolygon>& polygons, AntiAliasing aa) {
   settings.height = kHeight;
   settings.aa = aa;
   settings.threads = 2;
-  auto frame = RenderFrame(*scene, TestCamera(), settings);
+  auto frame = RenderFrame(*scene, OriginCamera(), settings);
   EXPECT_TRUE(frame.ok()) << frame.status();
   const double margin = ShapeOf(aa).margin;
-  const FrameGeometry geo = ProjectScene(*scene, TestCamera(), kWidth, kHeight, margin + 1);
+  const FrameGeometry geo = ProjectScene(*scene, OriginCamera(), kWidth, kHeight, margin + 1);
   auto colour = [&](int k) { return scene->materials[geo.polygons[k].material].base_color; };
 
   Errors e;
@@ -188,7 +179,7 @@ TEST(EdgeAntiAliasing, SharedEdgesOfAMeshShowNoSeams) {
     settings.width = kWidth;
     settings.height = kHeight;
     settings.aa = aa;
-    auto frame = RenderFrame(*scene, TestCamera(), settings);
+    auto frame = RenderFrame(*scene, OriginCamera(), settings);
     ASSERT_TRUE(frame.ok());
     const double m = ShapeOf(aa).margin;
     double worst = 0;

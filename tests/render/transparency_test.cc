@@ -20,23 +20,15 @@ namespace aperture {
 namespace {
 
 using testing::FlatPolygon;
+using testing::OriginCamera;
+using testing::PointAtPixel;
 
 constexpr int kWidth = 40, kHeight = 30;
 constexpr int kSamplesPerAxis = 256;
 const Rgba kSky{0.1f, 0.2f, 0.9f, 1};
 
-Camera TestCamera() {
-  Camera c;
-  c.vertical_fov_deg = 60;
-  return c;
-}
-
-Vec3 At(double px, double py, double depth) {
-  const FrustumTangents f = ResolveFrustum(TestCamera(), kWidth, kHeight);
-  const double x = f.left + px / kWidth * (f.right - f.left);
-  const double y = f.top - py / kHeight * (f.top - f.bottom);
-  return {x * depth, y * depth, -depth};
-}
+// Screen point (pixels) to a world point on the plane z = -depth.
+Vec3 At(double px, double py, double depth) { return PointAtPixel(kWidth, kHeight, px, py, depth); }
 
 RenderSettings Settings(AntiAliasing aa, bool transparent_sky = false) {
   RenderSettings settings;
@@ -87,10 +79,10 @@ Errors Compare(const std::vector<FlatPolygon>& polygons, AntiAliasing aa, bool t
                const std::function<float(int)>& alpha_of) {
   auto scene = BuildScene(testing::MakeFlatScene(polygons, kSky));
   EXPECT_TRUE(scene.ok()) << scene.status();
-  auto frame = RenderFrame(*scene, TestCamera(), Settings(aa, transparent_sky));
+  auto frame = RenderFrame(*scene, OriginCamera(), Settings(aa, transparent_sky));
   EXPECT_TRUE(frame.ok()) << frame.status();
   const double margin = ShapeOf(aa).margin;
-  const FrameGeometry geo = ProjectScene(*scene, TestCamera(), kWidth, kHeight, margin + 1);
+  const FrameGeometry geo = ProjectScene(*scene, OriginCamera(), kWidth, kHeight, margin + 1);
   auto colour = [&](int k) {
     Rgba c = polygons[geo.polygons[k].scene_polygon].colour;
     c.a = alpha_of(geo.polygons[k].scene_polygon);
@@ -172,7 +164,7 @@ TEST(Transparency, OpaqueSceneIsUnchangedByTheTransparentPathAndAlphaIsOne) {
   const std::vector<FlatPolygon> polygons = LayeredScene(v1::ALPHA_MODE_OPAQUE);
   auto scene = BuildScene(testing::MakeFlatScene(polygons, kSky));
   ASSERT_TRUE(scene.ok());
-  auto frame = RenderFrame(*scene, TestCamera(), Settings(AntiAliasing::kBox2));
+  auto frame = RenderFrame(*scene, OriginCamera(), Settings(AntiAliasing::kBox2));
   ASSERT_TRUE(frame.ok());
   for (const Rgba& p : frame->image.texels()) ASSERT_EQ(p.a, 1.0f);
   ExpectExact(polygons, "opaque", [](int) { return 1.0f; });
@@ -189,7 +181,7 @@ TEST(Transparency, ATransparentPolygonCoveringTheViewIsNotACover) {
   };
   auto scene = BuildScene(testing::MakeFlatScene(polygons, kSky));
   ASSERT_TRUE(scene.ok());
-  auto frame = RenderFrame(*scene, TestCamera(), Settings(AntiAliasing::kBox2));
+  auto frame = RenderFrame(*scene, OriginCamera(), Settings(AntiAliasing::kBox2));
   ASSERT_TRUE(frame.ok());
   EXPECT_EQ(frame->stats.covered_leaves, 0u);
   const float a = front.a;
@@ -211,7 +203,7 @@ TEST(Transparency, LayersBeyondTheBoundAreDrawnOpaque) {
          v1::ALPHA_MODE_BLEND});
   auto scene = BuildScene(testing::MakeFlatScene(polygons, kSky));
   ASSERT_TRUE(scene.ok());
-  auto frame = RenderFrame(*scene, TestCamera(), Settings(AntiAliasing::kBox1));
+  auto frame = RenderFrame(*scene, OriginCamera(), Settings(AntiAliasing::kBox1));
   ASSERT_TRUE(frame.ok());
   // Front to back: four at alpha 0.5, then the fifth opaque.
   double want[3] = {0, 0, 0}, transmitted = 1;
@@ -272,7 +264,7 @@ TEST(Transparency, TextureAlphaIsFilteredLikeItsColourInEveryFilter) {
     SCOPED_TRACE(v1::TextureFilter_Name(filter));
     auto scene = BuildScene(TexturedQuadScene(texture, v1::ALPHA_MODE_BLEND, filter));
     ASSERT_TRUE(scene.ok()) << scene.status();
-    auto frame = RenderFrame(*scene, TestCamera(), Settings(AntiAliasing::kBox2));
+    auto frame = RenderFrame(*scene, OriginCamera(), Settings(AntiAliasing::kBox2));
     ASSERT_TRUE(frame.ok());
     int checked = 0;
     for (int y = 6; y < 28; ++y)
@@ -301,7 +293,7 @@ TEST(Transparency, MaskCutsOutWhereTheTexturesAlphaIsBelowTheCutoff) {
     SCOPED_TRACE(v1::TextureFilter_Name(filter));
     auto scene = BuildScene(TexturedQuadScene(texture, v1::ALPHA_MODE_MASK, filter));
     ASSERT_TRUE(scene.ok()) << scene.status();
-    auto frame = RenderFrame(*scene, TestCamera(), Settings(AntiAliasing::kBox2));
+    auto frame = RenderFrame(*scene, OriginCamera(), Settings(AntiAliasing::kBox2));
     ASSERT_TRUE(frame.ok());
     int leaf = 0, hole = 0;
     for (int y = 5; y < 35 && y < kHeight; ++y)
@@ -347,9 +339,9 @@ void ExpectRaytraceMatches(const std::vector<FlatPolygon>& polygons, bool transp
   TraceOptions options;
   options.max_depth = 3;
   auto frame =
-      (*traced)->Render(TestCamera(), Settings(AntiAliasing::kBox1, transparent_sky), options);
+      (*traced)->Render(OriginCamera(), Settings(AntiAliasing::kBox1, transparent_sky), options);
   ASSERT_TRUE(frame.ok()) << frame.status();
-  const FrameGeometry geo = ProjectScene(*scene, TestCamera(), kWidth, kHeight, 1);
+  const FrameGeometry geo = ProjectScene(*scene, OriginCamera(), kWidth, kHeight, 1);
   auto colour = [&](int k) {
     Rgba c = polygons[geo.polygons[k].scene_polygon].colour;
     c.a = alpha_of(geo.polygons[k].scene_polygon);
@@ -400,7 +392,7 @@ TEST(Transparency, RaytraceFiltersTextureAlphaLikeItsColour) {
   ASSERT_TRUE(scene.ok()) << scene.status();
   auto traced = TracedScene::Build(*scene);
   ASSERT_TRUE(traced.ok()) << traced.status();
-  auto frame = (*traced)->Render(TestCamera(), Settings(AntiAliasing::kBox1), TraceOptions{});
+  auto frame = (*traced)->Render(OriginCamera(), Settings(AntiAliasing::kBox1), TraceOptions{});
   ASSERT_TRUE(frame.ok()) << frame.status();
   for (int y = 6; y < 28; ++y)
     for (int x = 10; x < 38; ++x) {

@@ -10,6 +10,12 @@
 
 namespace aperture::testing {
 
+// The world point on the plane z = -depth that a camera at the origin looking along -z (60 degree
+// vertical field of view) sees at screen point (px, py) of a width x height frame: polygons
+// placed in pixels.
+Camera OriginCamera();
+Vec3 PointAtPixel(int width, int height, double px, double py, double depth);
+
 // Colour of each polygon (flat), by frame polygon index.
 using FlatColour = std::function<Rgba(int polygon)>;
 
