@@ -84,14 +84,7 @@ void AddTree(v1::Mesh* mesh, double x, double z, double height) {
 v1::Scene BuildAirportScene() {
   v1::Scene scene;
   scene.set_name("airport-schiphol");
-  SetColor(scene.mutable_sky(), 0.50f, 0.66f, 0.90f);
-  SetColor(scene.mutable_ambient(), 0.35f, 0.38f, 0.45f);
-  scene.mutable_sun()->mutable_direction()->set_x(0.45);
-  scene.mutable_sun()->mutable_direction()->set_y(0.8);
-  scene.mutable_sun()->mutable_direction()->set_z(0.35);
-  SetColor(scene.mutable_sun()->mutable_color(), 0.95f, 0.9f, 0.8f);
-  SetColor(scene.mutable_fog()->mutable_color(), 0.62f, 0.70f, 0.82f);
-  scene.mutable_fog()->set_density(1.0 / 9000.0);
+  SetDemoWeather(scene);
 
   v1::Texture* map = scene.add_textures();
   map->set_id("schiphol");

@@ -84,6 +84,17 @@ void AddAircraft(v1::Mesh* mesh) {
     AddSolidBox(mesh, {at.x - 0.3, 0, at.z - 0.3}, {at.x + 0.3, 1.15, at.z + 0.3});
 }
 
+void SetDemoWeather(v1::Scene& scene) {
+  SetColor(scene.mutable_sky(), 0.50f, 0.66f, 0.90f);
+  SetColor(scene.mutable_ambient(), 0.35f, 0.38f, 0.45f);
+  scene.mutable_sun()->mutable_direction()->set_x(0.45);
+  scene.mutable_sun()->mutable_direction()->set_y(0.8);
+  scene.mutable_sun()->mutable_direction()->set_z(0.35);
+  SetColor(scene.mutable_sun()->mutable_color(), 0.95f, 0.9f, 0.8f);
+  SetColor(scene.mutable_fog()->mutable_color(), 0.62f, 0.70f, 0.82f);
+  scene.mutable_fog()->set_density(1.0 / 9000.0);
+}
+
 void AddAircraftAndObjects(v1::Scene& scene) {
   v1::Mesh* aircraft = scene.add_meshes();
   aircraft->set_id("aircraft");

@@ -34,6 +34,8 @@ void AddSolidBox(v1::Mesh* mesh, const Vec3& lo, const Vec3& hi, unsigned skip =
 // A twin-jet the size of an A320 (38 m long, 34 m span) in its own frame: the nose towards -z
 // (where yaw 0 looks), the wheels on y = 0, the centre of the fuselage at x = z = 0.
 void AddAircraft(v1::Mesh* mesh);
+// The demo's sky, ambient light, afternoon sun and light haze (fog), shared by the airport.
+void SetDemoWeather(v1::Scene& scene);
 // The aircraft mesh (material "livery"), then one object per mesh of the scene: the aircraft is
 // the one that moves (named kDemoAircraft, a live channel's updates name it, placed at
 // DemoAircraftAt(0)); every other mesh stands once where it was built.

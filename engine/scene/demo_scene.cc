@@ -13,14 +13,7 @@ using namespace demo;  // NOLINT: the shared airfield geometry
 v1::Scene BuildDemoScene() {
   v1::Scene scene;
   scene.set_name("demo-airfield");
-  SetColor(scene.mutable_sky(), 0.50f, 0.66f, 0.90f);
-  SetColor(scene.mutable_ambient(), 0.35f, 0.38f, 0.45f);
-  scene.mutable_sun()->mutable_direction()->set_x(0.45);
-  scene.mutable_sun()->mutable_direction()->set_y(0.8);
-  scene.mutable_sun()->mutable_direction()->set_z(0.35);
-  SetColor(scene.mutable_sun()->mutable_color(), 0.95f, 0.9f, 0.8f);
-  SetColor(scene.mutable_fog()->mutable_color(), 0.62f, 0.70f, 0.82f);
-  scene.mutable_fog()->set_density(1.0 / 9000.0);
+  SetDemoWeather(scene);
 
   AddEncodedTexture(scene, "grass",
                     MakeNoiseTexture(512, 11, {0.10f, 0.20f, 0.05f, 1}, {0.35f, 0.50f, 0.18f, 1}));
