@@ -145,36 +145,94 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
   const int span = shape_.cells_per_axis - 1;
   const int nx = r.width() + span, ny = r.height() + span;
   const size_t cells = static_cast<size_t>(nx) * ny;
+  auto cell_x = [&](int i) { return r.x0 + i + shape_.cell_offset + 0.5; };
+  auto cell_y = [&](int j) { return r.y0 + j + shape_.cell_offset + 0.5; };
+
+  // Each cell's transparent layers.
+  cell_layers_.clear();
+  layer_begin_.assign(cells + 1, 0);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      layer_begin_[static_cast<size_t>(j) * nx + i] = cell_layers_.size();
+      TransparentLayers(leaf, cell_x(i), cell_y(j));
+      cell_layers_.insert(cell_layers_.end(), layers_.begin(), layers_.end());
+    }
+  }
+  layer_begin_[cells] = cell_layers_.size();
+
+  // The layers' alpha at every pixel they reach decides which subsets of a cell's layers carry
+  // weight there: a layer of alpha 1 is in every such subset, one of alpha 0 (a MASK cut-out, or
+  // a BLEND texel left clear) in none. Only the subsets some pixel of the cell weighs are
+  // visibility passes: a cell under MASK layers alone needs at most one pass per pixel it feeds,
+  // not 2^k. The passes left out would have weighed 0 everywhere: the pixels are unchanged.
+  entries_.clear();
+  pixel_begin_.clear();
+  for (int py = 0; py < r.height(); ++py) {
+    for (int px = 0; px < r.width(); ++px) {
+      pixel_begin_.push_back(entries_.size());
+      pixel_entry_.clear();
+      for (int cy = 0; cy <= span; ++cy)
+        for (int cx = 0; cx <= span; ++cx) {
+          const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
+          for (size_t k = layer_begin_[cell]; k < layer_begin_[cell + 1]; ++k)
+            if (pixel_entry_.try_emplace(cell_layers_[k], entries_.size()).second)
+              entries_.push_back({cell_layers_[k], 0, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
+        }
+    }
+  }
+  pixel_begin_.push_back(entries_.size());
+  ShadeEntries();
+  needed_.assign(cells, 0);
+  for (int py = 0; py < r.height(); ++py) {
+    for (int px = 0; px < r.width(); ++px) {
+      const size_t pixel = static_cast<size_t>(py) * r.width() + px;
+      for (int cy = 0; cy <= span; ++cy) {
+        for (int cx = 0; cx <= span; ++cx) {
+          const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
+          unsigned opaque = 0, open = 0;  // layers of alpha 1, layers of alpha in (0, 1)
+          for (size_t k = layer_begin_[cell]; k < layer_begin_[cell + 1]; ++k) {
+            size_t e = pixel_begin_[pixel];
+            while (entries_[e].polygon != cell_layers_[k]) ++e;
+            const float alpha = colours_[e].a;
+            const unsigned bit = 1u << (k - layer_begin_[cell]);
+            if (alpha >= 1.0f) opaque |= bit;
+            if (alpha > 0.0f && alpha < 1.0f) open |= bit;
+          }
+          // Every subset of the open layers, with the opaque ones.
+          for (unsigned sub = open;; sub = (sub - 1) & open) {
+            needed_[cell] |= 1u << (opaque | sub);
+            if (sub == 0) break;
+          }
+        }
+      }
+    }
+  }
+
   pieces_.clear();
   passes_.clear();
-  cell_layers_.clear();
   cell_begin_.assign(cells + 1, 0);
-  layer_begin_.assign(cells + 1, 0);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const size_t cell = static_cast<size_t>(j) * nx + i;
       cell_begin_[cell] = passes_.size();
-      layer_begin_[cell] = cell_layers_.size();
-      const double cx = r.x0 + i + shape_.cell_offset + 0.5;
-      const double cy = r.y0 + j + shape_.cell_offset + 0.5;
-      TransparentLayers(leaf, cx, cy);
-      cell_layers_.insert(cell_layers_.end(), layers_.begin(), layers_.end());
-      for (unsigned included = 0; included < (1u << layers_.size()); ++included) {
+      const int* layers = cell_layers_.data() + layer_begin_[cell];
+      const size_t count = layer_begin_[cell + 1] - layer_begin_[cell];
+      for (unsigned included = 0; included < (1u << count); ++included) {
+        if (!(needed_[cell] >> included & 1u)) continue;
         candidates_.clear();
         for (int p : leaf.polygons) {
-          const auto at = std::find(layers_.begin(), layers_.end(), p);
-          if (at == layers_.end() || (included >> (at - layers_.begin()) & 1u))
-            candidates_.push_back(p);
+          const int* at = std::find(layers, layers + count, p);
+          if (at == layers + count || (included >> (at - layers) & 1u)) candidates_.push_back(p);
         }
         const size_t begin = pieces_.size();
-        coverage_.Compute(geo_.polygons, candidates_, cx, cy, shape_.needs_moments, pieces_);
+        coverage_.Compute(geo_.polygons, candidates_, cell_x(i), cell_y(j), shape_.needs_moments,
+                          pieces_);
         if (coverage_.Stopped()) return false;
         passes_.push_back({included, begin, pieces_.size()});
       }
     }
   }
   cell_begin_[cells] = passes_.size();
-  layer_begin_[cells] = cell_layers_.size();
 
   // Every polygon a pixel needs the colour and alpha of: its cells' pieces and layers.
   entries_.clear();

@@ -79,6 +79,7 @@ class LeafRenderer {
   };
   std::vector<Pass> passes_;
   std::vector<int> layers_, cell_layers_, candidates_;
+  std::vector<uint32_t> needed_;  // per cell, bit s: layer subset s carries weight at some pixel
   std::vector<size_t> layer_begin_;
 };
 
