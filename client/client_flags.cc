@@ -22,14 +22,14 @@ ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
 ABSL_FLAG(int, split, 0,
           "render: cut the frame into this many regions of equal predicted cost (PlanRegions) "
           "and render them on --servers at once, then assemble one EXR (0: one server)");
-ABSL_FLAG(std::string, scene, "demo",
-          "'demo' (built-in airfield), 'airport' (a real airport's map, cut-out trees), a scene "
-          "JSON file or a glTF 2.0 model (.gltf, .glb)");
+ABSL_FLAG(std::string, scene, "airport",
+          "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'demo' (the "
+          "benchmarks' synthetic airfield), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, camera, "",
-          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: the demo's "
-          "approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
+          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: a built-in "
+          "scene's approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
 ABSL_FLAG(double, fov, 0, "vertical field of view, degrees; 0: a glTF model camera's own, else 60");
-ABSL_FLAG(double, near, 0, "near plane distance (0: the demo's 0.5, else 0.1)");
+ABSL_FLAG(double, near, 0, "near plane distance (0: a built-in scene's camera's, else 0.1)");
 ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT");
 ABSL_FLAG(std::string, region, "", "only this part of the frame: X,Y,WIDTHxHEIGHT");
 ABSL_FLAG(std::string, aa, "box2", "edge anti-aliasing: box2, box1, tent2");

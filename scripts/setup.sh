@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # First command of the README: install what is missing, build, then the main job on the built-in
-# demo scene: render it locally, and through the service (a server on loopback, the client).
+# scenes: render them locally, and through the service (a server on loopback, the client).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 mkdir -p out
+# The default scene, the real airport: Schiphol's runways, taxiways and aprons from OpenStreetMap
+# as a packed vector texture (seed 001), hangars, cut-out trees and a glass tower cab (texture
+# alpha); then the benchmarks' synthetic airfield.
+build/engine/aperture-render -o out/airport.exr
 build/engine/aperture-render --scene demo -o out/demo.exr
-# The real airport: Schiphol's runways, taxiways and aprons from OpenStreetMap as a packed vector
-# texture (seed 001), cut-out trees and a glass tower cab (texture alpha).
-build/engine/aperture-render --scene airport -o out/airport.exr
 
 # The service: a server on a free loopback port with a store of its own under out/, the client
 # renders the same frame through it; the server is stopped (SIGTERM) whatever happens.
@@ -28,12 +29,12 @@ for _ in $(seq 1 200); do
 done
 [ -n "$address" ] || { echo "setup: the server did not start; see out/server.log" >&2; exit 1; }
 build/client/aperture health --server "$address"
-build/client/aperture render --server "$address" --scene demo -o out/demo-service.exr
+build/client/aperture render --server "$address" --scene airport -o out/airport-service.exr
 # A simulator host for two seconds: the camera flies in while the demo's aircraft rolls down the
 # runway (a scene update per frame); newest state wins, the report names late and skipped frames.
 build/client/aperture sim --server "$address" --scene demo --size 1280x720 --rate 10 --frames 20
 kill -TERM "$server_pid"
 wait "$server_pid" || true
 trap - EXIT
-echo "setup: done. Open out/demo.png (preview) or out/demo.exr, and out/airport.png; out/demo-service.exr came" \
-  "through the render service (server log: out/server.log)."
+echo "setup: done. Open out/airport.png and out/demo.png (previews) or their EXRs;" \
+  "out/airport-service.exr came through the render service (server log: out/server.log)."

@@ -31,25 +31,27 @@
 #include "tools/cli_options.h"
 #include "trace/trace_renderer.h"
 
-ABSL_FLAG(std::string, scene, "demo",
-          "'demo' (built-in airfield), 'airport' (a real airport's map, cut-out trees), "
-          "'triangles' (10,000 random triangles), 'skewed' (a city "
-          "block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
-          "benchmark's), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
+ABSL_FLAG(
+    std::string, scene, "airport",
+    "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'demo' (the "
+    "benchmarks' synthetic airfield), 'triangles' (10,000 random triangles), 'skewed' (a city "
+    "block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
+    "benchmark's), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
           "the machine's shared texture store (the server's default): seed 000 tables, decoded "
           "packed textures and raytrace tables are mapped from it, or built once and kept there "
           "for the next process; 'none': build them in this process only");
 ABSL_FLAG(std::string, camera, "",
-          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: the demo's "
-          "approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
+          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: a built-in "
+          "scene's approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
 ABSL_FLAG(double, fov, 0, "vertical field of view, degrees; 0: a glTF model camera's own, else 60");
-ABSL_FLAG(double, near, 0, "near plane distance (0: 0.5 for the demo, else 0.1)");
+ABSL_FLAG(double, near, 0, "near plane distance (0: a built-in scene's camera's, else 0.1)");
 ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT (each 1..16384)");
 ABSL_FLAG(std::string, aa, "box2", "edge anti-aliasing: box2 (2x2 box), box1 (pixel box), tent2");
 ABSL_FLAG(std::string, filter, "",
-          "texture filter for every material: nearest, bilinear, "
-          "trilinear (default: each material's own)");
+          "texture filter for every material: nearest, bilinear, trilinear, aniso (seed 000's "
+          "tables), oiio (OpenImageIO's TextureSystem), reference (dense supersampling) "
+          "(default: each material's own)");
 ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1: pixel, 2: 2x2 square)");
 ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
 ABSL_FLAG(int, zip_level, 4,
