@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "base/image.h"
 #include "io/exr_header.h"
-#include "texture/image.h"
 
 namespace aperture {
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
+#include "base/image.h"
 #include "scene/vec.h"
-#include "texture/image.h"
 
 namespace aperture {
 

@@ -4,17 +4,11 @@
 
 #include <vector>
 
+#include "base/pixel_rect.h"
 #include "raster/aa_filter.h"
 #include "raster/projection.h"
 
 namespace aperture {
-
-struct PixelRect {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
-  int width() const { return x1 - x0; }
-  int height() const { return y1 - y0; }
-  long long pixels() const { return static_cast<long long>(width()) * height(); }
-};
 
 struct LeafWindow {
   enum class Kind { kEmpty, kCovered, kMixed };

@@ -5,13 +5,13 @@
 #include <functional>
 
 #include "absl/status/statusor.h"
+#include "base/image.h"
 #include "cost/task_planner.h"
 #include "raster/aa_filter.h"
 #include "raster/warnock.h"
 #include "render/polygon_shader.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
-#include "texture/image.h"
 
 namespace aperture {
 

@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
+#include "base/image.h"
 #include "raster/aa_filter.h"
 #include "raster/cell_coverage.h"
 #include "raster/warnock.h"
 #include "render/polygon_shader.h"
-#include "texture/image.h"
 
 namespace aperture {
 

@@ -5,8 +5,8 @@
 #include <initializer_list>
 
 #include "aperture/v1/scene.pb.h"
+#include "base/image.h"
 #include "scene/vec.h"
-#include "texture/image.h"
 
 namespace aperture::demo {
 

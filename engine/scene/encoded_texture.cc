@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
-#include "texture/image.h"
+#include "texture/image_file.h"
 #include "texture/packed/apv_file.h"
 #include "texture/prefiltered_table.h"
 

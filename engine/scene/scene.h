@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "aperture/v1/scene.pb.h"
+#include "base/image.h"
 #include "scene/vec.h"
 #include "store/shared_store.h"
 #include "texture/footprint_samplers.h"
-#include "texture/image.h"
 #include "texture/mip_pyramid.h"
 #include "texture/packed/packed_texture.h"
 #include "texture/texture_sampler.h"

@@ -8,6 +8,7 @@
 #include "scene/object_placement.h"
 #include "scene/scene_environment.h"
 #include "store/texture_entries.h"
+#include "texture/image_file.h"
 #include "texture/packed/apv_file.h"
 #include "texture/packed/packed_sampler.h"
 

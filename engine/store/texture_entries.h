@@ -10,8 +10,8 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "base/image.h"
 #include "store/shared_store.h"
-#include "texture/image.h"
 
 namespace aperture {
 

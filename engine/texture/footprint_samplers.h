@@ -10,8 +10,8 @@
 #include <mutex>
 
 #include "absl/status/status.h"
+#include "base/image.h"
 #include "store/shared_store.h"
-#include "texture/image.h"
 #include "texture/prefiltered_table.h"
 #include "texture/texture_sampler.h"
 

@@ -7,7 +7,7 @@
 
 #include <functional>
 
-#include "texture/image.h"
+#include "base/image.h"
 #include "texture/texture_sampler.h"
 
 namespace aperture {

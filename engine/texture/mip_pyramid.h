@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "texture/image.h"
+#include "base/image.h"
 #include "texture/texture_sampler.h"
 
 namespace aperture {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "texture/image.h"
+#include "base/image.h"
 #include "texture/texture_sampler.h"
 
 namespace aperture {

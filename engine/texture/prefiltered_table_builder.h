@@ -10,7 +10,7 @@
 #include <functional>
 
 #include "absl/status/statusor.h"
-#include "texture/image.h"
+#include "base/image.h"
 #include "texture/prefiltered_table.h"
 
 namespace aperture {

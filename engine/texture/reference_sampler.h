@@ -2,7 +2,7 @@
 // supersampling of the bilinear-reconstructed full-resolution texture (box filter, periodic).
 #pragma once
 
-#include "texture/image.h"
+#include "base/image.h"
 #include "texture/texture_sampler.h"
 
 namespace aperture {

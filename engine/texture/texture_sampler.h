@@ -1,7 +1,7 @@
 // The sampling interface every texture filter mode implements.
 #pragma once
 
-#include "texture/image.h"
+#include "base/image.h"
 
 namespace aperture {
 

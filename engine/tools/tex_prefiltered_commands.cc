@@ -19,7 +19,7 @@
 #include "io/exr_writer.h"
 #include "texture/aniso_sampler.h"
 #include "texture/grazing_plane.h"
-#include "texture/image.h"
+#include "texture/image_file.h"
 #include "texture/mip_pyramid.h"
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table.h"

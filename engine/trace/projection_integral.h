@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "texture/image.h"
+#include "base/image.h"
 #include "trace/pixel_fragments.h"
 #include "trace/summed_area_table.h"
 #include "trace/texture_integral.h"

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "texture/image.h"
+#include "base/image.h"
 
 namespace aperture {
 

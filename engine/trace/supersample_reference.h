@@ -7,9 +7,9 @@
 // that point-sample or supersample a bilinear texture. Raster textures only.
 #pragma once
 
+#include "base/image.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
-#include "texture/image.h"
 #include "trace/ray_scene.h"
 
 namespace aperture {

@@ -36,6 +36,7 @@
 #include "scene/scene.h"
 #include "scene/scene_builder.h"
 #include "texture/grazing_plane.h"
+#include "texture/image_file.h"
 #include "texture/reference_sampler.h"
 #include "trace/supersample_reference.h"
 #include "trace/trace_renderer.h"

@@ -20,7 +20,7 @@
 #include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
-#include "texture/image.h"
+#include "texture/image_file.h"
 
 namespace aperture::testing {
 namespace {

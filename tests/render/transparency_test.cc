@@ -13,6 +13,7 @@
 #include "scene/scene_builder.h"
 #include "support/reference_render.h"
 #include "support/test_scenes.h"
+#include "texture/image_file.h"
 #include "texture/procedural.h"
 #include "trace/trace_renderer.h"
 

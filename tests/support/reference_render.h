@@ -4,9 +4,9 @@
 
 #include <functional>
 
+#include "base/image.h"
 #include "raster/aa_filter.h"
 #include "raster/projection.h"
-#include "texture/image.h"
 
 namespace aperture::testing {
 

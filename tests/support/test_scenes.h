@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "aperture/v1/scene.pb.h"
+#include "base/image.h"
 #include "scene/vec.h"
-#include "texture/image.h"
 
 namespace aperture::testing {
 

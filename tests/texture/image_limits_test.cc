@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "io/exr_writer.h"
-#include "texture/image.h"
+#include "texture/image_file.h"
 #include "texture/prefiltered_table_builder.h"
 
 namespace aperture {

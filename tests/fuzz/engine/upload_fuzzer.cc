@@ -7,7 +7,7 @@
 #include <span>
 
 #include "scene/encoded_texture.h"
-#include "texture/image.h"
+#include "texture/image_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::span<const uint8_t> bytes(data, size);

@@ -1,4 +1,4 @@
-#include "texture/image.h"
+#include "texture/image_file.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
@@ -154,17 +154,6 @@ absl::StatusOr<Image> ReadFrom(OIIO::ImageInput* in, const std::string& what) {
 
 }  // namespace
 
-Image::Image(int width, int height, Rgba fill)
-    : width_(width), height_(height), texels_(static_cast<size_t>(width) * height, fill) {}
-
-Image Image::Uninitialized(int width, int height) {
-  Image image;
-  image.width_ = width;
-  image.height_ = height;
-  image.texels_.resize(static_cast<size_t>(width) * height);
-  return image;
-}
-
 absl::StatusOr<Image> LoadImageFile(const std::string& path) {
   if (!OIIO::Filesystem::exists(path))
     return absl::NotFoundError(absl::StrCat("texture file '", path, "' does not exist"));
@@ -192,16 +181,6 @@ absl::StatusOr<ImageHeader> ReadImageHeader(std::span<const uint8_t> bytes) {
   if (auto s = CheckSpec(spec, "encoded texture"); !s.ok()) return s;
   return ImageHeader{spec.width, spec.height, spec.nchannels, (*in)->format_name()};
 }
-
-Image MakeCheckerboard(int size, int cells, Rgba a, Rgba b) {
-  Image image(size, size);
-  const int cell = std::max(1, size / std::max(1, cells));
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) image.at(x, y) = ((x / cell + y / cell) % 2 == 0) ? a : b;
-  return image;
-}
-
-bool IsPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
 Image ResizeToPowerOfTwo(const Image& image) {
   if (IsPowerOfTwo(image.width()) && IsPowerOfTwo(image.height())) return image;
