@@ -7,10 +7,10 @@
 #include "absl/strings/str_cat.h"
 #include "scene/object_placement.h"
 #include "scene/scene_environment.h"
-#include "store/texture_entries.h"
 #include "texture/image_file.h"
 #include "texture/packed/apv_file.h"
 #include "texture/packed/packed_sampler.h"
+#include "texture/texture_entries.h"
 
 namespace aperture {
 namespace {

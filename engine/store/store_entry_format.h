@@ -23,7 +23,7 @@ enum class EntryKind : uint32_t {
   kBlob = 1,              // uploaded bytes, as they came (an encoded image or an .apv file)
   kPrefilteredTable = 2,  // seed 000's table block (texture/prefiltered_table.h)
   kPackedTexture = 3,     // seed 001's in-memory packed texture (texture/packed/packed_texture.h)
-  kSummedAreaTable = 4,   // seed 003's summed-area tables of a raster texture (trace/)
+  kSummedAreaTable = 4,   // seed 003's summed-area tables (texture/summed_area_table.h)
 };
 
 const char* EntryKindName(EntryKind kind);

@@ -5,11 +5,11 @@
 
 #include <chrono>
 
-#include "store/texture_entries.h"
 #include "texture/aniso_sampler.h"
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table_builder.h"
 #include "texture/reference_sampler.h"
+#include "texture/texture_entries.h"
 
 namespace aperture {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "base/image.h"
+#include "texture/summed_area_table.h"
 #include "trace/pixel_fragments.h"
-#include "trace/summed_area_table.h"
 #include "trace/texture_integral.h"
 
 namespace aperture {

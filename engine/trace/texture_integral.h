@@ -7,7 +7,7 @@
 #include <array>
 
 #include "texture/packed/area_integral.h"
-#include "trace/summed_area_table.h"
+#include "texture/summed_area_table.h"
 
 namespace aperture {
 

@@ -13,8 +13,8 @@
 #include <span>
 
 #include "absl/strings/str_cat.h"
-#include "store/texture_entries.h"
 #include "texture/packed/packed_sampler.h"
+#include "texture/texture_entries.h"
 #include "trace/curved_intersect.h"
 #include "trace/texture_mapping.h"
 

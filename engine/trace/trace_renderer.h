@@ -15,9 +15,9 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "store/shared_store.h"
+#include "texture/summed_area_table.h"
 #include "trace/projection_integral.h"
 #include "trace/ray_scene.h"
-#include "trace/summed_area_table.h"
 #include "trace/texture_integral.h"
 
 namespace aperture {

@@ -1,7 +1,7 @@
 // Summed-area tables against brute-force integrals of the bilinear texture: the rectangle is cut
 // at every texel centre (where the reconstruction's pieces meet) and each bilinear piece is
 // integrated exactly by 2 x 2 Gauss-Legendre points.
-#include "trace/summed_area_table.h"
+#include "texture/summed_area_table.h"
 
 #include <gtest/gtest.h>
 

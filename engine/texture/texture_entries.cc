@@ -1,4 +1,4 @@
-#include "store/texture_entries.h"
+#include "texture/texture_entries.h"
 
 #include <xxhash.h>
 
@@ -9,7 +9,6 @@
 #include "texture/packed/packed_texture.h"
 #include "texture/prefiltered_table.h"
 #include "texture/prefiltered_table_builder.h"
-#include "trace/summed_area_table.h"
 
 namespace aperture {
 namespace {
@@ -24,8 +23,9 @@ std::vector<std::byte> ToBytes(std::span<const uint8_t> bytes) {
   return out;
 }
 
-// XXH3-128 of an image's size and texels.
-std::string ImageHash(const Image& base) {
+}  // namespace
+
+std::string ImageContentHash(const Image& base) {
   XXH3_state_t* state = XXH3_createState();
   XXH3_128bits_reset(state);
   const int32_t size[2] = {base.width(), base.height()};
@@ -36,25 +36,8 @@ std::string ImageHash(const Image& base) {
   return Hex(hash);
 }
 
-}  // namespace
-
 std::string PrefilteredTableKey(const Image& base) {
-  return absl::StrFormat("table-v%d-%s", kTableVersion, ImageHash(base));
-}
-
-std::string SummedAreaTableKey(const Image& base, int channels) {
-  return absl::StrFormat("sat-v1-c%d-%s", channels, ImageHash(base));
-}
-
-absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTable(
-    const SharedStore& store, const Image& base, int channels) {
-  auto entry = store.GetOrBuild(SummedAreaTableKey(base, channels), EntryKind::kSummedAreaTable,
-                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
-                                  return SummedAreaTable(base, channels).ToBytes();
-                                });
-  if (!entry.ok()) return entry.status();
-  if (auto view = SummedAreaTable::View((*entry)->payload()); !view.ok()) return view.status();
-  return entry;
+  return absl::StrFormat("table-v%d-%s", kTableVersion, ImageContentHash(base));
 }
 
 std::string PackedTextureKey(std::span<const uint8_t> apv_bytes) {

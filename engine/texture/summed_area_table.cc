@@ -1,10 +1,12 @@
-#include "trace/summed_area_table.h"
+#include "texture/summed_area_table.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "texture/texture_entries.h"
 
 namespace aperture {
 namespace {
@@ -21,7 +23,6 @@ struct Piece {
 
 // The block's header (ToBytes / View).
 constexpr char kMagic[8] = {'A', 'P', 'S', 'A', 'T', 'v', '1', 0};
-constexpr uint32_t kBlockVersion = 1;
 struct BlockHeader {
   char magic[8];
   uint32_t version;
@@ -88,7 +89,7 @@ SummedAreaTable::SummedAreaTable(const Image& image, int channels)
 std::vector<std::byte> SummedAreaTable::ToBytes() const {
   BlockHeader h{};
   std::memcpy(h.magic, kMagic, sizeof(kMagic));
-  h.version = kBlockVersion;
+  h.version = kSummedAreaTableVersion;
   h.width = width_, h.height = height_, h.channels = channels_;
   std::vector<std::byte> block(sizeof(h) + size_ * sizeof(double));
   std::memcpy(block.data(), &h, sizeof(h));
@@ -102,7 +103,7 @@ absl::StatusOr<std::unique_ptr<SummedAreaTable>> SummedAreaTable::View(
   if (block.size() < sizeof(h))
     return absl::DataLossError("summed-area table block is shorter than its header");
   std::memcpy(&h, block.data(), sizeof(h));
-  if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0 || h.version != kBlockVersion)
+  if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0 || h.version != kSummedAreaTableVersion)
     return absl::DataLossError("not a summed-area table block of this version");
   if (h.width < 1 || h.height < 1 || h.width > 65536 || h.height > 65536 ||
       (h.channels != 1 && h.channels != 3 && h.channels != 4))
@@ -230,6 +231,22 @@ std::array<double, 4> SummedAreaTable::IntegratePeriodic(double x0, double y0, d
       for (int c = 0; c < 4; ++c) sum[c] += px[a].count * py[b].count * part[c];
     }
   return sum;
+}
+
+std::string SummedAreaTableKey(const Image& base, int channels) {
+  return absl::StrFormat("sat-v%d-c%d-%s", kSummedAreaTableVersion, channels,
+                         ImageContentHash(base));
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTable(
+    const SharedStore& store, const Image& base, int channels) {
+  auto entry = store.GetOrBuild(SummedAreaTableKey(base, channels), EntryKind::kSummedAreaTable,
+                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
+                                  return SummedAreaTable(base, channels).ToBytes();
+                                });
+  if (!entry.ok()) return entry.status();
+  if (auto view = SummedAreaTable::View((*entry)->payload()); !view.ok()) return view.status();
+  return entry;
 }
 
 }  // namespace aperture

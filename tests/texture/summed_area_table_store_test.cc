@@ -9,8 +9,8 @@
 
 #include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
-#include "store/texture_entries.h"
-#include "trace/summed_area_table.h"
+#include "texture/summed_area_table.h"
+#include "texture/texture_entries.h"
 #include "trace/trace_renderer.h"
 
 namespace aperture {
