@@ -1,6 +1,7 @@
 #include "frame_request.h"
 
 #include "absl/strings/str_cat.h"
+#include "io/exr_options_proto.h"
 #include "render/render_options.h"
 #include "scene/scene_builder.h"
 

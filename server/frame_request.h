@@ -9,8 +9,8 @@
 #include "aperture/v1/render_service.pb.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
+#include "render/render_options.h"
 #include "scene/camera.h"
-#include "trace/trace_options_proto.h"
 
 namespace aperture {
 

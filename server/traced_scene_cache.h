@@ -11,8 +11,8 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "render/trace_renderer.h"
 #include "scene/scene.h"
-#include "trace/trace_renderer.h"
 
 namespace aperture {
 

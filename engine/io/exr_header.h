@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "render/frame_renderer.h"
+#include "render/renderer.h"
 #include "scene/camera.h"
 
 namespace aperture {

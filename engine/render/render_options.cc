@@ -1,5 +1,7 @@
 #include "render/render_options.h"
 
+#include <cmath>
+
 #include "absl/strings/str_cat.h"
 #include "scene/scene_builder.h"
 
@@ -58,45 +60,34 @@ absl::StatusOr<RenderSettings> RenderSettingsFromProto(const v1::RenderOptions& 
   return settings;
 }
 
-absl::StatusOr<ExrOptions> ExrOptionsFromProto(const v1::RenderOptions& options) {
-  ExrOptions exr;
-  switch (options.pixel_type()) {
-    case v1::PIXEL_TYPE_DEFAULT:
-    case v1::PIXEL_TYPE_HALF:
-      exr.pixel_type = ExrPixelType::kHalf;
+absl::StatusOr<ModeOptions> ModeOptionsFromProto(const v1::RenderOptions& options) {
+  ModeOptions m;
+  switch (options.mode()) {
+    case v1::RENDER_MODE_DEFAULT:
+    case v1::RENDER_MODE_RASTER:
       break;
-    case v1::PIXEL_TYPE_FLOAT:
-      exr.pixel_type = ExrPixelType::kFloat;
-      break;
-    default:
-      return absl::InvalidArgumentError(
-          absl::StrCat("options.pixel_type has unknown value ", options.pixel_type()));
-  }
-  switch (options.compression()) {
-    case v1::EXR_COMPRESSION_DEFAULT:
-    case v1::EXR_COMPRESSION_ZIP:
-      exr.compression = ExrCompression::kZip;
-      break;
-    case v1::EXR_COMPRESSION_NONE:
-      exr.compression = ExrCompression::kNone;
-      break;
-    case v1::EXR_COMPRESSION_RLE:
-      exr.compression = ExrCompression::kRle;
-      break;
-    case v1::EXR_COMPRESSION_ZIPS:
-      exr.compression = ExrCompression::kZips;
-      break;
-    case v1::EXR_COMPRESSION_PIZ:
-      exr.compression = ExrCompression::kPiz;
-      break;
-    case v1::EXR_COMPRESSION_DWAA:
-      exr.compression = ExrCompression::kDwaa;
+    case v1::RENDER_MODE_RAYTRACE:
+      m.raytrace = true;
       break;
     default:
       return absl::InvalidArgumentError(
-          absl::StrCat("options.compression has unknown value ", options.compression()));
+          absl::StrCat("options.mode has unknown value ", options.mode()));
   }
-  return exr;
+  if (options.raytrace_delta() != 0) {
+    if (!(options.raytrace_delta() > 0) || !std::isfinite(options.raytrace_delta()))
+      return absl::InvalidArgumentError(absl::StrCat("options.raytrace_delta is ",
+                                                     options.raytrace_delta(),
+                                                     "; must be a positive number (0: 0.1)"));
+    m.trace.fragments.delta = options.raytrace_delta();
+  }
+  if (options.has_raytrace_max_depth()) {
+    if (options.raytrace_max_depth().value() > 8)
+      return absl::InvalidArgumentError(absl::StrCat("options.raytrace_max_depth is ",
+                                                     options.raytrace_max_depth().value(),
+                                                     "; must be 0..8"));
+    m.trace.max_depth = static_cast<int>(options.raytrace_max_depth().value());
+  }
+  return m;
 }
 
 }  // namespace aperture

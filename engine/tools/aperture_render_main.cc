@@ -22,6 +22,7 @@
 #include "gltf_import.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
+#include "render/trace_renderer.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/builtin_scenes.h"
 #include "scene/demo_scene.h"
@@ -29,7 +30,6 @@
 #include "scene/scene_file.h"
 #include "store/shared_store.h"
 #include "tools/cli_options.h"
-#include "trace/trace_renderer.h"
 
 ABSL_FLAG(
     std::string, scene, "airport",

@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "render/trace_renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
 #include "store/shared_store.h"
 #include "tools/tex_commands.h"
-#include "trace/trace_renderer.h"
 
 namespace aperture {
 namespace {

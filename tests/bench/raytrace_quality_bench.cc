@@ -32,6 +32,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "io/exr_writer.h"
+#include "render/trace_renderer.h"
 #include "scene/curved_scenes.h"
 #include "scene/scene.h"
 #include "scene/scene_builder.h"
@@ -39,7 +40,6 @@
 #include "texture/image_file.h"
 #include "texture/reference_sampler.h"
 #include "trace/supersample_reference.h"
-#include "trace/trace_renderer.h"
 
 namespace aperture {
 namespace {

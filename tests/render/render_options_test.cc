@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "io/exr_options_proto.h"
+
 namespace aperture {
 namespace {
 

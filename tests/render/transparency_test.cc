@@ -10,12 +10,12 @@
 
 #include "raster/warnock.h"
 #include "render/frame_renderer.h"
+#include "render/trace_renderer.h"
 #include "scene/scene_builder.h"
 #include "support/reference_render.h"
 #include "support/test_scenes.h"
 #include "texture/image_file.h"
 #include "texture/procedural.h"
-#include "trace/trace_renderer.h"
 
 namespace aperture {
 namespace {

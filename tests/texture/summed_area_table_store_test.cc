@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <random>
 
+#include "render/trace_renderer.h"
 #include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
 #include "texture/summed_area_table.h"
 #include "texture/texture_entries.h"
-#include "trace/trace_renderer.h"
 
 namespace aperture {
 namespace {

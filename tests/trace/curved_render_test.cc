@@ -8,11 +8,11 @@
 #include <cstdio>
 
 #include "render/frame_renderer.h"
+#include "render/trace_renderer.h"
 #include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
 #include "texture/grazing_plane.h"
 #include "trace/supersample_reference.h"
-#include "trace/trace_renderer.h"
 
 namespace aperture {
 namespace {

@@ -6,10 +6,10 @@
 
 #include <random>
 
+#include "render/trace_renderer.h"
 #include "scene/scene.h"
 #include "texture/packed/palette.h"
 #include "texture/packed/rgba8_image.h"
-#include "trace/trace_renderer.h"
 
 namespace aperture {
 namespace {

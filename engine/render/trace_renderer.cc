@@ -1,4 +1,4 @@
-#include "trace/trace_renderer.h"
+#include "render/trace_renderer.h"
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/enumerable_thread_specific.h>

@@ -2,7 +2,7 @@
 // edge pixels take the covered fraction of the pixel by adaptive subdivision), a texture seen
 // face-on with one texel per pixel (each pixel is the texture's integral over its texel), and
 // agreement with the raster path on an untextured lit polygon.
-#include "trace/trace_renderer.h"
+#include "render/trace_renderer.h"
 
 #include <gtest/gtest.h>
 

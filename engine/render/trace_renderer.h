@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "render/frame_renderer.h"
+#include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "store/shared_store.h"

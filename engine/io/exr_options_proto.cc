@@ -1,0 +1,48 @@
+#include "io/exr_options_proto.h"
+
+#include "absl/strings/str_cat.h"
+
+namespace aperture {
+
+absl::StatusOr<ExrOptions> ExrOptionsFromProto(const v1::RenderOptions& options) {
+  ExrOptions exr;
+  switch (options.pixel_type()) {
+    case v1::PIXEL_TYPE_DEFAULT:
+    case v1::PIXEL_TYPE_HALF:
+      exr.pixel_type = ExrPixelType::kHalf;
+      break;
+    case v1::PIXEL_TYPE_FLOAT:
+      exr.pixel_type = ExrPixelType::kFloat;
+      break;
+    default:
+      return absl::InvalidArgumentError(
+          absl::StrCat("options.pixel_type has unknown value ", options.pixel_type()));
+  }
+  switch (options.compression()) {
+    case v1::EXR_COMPRESSION_DEFAULT:
+    case v1::EXR_COMPRESSION_ZIP:
+      exr.compression = ExrCompression::kZip;
+      break;
+    case v1::EXR_COMPRESSION_NONE:
+      exr.compression = ExrCompression::kNone;
+      break;
+    case v1::EXR_COMPRESSION_RLE:
+      exr.compression = ExrCompression::kRle;
+      break;
+    case v1::EXR_COMPRESSION_ZIPS:
+      exr.compression = ExrCompression::kZips;
+      break;
+    case v1::EXR_COMPRESSION_PIZ:
+      exr.compression = ExrCompression::kPiz;
+      break;
+    case v1::EXR_COMPRESSION_DWAA:
+      exr.compression = ExrCompression::kDwaa;
+      break;
+    default:
+      return absl::InvalidArgumentError(
+          absl::StrCat("options.compression has unknown value ", options.compression()));
+  }
+  return exr;
+}
+
+}  // namespace aperture
