@@ -16,7 +16,6 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "cli_usage.h"
-#include "cost/calibration.h"
 #include "cost/frame_statistics.h"
 #include "flag_names.h"
 #include "gltf_import.h"
@@ -29,6 +28,7 @@
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
 #include "store/shared_store.h"
+#include "tools/calibration.h"
 #include "tools/cli_options.h"
 
 ABSL_FLAG(

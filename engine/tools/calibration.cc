@@ -1,4 +1,4 @@
-#include "cost/calibration.h"
+#include "tools/calibration.h"
 
 #include <algorithm>
 
