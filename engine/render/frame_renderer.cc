@@ -5,20 +5,15 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
-#include <chrono>
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "base/stopwatch.h"
 #include "raster/projection.h"
 #include "render/leaf_renderer.h"
 
 namespace aperture {
 namespace {
-
-double MillisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& camera,
                                             const RenderSettings& settings,
@@ -29,20 +24,20 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
   frame.image = Image::Uninitialized(frame.region.width(), frame.region.height());
   const AaFilterShape shape = ShapeOf(settings.aa);
 
-  auto start = std::chrono::steady_clock::now();
+  Stopwatch timer;
   const FrameGeometry geometry =
       ProjectScene(scene, camera, settings.width, settings.height, shape.margin + 1.0);
   const PolygonShader shader(scene, geometry, settings.shading);
-  frame.stats.setup_ms = MillisecondsSince(start);
+  frame.stats.setup_ms = timer.Milliseconds();
   frame.stats.visible_polygons = geometry.polygons.size();
 
-  start = std::chrono::steady_clock::now();
+  timer.Restart();
   const int concurrency = tbb::this_task_arena::max_concurrency();
   const int plan_workers =
       settings.scheduling.plan_workers > 0 ? settings.scheduling.plan_workers : concurrency;
   const std::vector<TaskWindow> tasks =
       PlanTasks(geometry, shape, frame.region, settings.scheduling, plan_workers);
-  frame.stats.plan_ms = MillisecondsSince(start);
+  frame.stats.plan_ms = timer.Milliseconds();
   struct Worker {
     LeafRenderer renderer;
     std::vector<LeafWindow> leaves;
@@ -67,7 +62,7 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
             stopped = true;
             return;
           }
-          const auto task_start = std::chrono::steady_clock::now();
+          const Stopwatch task_timer;
           w.leaves.clear();
           SubdivideWindow(geometry, shape, settings.warnock, tasks[i].rect, tasks[i].polygons,
                           w.leaves);
@@ -80,11 +75,11 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
             }
             ++w.kinds[static_cast<int>(leaf.kind)];
           }
-          task_us[i] = 1000.0 * MillisecondsSince(task_start);
+          task_us[i] = 1000.0 * task_timer.Milliseconds();
         }
       },
       tbb::simple_partitioner());
-  frame.stats.raster_ms = MillisecondsSince(start);
+  frame.stats.raster_ms = timer.Milliseconds();
   if (stopped) {
     size_t done = 0;
     for (double us : task_us) done += us > 0;

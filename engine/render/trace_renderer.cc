@@ -7,12 +7,12 @@
 
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <span>
 
 #include "absl/strings/str_cat.h"
+#include "base/stopwatch.h"
 #include "texture/packed/packed_sampler.h"
 #include "texture/texture_entries.h"
 #include "trace/curved_intersect.h"
@@ -20,11 +20,6 @@
 
 namespace aperture {
 namespace {
-
-double MillisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 // Where a ray met a primitive: its texture-plane point (u, v in repeats, seed 003's a, b, c, d;
 // for a sphere or cylinder F1's (x', z'), F2 being applied per quad after the seam is unwrapped)
@@ -443,7 +438,7 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
   auto run = [&] {
     out.stats.concurrency = tbb::this_task_arena::max_concurrency();
     // The (W + 1) x (H + 1) corner rays, on tiles.
-    auto start = std::chrono::steady_clock::now();
+    Stopwatch timer;
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h + 1, 16, 0, w + 1, 64),
                       [&](const tbb::blocked_range2d<int>& r) {
                         if (stopping()) return;
@@ -452,9 +447,9 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
                             corners[static_cast<size_t>(y) * (w + 1) + x] =
                                 frame.Trace(x0 + x, y0 + y);
                       });
-    s.corner_ms = MillisecondsSince(start);
+    s.corner_ms = timer.Milliseconds();
     // Pixels, on tiles: each reads its four shared corners.
-    start = std::chrono::steady_clock::now();
+    timer.Restart();
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, h, 16, 0, w, 64), [&](const tbb::blocked_range2d<int>& r) {
           if (stopping()) return;
@@ -470,7 +465,7 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
               out.image.at(x, y) = frame.ShadeSquare(x0 + x, y0 + y, 1.0, c, 0, &local);
             }
         });
-    s.shade_ms = MillisecondsSince(start);
+    s.shade_ms = timer.Milliseconds();
   };
   if (settings.threads > 0) {
     tbb::task_arena arena(settings.threads);

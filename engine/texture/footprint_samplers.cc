@@ -3,8 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
-#include <chrono>
-
+#include "base/stopwatch.h"
 #include "texture/aniso_sampler.h"
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table_builder.h"
@@ -20,7 +19,7 @@ absl::Status FootprintSamplers::PrepareAniso(const std::function<bool()>& stop) 
   std::lock_guard<std::mutex> lock(aniso_mutex_);
   if (aniso_done_.load(std::memory_order_relaxed)) return aniso_status_;
   {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch timer;
     // Isolated: while waiting for its own parallel loops this thread must not pick up an outer
     // task that could ask for the same table.
     tbb::this_task_arena::isolate([&] {
@@ -52,9 +51,7 @@ absl::Status FootprintSamplers::PrepareAniso(const std::function<bool()>& stop) 
       }
       aniso_ = std::make_unique<AnisoSampler>(*view);
       // A 4096 x 4096 texture's table takes half a minute to build: say where the time went.
-      const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count();
+      const double ms = timer.Milliseconds();
       spdlog::info("seed 000 table of a {}x{} texture ready in {:.0f} ms ({} bytes{})",
                    base_.width(), base_.height(), ms, bytes.size(),
                    store_ ? ", built or mapped from the shared store" : "");

@@ -9,12 +9,12 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <span>
 
 #include "absl/strings/str_cat.h"
+#include "base/stopwatch.h"
 #include "texture/table_column_kernels.h"
 
 namespace aperture {
@@ -288,7 +288,7 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         absl::StrCat("prefiltered table: a ", image.width(), "x", image.height(),
                      " image needs a larger table than the limit of ", 1 << kTableMaxLog2Size, "x",
                      1 << kTableMaxLog2Size));
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   const Image src = SquarePowerOfTwo(image);
   const int N = src.width();
   int n = 0;
@@ -411,8 +411,7 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
   if (stopped)
     return absl::CancelledError(
         absl::StrCat("the seed 000 table of a ", N, "x", N, " texture was stopped part-built"));
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = timer.Seconds();
   h.build_milliseconds = static_cast<uint32_t>(std::lround(seconds * 1000.0));
   std::memcpy(base, &h, sizeof(h));
   std::memcpy(base + h.directory_offset, dir.data(), dir.size() * sizeof(CopyEntry));

@@ -3,7 +3,6 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -15,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "base/stopwatch.h"
 #include "cli_usage.h"
 #include "cost/frame_statistics.h"
 #include "flag_names.h"
@@ -257,15 +257,12 @@ int Run() {
   for (const RenderMode mode : modes) {
     std::unique_ptr<TracedScene> traced;
     if (mode == RenderMode::kRaytrace) {
-      const auto build_start = std::chrono::steady_clock::now();
+      const Stopwatch build_timer;
       auto ts = TracedScene::Build(*built, store);
       if (!ts.ok()) return Fail(ts.status());
       traced = std::move(*ts);
-      std::printf(
-          "raytrace: Embree BVH of %zu triangles and summed-area tables in %.1f ms\n",
-          traced->rays().triangles(),
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - build_start)
-              .count());
+      std::printf("raytrace: Embree BVH of %zu triangles and summed-area tables in %.1f ms\n",
+                  traced->rays().triangles(), build_timer.Milliseconds());
     }
 
     // With both modes, --repeat is for the raster frame; the raytraced one renders once.
@@ -297,11 +294,9 @@ int Run() {
     }
     double encode_ms = 0;
     for (int i = 0; i < repeat; ++i) {
-      const auto encode_start = std::chrono::steady_clock::now();
+      const Stopwatch encode_timer;
       if (auto s = WriteExrFile(best->image, exr, out); !s.ok()) return Fail(s);
-      const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - encode_start)
-              .count();
+      const double ms = encode_timer.Milliseconds();
       encode_ms = i == 0 ? ms : std::min(encode_ms, ms);
     }
     std::string preview;

@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +15,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "base/stopwatch.h"
 #include "io/exr_writer.h"
 #include "texture/aniso_sampler.h"
 #include "texture/grazing_plane.h"
@@ -29,10 +29,6 @@
 
 namespace aperture {
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
 
 int Fail(const char* command, const std::string& message) {
   std::fprintf(stderr, "aperture-tex %s: %s\n", command, message.c_str());
@@ -249,10 +245,10 @@ int RunBenchFilter(int argc, char** argv) {
       "oiio / aniso |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (const BenchTexture& tex : *textures) {
-    const auto build_start = std::chrono::steady_clock::now();
+    const Stopwatch build_timer;
     auto block = BuildPrefilteredTable(tex.image);
     if (!block.ok()) return Fail("bench-filter", std::string(block.status().message()));
-    const double build_s = Seconds(build_start);
+    const double build_s = build_timer.Seconds();
     auto table = block->View();
     if (!table.ok()) return Fail("bench-filter", std::string(table.status().message()));
     MipPyramid pyramid(tex.image);
@@ -268,12 +264,12 @@ int RunBenchFilter(int argc, char** argv) {
         view.pitch_deg = theta;
         view.aperture = a;
         const int first = FirstMeasuredRow(view);
-        const auto ref_start = std::chrono::steady_clock::now();
+        const Stopwatch ref_timer;
         bool cached = false;
         auto ref = CachedReference(view, tex, density->front(), ref_max, cache_dir, &cached);
         if (!ref.ok()) return Fail("bench-filter", std::string(ref.status().message()));
         std::fprintf(stderr, "  theta %g a %g: reference %s in %.1f s\n", theta, a,
-                     cached ? "from cache" : "computed", Seconds(ref_start));
+                     cached ? "from cache" : "computed", ref_timer.Seconds());
         const std::string stem = absl::StrCat(out_dir, "/", tex.name, "_p", theta, "_a", a);
         struct Mode {
           const char* name;

@@ -1,11 +1,11 @@
 // aperture-tex subcommands for the machine's shared texture store (engine/store): bake fills it
 // ahead of time, store lists what it holds.
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "base/stopwatch.h"
 #include "render/trace_renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/scene_builder.h"
@@ -78,7 +78,7 @@ int RunBake(int argc, char** argv) {
   }
   auto store = SharedStore::Open(args->store);
   if (!store.ok()) return Fail("bake", std::string(store.status().message()));
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch timer;
   for (const std::string& argument : args->positional) {
     // Packed textures are decoded into the store while the scene is built.
     auto scene = LoadForBake(argument, *store);
@@ -87,25 +87,22 @@ int RunBake(int argc, char** argv) {
     // since any request may ask for aniso.
     for (const auto& texture : scene->textures) {
       if (!texture->footprint) continue;
-      const auto texture_start = std::chrono::steady_clock::now();
+      const Stopwatch texture_timer;
       const Image& base = texture->pyramid->level(0);
       std::printf("%s: texture '%s' (%dx%d): ", argument.c_str(), texture->id.c_str(), base.width(),
                   base.height());
       std::fflush(stdout);  // a 4096^2 table takes a while: show which one is building
       if (auto s = texture->footprint->PrepareAniso(); !s.ok())
         return Fail("bake", absl::StrCat(argument, ": texture '", texture->id, "': ", s.message()));
-      std::printf(
-          "table ready in %.2f s\n",
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - texture_start).count());
+      std::printf("table ready in %.2f s\n", texture_timer.Seconds());
     }
     if (args->raytrace) {
-      const auto sat_start = std::chrono::steady_clock::now();
+      const Stopwatch sat_timer;
       auto traced = TracedScene::Build(*scene, *store);
       if (!traced.ok())
         return Fail("bake", absl::StrCat(argument, ": ", traced.status().message()));
-      std::printf(
-          "%s: summed-area tables ready in %.2f s\n", argument.c_str(),
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - sat_start).count());
+      std::printf("%s: summed-area tables ready in %.2f s\n", argument.c_str(),
+                  sat_timer.Seconds());
     }
   }
   const StoreCounters counters = (*store)->counters();
@@ -114,8 +111,7 @@ int RunBake(int argc, char** argv) {
       "%.2f s\n",
       args->store.c_str(), static_cast<unsigned long long>(counters.built),
       static_cast<unsigned long long>(counters.attached),
-      static_cast<unsigned long long>(counters.rejected),
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      static_cast<unsigned long long>(counters.rejected), timer.Seconds());
   return 0;
 }
 

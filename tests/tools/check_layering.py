@@ -18,7 +18,8 @@ import sys
 
 # Dependency order, first to last: a folder may include itself and the folders before it.
 LAYERS = [
-    ("base", "pixel types: Image, Rgba (base/image.h), PixelRect (base/pixel_rect.h)"),
+    ("base", "Image, Rgba (base/image.h), PixelRect (base/pixel_rect.h), Stopwatch "
+             "(base/stopwatch.h)"),
     ("store", "the shared store: entry files and the shared directory, generic"),
     ("texture", "samplers, prefilters (seed 000 tables, mip-maps, summed-area tables), packed "
                 "textures (seed 001), image files, their store entries"),
