@@ -159,28 +159,40 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
     }
   }
   layer_begin_[cells] = cell_layers_.size();
+  // Each pixel's entries: the layers of its cells, and with `pieces` every polygon of their passes.
+  auto collect_entries = [&](bool pieces) {
+    entries_.clear();
+    pixel_begin_.clear();
+    for (int py = 0; py < r.height(); ++py) {
+      for (int px = 0; px < r.width(); ++px) {
+        pixel_begin_.push_back(entries_.size());
+        pixel_entry_.clear();
+        auto add = [&](int polygon) {
+          if (pixel_entry_.try_emplace(polygon, entries_.size()).second)
+            entries_.push_back({polygon, 0, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
+        };
+        for (int cy = 0; cy <= span; ++cy) {
+          for (int cx = 0; cx <= span; ++cx) {
+            const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
+            for (size_t k = layer_begin_[cell]; k < layer_begin_[cell + 1]; ++k)
+              add(cell_layers_[k]);
+            if (!pieces) continue;
+            const size_t pieces_begin = passes_[cell_begin_[cell]].begin;
+            const size_t pieces_end = passes_[cell_begin_[cell + 1] - 1].end;
+            for (size_t k = pieces_begin; k < pieces_end; ++k) add(pieces_[k].polygon);
+          }
+        }
+      }
+    }
+    pixel_begin_.push_back(entries_.size());
+  };
 
   // The layers' alpha at every pixel they reach decides which subsets of a cell's layers carry
   // weight there: a layer of alpha 1 is in every such subset, one of alpha 0 (a MASK cut-out, or
   // a BLEND texel left clear) in none. Only the subsets some pixel of the cell weighs are
   // visibility passes: a cell under MASK layers alone needs at most one pass per pixel it feeds,
   // not 2^k. The passes left out would have weighed 0 everywhere: the pixels are unchanged.
-  entries_.clear();
-  pixel_begin_.clear();
-  for (int py = 0; py < r.height(); ++py) {
-    for (int px = 0; px < r.width(); ++px) {
-      pixel_begin_.push_back(entries_.size());
-      pixel_entry_.clear();
-      for (int cy = 0; cy <= span; ++cy)
-        for (int cx = 0; cx <= span; ++cx) {
-          const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
-          for (size_t k = layer_begin_[cell]; k < layer_begin_[cell + 1]; ++k)
-            if (pixel_entry_.try_emplace(cell_layers_[k], entries_.size()).second)
-              entries_.push_back({cell_layers_[k], 0, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
-        }
-    }
-  }
-  pixel_begin_.push_back(entries_.size());
+  collect_entries(false);
   ShadeEntries();
   needed_.assign(cells, 0);
   for (int py = 0; py < r.height(); ++py) {
@@ -235,29 +247,7 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
   cell_begin_[cells] = passes_.size();
 
   // Every polygon a pixel needs the colour and alpha of: its cells' pieces and layers.
-  entries_.clear();
-  pixel_begin_.clear();
-  for (int py = 0; py < r.height(); ++py) {
-    for (int px = 0; px < r.width(); ++px) {
-      pixel_begin_.push_back(entries_.size());
-      pixel_entry_.clear();
-      auto add = [&](int polygon) {
-        if (pixel_entry_.try_emplace(polygon, entries_.size()).second)
-          entries_.push_back({polygon, 0, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
-      };
-      for (int cy = 0; cy <= span; ++cy) {
-        for (int cx = 0; cx <= span; ++cx) {
-          const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
-          for (size_t k = layer_begin_[cell]; k < layer_begin_[cell + 1]; ++k) add(cell_layers_[k]);
-          const size_t pieces_begin = passes_[cell_begin_[cell]].begin;
-          const size_t pieces_end = passes_[cell_begin_[cell + 1] - 1].end;
-          for (size_t k = pieces_begin; k < pieces_end; ++k) add(pieces_[k].polygon);
-        }
-      }
-    }
-  }
-  pixel_begin_.push_back(entries_.size());
-
+  collect_entries(true);
   ShadeEntries();
 
   for (int py = 0; py < r.height(); ++py) {
