@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
-#include "texture/packed/access_benchmark.h"
+#include "testing/access_benchmark.h"
 #include "texture/packed/apv_file.h"
 #include "texture/packed/packed_texture.h"
 #include "texture/packed/palette.h"

@@ -7,10 +7,10 @@
 // polygon, fragments, summed-area tables); the raster filters from their samplers on the plane's
 // analytic footprints, as `aperture-tex bench-filter` measures them.
 //
-// A second table covers the curved primitives the raster mode cannot draw (scene/curved_scenes:
+// A second table covers the curved primitives the raster mode cannot draw (testing/curved_scenes:
 // a checkerboard sphere, a lit capped cylinder), at each of --curved-sizes: raytrace against the
 // bilinear texture point-sampled at the pixel centre and supersampled 2 x 2, 4 x 4 and 8 x 8,
-// all against the 64 x 64-sample reference (trace/supersample_reference).
+// all against the 64 x 64-sample reference (testing/supersample_reference).
 //
 // Usage: raytrace_quality_bench [--textures checker,asphalt_torcs_1024] [--angles 5,20,60]
 //          [--delta 0.1] [--threads 2] [--data ../shared/data/raster] [--out out/raytrace-bench]
@@ -33,13 +33,13 @@
 #include "absl/strings/str_split.h"
 #include "io/exr_writer.h"
 #include "render/trace_renderer.h"
-#include "scene/curved_scenes.h"
 #include "scene/scene.h"
 #include "scene/scene_builder.h"
-#include "texture/grazing_plane.h"
+#include "testing/curved_scenes.h"
+#include "testing/grazing_plane.h"
+#include "testing/supersample_reference.h"
 #include "texture/image_file.h"
 #include "texture/reference_sampler.h"
-#include "trace/supersample_reference.h"
 
 namespace aperture {
 namespace {

@@ -2,7 +2,7 @@
 // with 2 threads in one run (frame time, balance efficiency), and how well the cost model ranks
 // the tiles (Spearman, predicted versus measured 32-pixel tile times on one thread), and every plan
 // replayed on more workers than this machine has (task times measured on one thread, dispatched
-// as the renderer dispatches them; cost/dispatch_replay.h).
+// as the renderer dispatches them; testing/dispatch_replay.h).
 // Usage: scheduling_bench [REPEAT]
 #include <algorithm>
 #include <cstdio>
@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "cost/dispatch_replay.h"
 #include "cost/rank_correlation.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
+#include "testing/dispatch_replay.h"
 
 namespace aperture {
 namespace {

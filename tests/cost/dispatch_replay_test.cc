@@ -1,4 +1,4 @@
-#include "cost/dispatch_replay.h"
+#include "testing/dispatch_replay.h"
 
 #include <gtest/gtest.h>
 

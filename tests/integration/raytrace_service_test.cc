@@ -11,8 +11,8 @@
 #include <fstream>
 
 #include "integration/service_fixture.h"
-#include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
+#include "testing/curved_scenes.h"
 // After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.
 #include <OpenImageIO/imagebuf.h>
 

@@ -17,9 +17,9 @@
 
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "integration/server_process.h"
-#include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
+#include "testing/curved_scenes.h"
 #include "texture/image_file.h"
 
 namespace aperture::testing {

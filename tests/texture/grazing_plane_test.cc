@@ -1,6 +1,6 @@
 // The grazing-plane benchmark's geometry: analytic footprints against finite differences of the
 // projection, the measured rows, and the reference on a constant texture.
-#include "texture/grazing_plane.h"
+#include "testing/grazing_plane.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "texture/packed/quadtree_texture.h"
+#include "testing/quadtree_texture.h"
 #include "texture/packed_test_images.h"
 
 namespace aperture::packed {

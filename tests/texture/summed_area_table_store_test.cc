@@ -8,8 +8,8 @@
 #include <random>
 
 #include "render/trace_renderer.h"
-#include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
+#include "testing/curved_scenes.h"
 #include "texture/summed_area_table.h"
 #include "texture/texture_entries.h"
 

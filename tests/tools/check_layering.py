@@ -30,6 +30,8 @@ LAYERS = [
     ("render", "the renderers: render/renderer.h (settings, frame, stop test), the raster "
                "renderer (frame_renderer) and the ray tracer (trace_renderer), shading"),
     ("io", "OpenEXR and PNG output, the frame's header, the proto's encoding options"),
+    ("testing", "what only tests, benchmarks and aperture-tex use: dense references, benchmark "
+                "scenes, the scheduling replay, the packed access benchmark (aperture_testing)"),
     ("tools", "command-line tools and what only they use (calibration): may include everything"),
 ]
 

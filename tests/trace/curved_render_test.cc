@@ -9,10 +9,10 @@
 
 #include "render/frame_renderer.h"
 #include "render/trace_renderer.h"
-#include "scene/curved_scenes.h"
 #include "scene/scene_builder.h"
-#include "texture/grazing_plane.h"
-#include "trace/supersample_reference.h"
+#include "testing/curved_scenes.h"
+#include "testing/grazing_plane.h"
+#include "testing/supersample_reference.h"
 
 namespace aperture {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "texture/grazing_plane.h"
+#include "testing/grazing_plane.h"
 #include "trace/projection_integral.h"
 
 namespace aperture {

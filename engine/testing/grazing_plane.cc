@@ -1,4 +1,4 @@
-#include "texture/grazing_plane.h"
+#include "testing/grazing_plane.h"
 
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "texture/packed/access_benchmark.h"
+#include "testing/access_benchmark.h"
 
 #include <time.h>
 
@@ -10,10 +10,10 @@
 #include <span>
 
 #include "absl/strings/str_cat.h"
+#include "testing/quadtree_texture.h"
 #include "texture/packed/apv_file.h"
 #include "texture/packed/area_integral.h"
 #include "texture/packed/packed_texture.h"
-#include "texture/packed/quadtree_texture.h"
 #include "texture/packed/run_index.h"
 
 namespace aperture::packed {

@@ -1,4 +1,4 @@
-#include "scene/curved_scenes.h"
+#include "testing/curved_scenes.h"
 
 namespace aperture {
 namespace {

@@ -1,4 +1,4 @@
-#include "trace/supersample_reference.h"
+#include "testing/supersample_reference.h"
 
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "texture/packed/quadtree_texture.h"
+#include "testing/quadtree_texture.h"
 
 #include <algorithm>
 
