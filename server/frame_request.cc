@@ -3,6 +3,7 @@
 #include "absl/strings/str_cat.h"
 #include "io/exr_options_proto.h"
 #include "render/render_options.h"
+#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 
 namespace aperture {

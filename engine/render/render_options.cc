@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
-#include "scene/scene_builder.h"
+#include "scene/scene_textures.h"
 
 namespace aperture {
 namespace {

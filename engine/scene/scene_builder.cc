@@ -1,106 +1,21 @@
 #include "scene/scene_builder.h"
 
 #include <cmath>
-#include <filesystem>
 #include <unordered_map>
 
 #include "absl/strings/str_cat.h"
 #include "scene/object_placement.h"
 #include "scene/scene_environment.h"
-#include "texture/image_file.h"
-#include "texture/packed/apv_file.h"
-#include "texture/packed/packed_sampler.h"
-#include "texture/texture_entries.h"
+#include "scene/scene_textures.h"
 
 namespace aperture {
 namespace {
-
-constexpr int kMaxCheckerboardSize = 8192;  // as kMaxImageTexels
 
 absl::Status Invalid(const std::string& where, const std::string& what) {
   return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
 }
 
 Vec3 FromProto(const v1::Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-// A packed texture decoded from .apv bytes: in the store when there is one, else in memory.
-absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildPackedTexture(
-    const std::string& id, std::span<const uint8_t> apv_bytes, const SceneBuildOptions& opt) {
-  if (!opt.store) {
-    auto texture = packed::DecodeApv(apv_bytes);
-    if (!texture.ok()) return texture.status();
-    return MakePackedSceneTexture(id, *std::move(texture));
-  }
-  auto entry = GetOrDecodePackedTexture(*opt.store, apv_bytes);
-  if (!entry.ok()) return entry.status();
-  const auto payload = (*entry)->payload();
-  auto view = packed::PackedTextureView::FromBytes(
-      {reinterpret_cast<const uint8_t*>(payload.data()), payload.size()});
-  if (!view.ok()) return view.status();
-  return MakePackedSceneTexture(id, *std::move(entry), *view);
-}
-
-absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildTexture(const v1::Texture& t,
-                                                                 const std::string& where,
-                                                                 const SceneBuildOptions& opt) {
-  switch (t.source_case()) {
-    case v1::Texture::kFile: {
-      std::filesystem::path path(t.file());
-      if (path.is_relative() && !opt.base_dir.empty()) path = opt.base_dir / path;
-      if (path.extension() == ".apv") {
-        auto bytes = packed::ReadFileBytes(path.string());
-        auto packed = bytes.ok() ? BuildPackedTexture(t.id(), *bytes, opt) : bytes.status();
-        if (!packed.ok())
-          return absl::Status(packed.status().code(),
-                              absl::StrCat(where, ": ", packed.status().message()));
-        return packed;
-      }
-      auto image = LoadImageFile(path.string());
-      if (!image.ok())
-        return absl::Status(image.status().code(),
-                            absl::StrCat(where, ": ", image.status().message()));
-      return MakeSceneTexture(t.id(), std::move(*image), opt.store);
-    }
-    case v1::Texture::kEncoded: {
-      auto bytes =
-          std::span(reinterpret_cast<const uint8_t*>(t.encoded().data()), t.encoded().size());
-      if (packed::LooksLikeApv(bytes)) {
-        auto packed = BuildPackedTexture(t.id(), bytes, opt);
-        if (!packed.ok()) return Invalid(where, std::string(packed.status().message()));
-        return packed;
-      }
-      auto image = DecodeImage(bytes);
-      if (!image.ok()) return Invalid(where, std::string(image.status().message()));
-      return MakeSceneTexture(t.id(), std::move(*image), opt.store);
-    }
-    case v1::Texture::kCheckerboard: {
-      const v1::Checkerboard& c = t.checkerboard();
-      const int size =
-          c.size() == 0 ? 1024 : static_cast<int>(std::min<uint32_t>(c.size(), 1u << 30));
-      const int cells =
-          c.cells() == 0 ? 8 : static_cast<int>(std::min<uint32_t>(c.cells(), 1u << 30));
-      if (size > kMaxCheckerboardSize)
-        return Invalid(
-            where, absl::StrCat("checkerboard size ", size, " is above ", kMaxCheckerboardSize));
-      if (cells > size) return Invalid(where, "checkerboard has more cells than texels");
-      Rgba a{1, 1, 1, 1}, b{0, 0, 0, 1};
-      if (c.has_color_a()) {
-        auto ca = ColorFromProto(c.color_a(), where + ".checkerboard.color_a");
-        if (!ca.ok()) return ca.status();
-        a = *ca;
-      }
-      if (c.has_color_b()) {
-        auto cb = ColorFromProto(c.color_b(), where + ".checkerboard.color_b");
-        if (!cb.ok()) return cb.status();
-        b = *cb;
-      }
-      return MakeSceneTexture(t.id(), MakeCheckerboard(size, cells, a, b), opt.store);
-    }
-    case v1::Texture::SOURCE_NOT_SET:
-      break;
-  }
-  return Invalid(where, "texture has no source (file, encoded or checkerboard)");
-}
 
 class Builder {
  public:
@@ -168,7 +83,7 @@ class Builder {
       const std::string where = absl::StrCat("textures[", i, "] ('", t.id(), "')");
       if (t.id().empty()) return Invalid(where, "texture id is empty");
       if (texture_index_.count(t.id())) return Invalid(where, "duplicate texture id");
-      auto texture = BuildTexture(t, where, options_);
+      auto texture = BuildSceneTexture(t, where, options_);
       if (!texture.ok()) return texture.status();
       texture_index_[t.id()] = static_cast<int>(scene_.textures.size());
       scene_.textures.push_back(std::move(*texture));
@@ -450,80 +365,6 @@ class Builder {
 
 }  // namespace
 
-std::optional<FilterMode> FilterModeFromProto(int filter) {
-  switch (filter) {
-    case v1::TEXTURE_FILTER_NEAREST:
-      return FilterMode::kNearest;
-    case v1::TEXTURE_FILTER_BILINEAR:
-      return FilterMode::kBilinear;
-    case v1::TEXTURE_FILTER_TRILINEAR:
-      return FilterMode::kTrilinear;
-    case v1::TEXTURE_FILTER_ANISO:
-      return FilterMode::kAniso;
-    case v1::TEXTURE_FILTER_OIIO:
-      return FilterMode::kOiio;
-    case v1::TEXTURE_FILTER_REFERENCE:
-      return FilterMode::kReference;
-    default:
-      return std::nullopt;
-  }
-}
-
-const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
-  if (packed) return mode == FilterMode::kNearest ? *packed_nearest : *packed_area;
-  switch (mode) {
-    case FilterMode::kNearest:
-      return *nearest;
-    case FilterMode::kBilinear:
-      return *bilinear;
-    case FilterMode::kTrilinear:
-      break;
-    case FilterMode::kAniso:
-    case FilterMode::kOiio:
-    case FilterMode::kReference:
-      return footprint->Get(mode, *trilinear);
-  }
-  return *trilinear;
-}
-
-std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
-                                                           std::shared_ptr<const void> owner,
-                                                           const packed::PackedTextureView& view) {
-  auto scene_texture = std::make_shared<SceneTexture>();
-  scene_texture->id = std::move(id);
-  scene_texture->packed_nearest =
-      std::make_unique<packed::PackedTextureSampler>(view, packed::PackedSampling::kNearest);
-  scene_texture->packed_area =
-      std::make_unique<packed::PackedTextureSampler>(view, packed::PackedSampling::kArea);
-  scene_texture->packed = std::move(owner);
-  return scene_texture;
-}
-
-std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,
-                                                           packed::PackedTexture texture) {
-  auto shared = std::make_shared<const packed::PackedTexture>(std::move(texture));
-  const packed::PackedTextureView view = shared->view();
-  return MakePackedSceneTexture(std::move(id), std::move(shared), view);
-}
-
-std::shared_ptr<const SceneTexture> MakeSceneTexture(std::string id, Image image,
-                                                     std::shared_ptr<const SharedStore> store) {
-  auto texture = std::make_shared<SceneTexture>();
-  texture->id = std::move(id);
-  for (const Rgba& t : image.texels())
-    if (t.a < 1.0f) {
-      texture->has_alpha = true;
-      break;
-    }
-  auto pyramid = std::make_shared<MipPyramid>(ResizeToPowerOfTwo(image));
-  texture->nearest = std::make_unique<NearestSampler>(*pyramid);
-  texture->bilinear = std::make_unique<BilinearSampler>(*pyramid);
-  texture->trilinear = std::make_unique<TrilinearSampler>(*pyramid);
-  texture->footprint = std::make_unique<FootprintSamplers>(pyramid->level(0), std::move(store));
-  texture->pyramid = std::move(pyramid);
-  return texture;
-}
-
 absl::StatusOr<Scene> BuildScene(const v1::Scene& proto, const SceneBuildOptions& options) {
   // glTF model references are resolved where the scene file is read (import/gltf_import.h,
   // ExpandModels): a scene here, from a request or a file already read, carries them as meshes.
@@ -538,46 +379,6 @@ absl::StatusOr<Scene> BuildScene(const v1::Scene& proto, const SceneBuildOptions
                                                      proto.objects(i).model_id(),
                                                      "' is not resolved: the scene has no models"));
   return Builder(proto, options).Build();
-}
-
-absl::StatusOr<Camera> CameraFromProto(const v1::Camera& p) {
-  Camera c;
-  c.position = FromProto(p.position());
-  c.yaw_deg = p.yaw_deg();
-  c.pitch_deg = p.pitch_deg();
-  c.roll_deg = p.roll_deg();
-  if (p.vertical_fov_deg() != 0) c.vertical_fov_deg = p.vertical_fov_deg();
-  if (p.has_frustum()) {
-    c.off_axis = true;
-    c.left_deg = p.frustum().left_deg();
-    c.right_deg = p.frustum().right_deg();
-    c.bottom_deg = p.frustum().bottom_deg();
-    c.top_deg = p.frustum().top_deg();
-  }
-  if (p.near() != 0) c.near = p.near();
-  c.far = p.far();
-  if (auto s = ValidateCamera(c); !s.ok()) return s;
-  return c;
-}
-
-v1::Camera CameraToProto(const Camera& c) {
-  v1::Camera p;
-  p.mutable_position()->set_x(c.position.x);
-  p.mutable_position()->set_y(c.position.y);
-  p.mutable_position()->set_z(c.position.z);
-  p.set_yaw_deg(c.yaw_deg);
-  p.set_pitch_deg(c.pitch_deg);
-  p.set_roll_deg(c.roll_deg);
-  p.set_vertical_fov_deg(c.vertical_fov_deg);
-  if (c.off_axis) {
-    p.mutable_frustum()->set_left_deg(c.left_deg);
-    p.mutable_frustum()->set_right_deg(c.right_deg);
-    p.mutable_frustum()->set_bottom_deg(c.bottom_deg);
-    p.mutable_frustum()->set_top_deg(c.top_deg);
-  }
-  p.set_near(c.near);
-  p.set_far(c.far);
-  return p;
 }
 
 }  // namespace aperture

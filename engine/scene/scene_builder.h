@@ -1,16 +1,15 @@
 // Turns a proto `Scene` into the engine's `Scene`: validates every field (naming the offending
-// one in the error), loads textures, applies object transforms, triangulates concave polygons.
+// one in the error), loads textures (scene_textures.h), applies object transforms, triangulates
+// concave polygons. The camera's proto form: camera_proto.h.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
 #include "aperture/v1/scene.pb.h"
-#include "scene/camera.h"
 #include "scene/scene.h"
 #include "store/shared_store.h"
 
@@ -35,14 +34,6 @@ struct SceneBuildOptions {
   std::function<bool()> stop;
 };
 
-// The engine's filter for a proto filter value; nullopt for TEXTURE_FILTER_DEFAULT and for
-// values this build does not know.
-std::optional<FilterMode> FilterModeFromProto(int filter);
-
 absl::StatusOr<Scene> BuildScene(const v1::Scene& proto, const SceneBuildOptions& options = {});
-
-// Camera from its proto form (defaults: fov 60, near 0.1), validated.
-absl::StatusOr<Camera> CameraFromProto(const v1::Camera& proto);
-v1::Camera CameraToProto(const Camera& camera);
 
 }  // namespace aperture

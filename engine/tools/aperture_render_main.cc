@@ -24,6 +24,7 @@
 #include "render/trace_renderer.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/builtin_scenes.h"
+#include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"

@@ -35,6 +35,7 @@
 #include "render/frame_renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera.h"
+#include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "support/hostile_inputs.h"

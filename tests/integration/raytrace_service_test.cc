@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "integration/service_fixture.h"
+#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 #include "testing/curved_scenes.h"
 // After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 

@@ -17,6 +17,7 @@
 
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "integration/server_process.h"
+#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
 #include "testing/curved_scenes.h"
