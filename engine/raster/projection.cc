@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "raster/polygon_clip.h"
+#include "scene/shading.h"
 #include "scene/triangulate.h"
 
 namespace aperture {
@@ -90,15 +91,8 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
     sp.material = poly.material;
     sp.scene_polygon = static_cast<int>(index);
     sp.transparent = mat.Transparent();
-    if (mat.unlit) {
-      sp.light = {1, 1, 1, 1};
-    } else {
-      // The side facing the camera is lit: every polygon is two-sided.
-      const Vec3 facing = h < 0 ? poly.normal : -poly.normal;
-      const float cosine = static_cast<float>(std::max(0.0, Dot(facing, scene.sun_direction)));
-      sp.light = scene.ambient + scene.sun_color * cosine;
-      sp.light.a = 1;
-    }
+    // The side facing the camera is lit: every polygon is two-sided.
+    sp.light = SurfaceLight(scene, mat, h < 0 ? poly.normal : -poly.normal);
     geo.polygons.push_back(std::move(sp));
   }
   return geo;

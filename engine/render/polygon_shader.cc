@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/footprint_kernels.h"
+#include "scene/shading.h"
 
 namespace aperture {
 
@@ -38,11 +39,7 @@ Rgba PolygonShader::Finish(const ScreenPolygon& p, Rgba colour, double w, double
                            double y) const {
   const float alpha = materials_[p.material].material->ShadedAlpha(colour.a);
   colour = colour * p.light;
-  if (scene_.fog_density > 0) {
-    const double distance = Length(geo_.Ray(x, y)) / w;
-    const float keep = static_cast<float>(std::exp(-scene_.fog_density * distance));
-    colour = colour * keep + scene_.fog_color * (1.0f - keep);
-  }
+  if (scene_.fog_density > 0) colour = Fogged(scene_, colour, Length(geo_.Ray(x, y)) / w);
   colour.a = alpha;
   return colour;
 }

@@ -13,6 +13,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "base/stopwatch.h"
+#include "scene/shading.h"
 #include "texture/packed/packed_sampler.h"
 #include "texture/texture_entries.h"
 #include "trace/curved_intersect.h"
@@ -75,14 +76,7 @@ class Frame {
       f.u_cam = u_cam - std::floor(u_cam);
       f.v_cam = v_cam - std::floor(v_cam);
       const Material& mat = scene.materials[p.material];
-      if (mat.unlit) {
-        f.light = {1, 1, 1, 1};
-      } else {
-        const Vec3 facing = f.height < 0 ? p.normal : -p.normal;
-        const float cosine = static_cast<float>(std::max(0.0, Dot(facing, scene.sun_direction)));
-        f.light = scene.ambient + scene.sun_color * cosine;
-        f.light.a = 1;
-      }
+      f.light = SurfaceLight(scene, mat, f.height < 0 ? p.normal : -p.normal);
       polygons_.push_back(f);
     }
     for (const CurvedPrimitive& c : scene.curved)
@@ -167,13 +161,7 @@ class Frame {
   Rgba Sky() const { return FrameSky(scene_.sky, settings_); }
 
   // Lambert sun plus ambient for the normal `n` on the camera's side.
-  Rgba Light(const Material& mat, const Vec3& n) const {
-    if (mat.unlit) return {1, 1, 1, 1};
-    const float cosine = static_cast<float>(std::max(0.0, Dot(n, scene_.sun_direction)));
-    Rgba light = scene_.ambient + scene_.sun_color * cosine;
-    light.a = 1;
-    return light;
-  }
+  Rgba Light(const Material& mat, const Vec3& n) const { return SurfaceLight(scene_, mat, n); }
 
   // Primitive `polygon` (a polygon or a curved one) over the quad of its four corner hits (a, b,
   // c, d around the pixel, all on one surface).
@@ -231,12 +219,8 @@ class Frame {
     }
     const float alpha = mat.ShadedAlpha(colour.a);
     colour = colour * light;
-    if (scene_.fog_density > 0) {
-      const double distance =
-          0.25 * (c[0].distance + c[1].distance + c[2].distance + c[3].distance);
-      const float keep = static_cast<float>(std::exp(-scene_.fog_density * distance));
-      colour = colour * keep + scene_.fog_color * (1.0f - keep);
-    }
+    colour = Fogged(scene_, colour,
+                    0.25 * (c[0].distance + c[1].distance + c[2].distance + c[3].distance));
     colour.a = alpha;
     return colour;
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "scene/shading.h"
 #include "texture/reference_sampler.h"
 #include "trace/curved_intersect.h"
 #include "trace/texture_mapping.h"
@@ -68,16 +69,8 @@ class Sampler {
       colour =
           colour * BilinearPeriodic(tex.pyramid->level(0), u - std::floor(u), v - std::floor(v));
     }
-    if (!mat.unlit) {
-      const float cosine = static_cast<float>(std::max(0.0, Dot(normal, scene_.sun_direction)));
-      Rgba light = scene_.ambient + scene_.sun_color * cosine;
-      light.a = 1;
-      colour = colour * light;
-    }
-    if (scene_.fog_density > 0) {
-      const float keep = static_cast<float>(std::exp(-scene_.fog_density * t * Length(d)));
-      colour = colour * keep + scene_.fog_color * (1.0f - keep);
-    }
+    if (!mat.unlit) colour = colour * SurfaceLight(scene_, mat, normal);
+    colour = Fogged(scene_, colour, t * Length(d));
     colour.a = 1;
     return colour;
   }
