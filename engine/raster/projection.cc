@@ -77,12 +77,10 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
     const ScreenLinear nd = linear_of(n, 0);
     sp.inv_depth = {nd.a / h, nd.b / h, nd.c / h};
 
-    // seed 000, eq. 1: U = (su_c . d + u_c (1/depth)) / (1/depth), with the texture origin moved
-    // to the camera by whole periods so that precision holds far from the world origin.
+    // seed 000, eq. 1: U = (su_c . d + u_c (1/depth)) / (1/depth), with the texture origin at
+    // the camera (scene/shading.h).
     const TextureMapping& m = poly.mapping;
-    const double u_cam = Dot(m.su, camera.position) + m.u0;
-    const double v_cam = Dot(m.sv, camera.position) + m.v0;
-    const double uc = u_cam - std::floor(u_cam), vc = v_cam - std::floor(v_cam);
+    const auto [uc, vc] = TextureOriginAtCamera(m, camera.position);
     const ScreenLinear su = linear_of(to_camera * m.su, 0), sv = linear_of(to_camera * m.sv, 0);
     sp.u_num = {su.a + uc * sp.inv_depth.a, su.b + uc * sp.inv_depth.b, su.c + uc * sp.inv_depth.c};
     sp.v_num = {sv.a + vc * sp.inv_depth.a, sv.b + vc * sp.inv_depth.b, sv.c + vc * sp.inv_depth.c};

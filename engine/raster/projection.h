@@ -7,6 +7,7 @@
 #include "raster/screen_polygon.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "scene/shading.h"
 
 namespace aperture {
 
@@ -16,10 +17,7 @@ struct FrameGeometry {
   std::vector<ScreenPolygon> polygons;
 
   // Camera-space direction through screen point (x, y), with z = -1: P = depth * Ray(x, y).
-  Vec3 Ray(double x, double y) const {
-    return {frustum.left + x / width * (frustum.right - frustum.left),
-            frustum.top - y / height * (frustum.top - frustum.bottom), -1.0};
-  }
+  Vec3 Ray(double x, double y) const { return CameraRay(frustum, width, height, x, y); }
 };
 
 // `margin`: how far beyond the image (in pixels) polygons must be kept for the filter aperture.

@@ -71,10 +71,9 @@ class Frame {
       PolygonFrame f;
       f.normal = p.normal;
       f.height = Dot(p.normal, p.vertices[0] - camera.position);  // plane: dot(n, P - cam) = h
-      const double u_cam = Dot(p.mapping.su, camera.position) + p.mapping.u0;
-      const double v_cam = Dot(p.mapping.sv, camera.position) + p.mapping.v0;
-      f.u_cam = u_cam - std::floor(u_cam);
-      f.v_cam = v_cam - std::floor(v_cam);
+      const TextureOrigin origin = TextureOriginAtCamera(p.mapping, camera.position);
+      f.u_cam = origin.u;
+      f.v_cam = origin.v;
       const Material& mat = scene.materials[p.material];
       f.light = SurfaceLight(scene, mat, f.height < 0 ? p.normal : -p.normal);
       polygons_.push_back(f);
@@ -88,9 +87,7 @@ class Frame {
   // World direction of the ray through screen point (x, y) (pixel corners at integers); its
   // camera-space z is -1, so t along it is the depth.
   Vec3 Direction(double x, double y) const {
-    const FrustumTangents& f = frustum_;
-    return orientation_ * Vec3{f.left + x / settings_.width * (f.right - f.left),
-                               f.top - y / settings_.height * (f.top - f.bottom), -1.0};
+    return orientation_ * CameraRay(frustum_, settings_.width, settings_.height, x, y);
   }
 
   // The ray through (x, y) into `polygon`'s plane (extrapolated beyond the polygon); false when

@@ -30,9 +30,7 @@ class Sampler {
 
   // The shaded colour seen through screen point (x, y).
   Rgba At(double x, double y) const {
-    const FrustumTangents& f = frustum_;
-    const Vec3 d = orientation_ * Vec3{f.left + x / width_ * (f.right - f.left),
-                                       f.top - y / height_ * (f.top - f.bottom), -1.0};
+    const Vec3 d = orientation_ * CameraRay(frustum_, width_, height_, x, y);
     const int primitive = rays_.Intersect(camera_.position, d, camera_.near, t_far_);
     const int polygons = static_cast<int>(scene_.polygons.size());
     const Rgba sky{scene_.sky.r, scene_.sky.g, scene_.sky.b, 1};
