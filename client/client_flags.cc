@@ -22,35 +22,6 @@ ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
 ABSL_FLAG(int, split, 0,
           "render: cut the frame into this many regions of equal predicted cost (PlanRegions) "
           "and render them on --servers at once, then assemble one EXR (0: one server)");
-ABSL_FLAG(std::string, scene, "airport",
-          "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'demo' (the "
-          "benchmarks' synthetic airfield), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
-ABSL_FLAG(std::string, camera, "",
-          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: a built-in "
-          "scene's approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
-ABSL_FLAG(double, fov, 0, "vertical field of view, degrees; 0: a glTF model camera's own, else 60");
-ABSL_FLAG(double, near, 0, "near plane distance (0: a built-in scene's camera's, else 0.1)");
-ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT");
-ABSL_FLAG(std::string, region, "", "only this part of the frame: X,Y,WIDTHxHEIGHT");
-ABSL_FLAG(std::string, aa, "box2", "edge anti-aliasing: box2, box1, tent2");
-ABSL_FLAG(std::string, filter, "",
-          "texture filter for every material: nearest, bilinear, "
-          "trilinear, aniso, oiio, reference (default: each material's own)");
-ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1 or 2)");
-ABSL_FLAG(std::string, mode, "raster",
-          "raster (Warnock windows, seed 002 edges) or raytrace (seed 003: corner rays, texture "
-          "integrals over each pixel's projection; the only mode that draws spheres and "
-          "cylinders)");
-ABSL_FLAG(double, delta, 0.1,
-          "raytrace: allowed relative area error of the pixel-projection fragments (seed 003, "
-          "eq. 9)");
-ABSL_FLAG(int, max_depth, 3, "raytrace: subdivisions of a pixel whose corner rays disagree (0..8)");
-ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
-ABSL_FLAG(bool, float_pixels, false, "32-bit float channels instead of half");
-ABSL_FLAG(bool, transparent_sky, false,
-          "leave the sky transparent: alpha is what the scene covers, the colour premultiplied by "
-          "it (for compositing the frame over other imagery)");
-ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (batch: output directory)");
 ABSL_FLAG(double, deadline_s, 60, "deadline of each frame request, seconds");
 ABSL_FLAG(int, concurrency, 1, "load, batch: requests in flight at once");
 ABSL_FLAG(std::string, shard, "",

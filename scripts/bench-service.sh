@@ -167,7 +167,8 @@ soak() {
 split() {
   echo "== split: 1920x1080 over 2 local servers (--threads 1 each), $rounds rounds per scene"
   # The plan is only as good as the cost model: fit it on this machine once (about a minute).
-  [ -f build/aperture_cost_model.txt ] || "$render_bin" --calibrate | tail -1
+  export APERTURE_COST_MODEL=${APERTURE_COST_MODEL:-build/share/aperture/cost_model.txt}
+  [ -f "$APERTURE_COST_MODEL" ] || "$render_bin" --calibrate --cost-model "$APERTURE_COST_MODEL" | tail -1
   start_server "$work/store-split" --threads 1
   local a="$address" pid_a="$pid"
   start_server "$work/store-split" --threads 1

@@ -1,49 +1,18 @@
 #include "frame_request.h"
 
 #include "absl/strings/str_cat.h"
-#include "io/exr_options_proto.h"
-#include "render/render_options.h"
-#include "scene/camera_proto.h"
-#include "scene/scene_builder.h"
 
 namespace aperture {
 
 absl::StatusOr<FrameJob> ParseFrameRequest(const v1::RenderFrameRequest& request,
                                            uint64_t max_pixels) {
-  FrameJob job;
-  if (!request.has_camera()) return absl::InvalidArgumentError("camera is missing");
-  auto camera = CameraFromProto(request.camera());
-  if (!camera.ok()) return camera.status();  // its messages name the camera field
-  job.camera = *camera;
-
-  auto settings = RenderSettingsFromProto(request.options());
-  if (!settings.ok()) return settings.status();
-  job.settings = *settings;
-  auto exr = ExrOptionsFromProto(request.options());
-  if (!exr.ok()) return exr.status();
-  job.exr = *exr;
-  auto mode = ModeOptionsFromProto(request.options());
-  if (!mode.ok()) return mode.status();
-  job.mode = *mode;
-
+  auto job = FrameJobFromRequest(request);
+  if (!job.ok()) return job.status();
   const uint64_t pixels = uint64_t{request.options().width()} * request.options().height();
   if (pixels > max_pixels)
     return absl::InvalidArgumentError(absl::StrCat(
         "options: ", request.options().width(), "x", request.options().height(), " = ", pixels,
         " pixels exceeds the server's limit of ", max_pixels, " (--max-pixels)"));
-
-  if (request.has_region()) {
-    const v1::PixelRegion& r = request.region();
-    const uint64_t x1 = uint64_t{r.x()} + r.width(), y1 = uint64_t{r.y()} + r.height();
-    if (r.width() == 0 || r.height() == 0 || x1 > request.options().width() ||
-        y1 > request.options().height())
-      return absl::InvalidArgumentError(
-          absl::StrCat("region: ", r.width(), "x", r.height(), " at (", r.x(), ", ", r.y(),
-                       ") is empty or not inside the ", request.options().width(), "x",
-                       request.options().height(), " frame"));
-    job.settings.region = {static_cast<int>(r.x()), static_cast<int>(r.y()), static_cast<int>(x1),
-                           static_cast<int>(y1)};
-  }
   return job;
 }
 

@@ -28,6 +28,7 @@
 #include "admission.h"
 #include "auth_tokens.h"
 #include "cli_usage.h"
+#include "cost/window_cost.h"
 #include "flag_names.h"
 #include "keepalive.h"
 #include "large_buffers.h"
@@ -79,6 +80,11 @@ ABSL_FLAG(bool, insecure_listen_any, false,
 ABSL_FLAG(double, grace_s, 10,
           "on SIGTERM: seconds in-flight frames get to finish before they "
           "are cancelled");
+
+ABSL_FLAG(std::string, cost_model, "",
+          "the tile cost model (aperture-render --calibrate writes one); a missing or malformed "
+          "file stops the start (default: $APERTURE_COST_MODEL, else share/aperture/"
+          "cost_model.txt of this installation, else built-in constants)");
 
 namespace aperture {
 namespace {
@@ -156,6 +162,13 @@ int Run() {
   limits.scene.polygons = absl::GetFlag(FLAGS_max_scene_polygons);
   limits.scene.vertices_per_polygon = absl::GetFlag(FLAGS_max_polygon_vertices);
   limits.scene.textures = absl::GetFlag(FLAGS_max_scene_textures);
+
+  if (const std::string path = absl::GetFlag(FLAGS_cost_model); !path.empty()) {
+    if (auto s = UseCostModelFile(path); !s.ok()) {
+      spdlog::error("--cost-model: {}", std::string(s.message()));
+      return 2;
+    }
+  }
 
   tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                   static_cast<size_t>(limits.threads));
@@ -238,9 +251,11 @@ int Run() {
   std::fflush(stdout);
   spdlog::info(
       "aperture-server listening on {}:{} threads={} concurrent_frames={} max_queue={} "
-      "max_pixels={} store='{}' store_budget_mb={} scenes_budget_mb={} tls={} auth={}",
+      "max_pixels={} store='{}' store_budget_mb={} scenes_budget_mb={} cost_model='{}' tls={} "
+      "auth={}",
       host, port, limits.threads, limits.concurrent_frames, limits.max_queue, limits.max_pixels,
       absl::GetFlag(FLAGS_store), limits.max_store_bytes >> 20, scenes.budget() >> 20,
+      DefaultCostModelSource(),
       absl::GetFlag(FLAGS_tls_cert).empty() ? "off" : (mutual_tls ? "mutual" : "on"),
       auth                   ? "bearer tokens (" + auth->path() + ")"
       : mutual_tls           ? "client certificates"

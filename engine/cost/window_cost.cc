@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <optional>
 
 #include "absl/strings/str_cat.h"
 #include "raster/polygon_clip.h"
@@ -114,19 +117,67 @@ absl::Status SaveCostModel(const CostModel& m, const std::string& path) {
   return absl::OkStatus();
 }
 
-std::string StoredCostModelPath() {
+std::vector<std::string> CostModelSearchPath() {
+  std::vector<std::string> paths;
   if (const char* env = std::getenv("APERTURE_COST_MODEL"); env != nullptr && *env != '\0')
-    return env;
-  return APERTURE_COST_MODEL_PATH;
+    paths.emplace_back(env);
+  std::error_code error;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error)
+    paths.push_back(
+        (program.parent_path().parent_path() / "share/aperture/cost_model.txt").string());
+  paths.emplace_back(APERTURE_INSTALL_DATADIR "/aperture/cost_model.txt");
+  return paths;
+}
+
+namespace {
+
+struct ProcessCostModel {
+  std::mutex mutex;
+  std::optional<CostModel> model;  // unset: not chosen yet
+  std::string source;
+};
+
+ProcessCostModel& Process() {
+  static ProcessCostModel process;
+  return process;
+}
+
+}  // namespace
+
+absl::Status UseCostModelFile(const std::string& path) {
+  auto model = LoadCostModel(path);
+  if (!model.ok()) return model.status();
+  ProcessCostModel& p = Process();
+  const std::lock_guard<std::mutex> lock(p.mutex);
+  p.model = *model;
+  p.source = path;
+  return absl::OkStatus();
 }
 
 CostModel DefaultCostModel() {
-  // Every RenderSettings starts from this model: read the file once per process, not per frame.
-  static const CostModel model = [] {
-    auto stored = LoadCostModel(StoredCostModelPath());
-    return stored.ok() ? *stored : CostModel{};
-  }();
-  return model;
+  // Every RenderSettings starts from this model: the files are read once per process.
+  ProcessCostModel& p = Process();
+  const std::lock_guard<std::mutex> lock(p.mutex);
+  if (!p.model) {
+    p.model = CostModel{};
+    p.source = "built-in defaults";
+    for (const std::string& path : CostModelSearchPath()) {
+      if (auto stored = LoadCostModel(path); stored.ok()) {
+        p.model = *stored;
+        p.source = path;
+        break;
+      }
+    }
+  }
+  return *p.model;
+}
+
+std::string DefaultCostModelSource() {
+  DefaultCostModel();
+  ProcessCostModel& p = Process();
+  const std::lock_guard<std::mutex> lock(p.mutex);
+  return p.source;
 }
 
 }  // namespace aperture

@@ -44,11 +44,21 @@ CostModel FitCostModel(const std::vector<WindowFeatures>& features,
 absl::StatusOr<CostModel> LoadCostModel(const std::string& path);
 absl::Status SaveCostModel(const CostModel& model, const std::string& path);
 
-// Where the calibrated model is kept: $APERTURE_COST_MODEL, else the build's
-// aperture_cost_model.txt (written by `aperture-render --calibrate`).
-std::string StoredCostModelPath();
-// The stored model (read once per process), else the defaults above (fitted on a 2-core x86-64
-// machine).
+// Where the calibrated model is looked for, first found first: $APERTURE_COST_MODEL; the
+// installation's share/aperture/cost_model.txt beside the running program's bin/ (so an install
+// prefix, a .deb or a container image can be moved); the same under the prefix it was built for
+// (CMAKE_INSTALL_PREFIX). `aperture-render --calibrate` writes the first of them (or its
+// --cost-model); a build tree is a prefix too (build/share/aperture/).
+std::vector<std::string> CostModelSearchPath();
+
+// Makes the model in `path` the process's (aperture-server --cost-model): an error names the
+// file when it is missing or malformed, and nothing changes then.
+absl::Status UseCostModelFile(const std::string& path);
+
+// The process's model: the one UseCostModelFile set, else the first stored model on the search
+// path (read once per process), else the defaults above (fitted on a 2-core x86-64 machine).
 CostModel DefaultCostModel();
+// Where DefaultCostModel's model came from: a path, or "built-in defaults".
+std::string DefaultCostModelSource();
 
 }  // namespace aperture

@@ -72,14 +72,6 @@ const char* ExrCompressionName(ExrCompression c) {
   return "zip";
 }
 
-absl::StatusOr<ExrCompression> ParseExrCompression(const std::string& name) {
-  for (ExrCompression c : {ExrCompression::kNone, ExrCompression::kRle, ExrCompression::kZips,
-                           ExrCompression::kZip, ExrCompression::kPiz, ExrCompression::kDwaa})
-    if (name == ExrCompressionName(c)) return c;
-  return absl::InvalidArgumentError(
-      absl::StrCat("unknown EXR compression '", name, "' (none, rle, zips, zip, piz, dwaa)"));
-}
-
 absl::StatusOr<std::string> EncodeExr(const Image& image, const ExrOptions& options) {
   std::string bytes;
   const absl::Status status = CoreEncoderSupports(options.compression)

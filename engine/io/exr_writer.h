@@ -17,7 +17,6 @@ enum class ExrCompression { kNone, kRle, kZips, kZip, kPiz, kDwaa };
 enum class ExrPixelType { kHalf, kFloat };
 
 const char* ExrCompressionName(ExrCompression c);
-absl::StatusOr<ExrCompression> ParseExrCompression(const std::string& name);
 
 struct ExrOptions {
   ExrPixelType pixel_type = ExrPixelType::kHalf;

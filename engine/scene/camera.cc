@@ -1,11 +1,8 @@
 #include "scene/camera.h"
 
 #include <cmath>
-#include <cstdlib>
-#include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_split.h"
 
 namespace aperture {
 
@@ -42,27 +39,6 @@ absl::Status ValidateCamera(const Camera& c) {
   if (!finite(c.far) || (c.far != 0 && c.far <= c.near))
     return absl::InvalidArgumentError("camera far plane must be 0 (none) or beyond near");
   return absl::OkStatus();
-}
-
-absl::StatusOr<Camera> ParseCameraSpec(const std::string& spec) {
-  std::vector<std::string> parts = absl::StrSplit(spec, ',');
-  if (parts.size() != 6)
-    return absl::InvalidArgumentError(absl::StrCat(
-        "camera '", spec, "' must be X,Y,Z,YAW,PITCH,ROLL (6 numbers), got ", parts.size()));
-  double v[6];
-  for (int i = 0; i < 6; ++i) {
-    char* end = nullptr;
-    v[i] = std::strtod(parts[i].c_str(), &end);
-    if (parts[i].empty() || end == nullptr || *end != '\0' || !std::isfinite(v[i]))
-      return absl::InvalidArgumentError(
-          absl::StrCat("camera '", spec, "': '", parts[i], "' is not a finite number"));
-  }
-  Camera camera;
-  camera.position = {v[0], v[1], v[2]};
-  camera.yaw_deg = v[3];
-  camera.pitch_deg = v[4];
-  camera.roll_deg = v[5];
-  return camera;
 }
 
 }  // namespace aperture

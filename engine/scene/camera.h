@@ -32,7 +32,4 @@ FrustumTangents ResolveFrustum(const Camera& camera, int width, int height);
 // Checks finiteness and ranges; names the offending field.
 absl::Status ValidateCamera(const Camera& camera);
 
-// Parses "X,Y,Z,YAW,PITCH,ROLL" (world units and degrees).
-absl::StatusOr<Camera> ParseCameraSpec(const std::string& spec);
-
 }  // namespace aperture

@@ -17,9 +17,12 @@
 #include "base/stopwatch.h"
 #include "cli_usage.h"
 #include "cost/frame_statistics.h"
+#include "cost/window_cost.h"
 #include "flag_names.h"
+#include "frame_flags.h"
 #include "gltf_import.h"
 #include "io/exr_writer.h"
+#include "io/frame_job.h"
 #include "render/frame_renderer.h"
 #include "render/trace_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -30,38 +33,15 @@
 #include "scene/scene_file.h"
 #include "store/shared_store.h"
 #include "tools/calibration.h"
-#include "tools/cli_options.h"
 
-ABSL_FLAG(
-    std::string, scene, "airport",
-    "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'demo' (the "
-    "benchmarks' synthetic airfield), 'triangles' (10,000 random triangles), 'skewed' (a city "
-    "block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
-    "benchmark's), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
+// The frame's flags (--scene, --camera, --size, --aa, --filter, --mode, -o, ...) are the client's:
+// common/frame_flags.h. These are aperture-render's own.
 ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
           "the machine's shared texture store (the server's default): seed 000 tables, decoded "
           "packed textures and raytrace tables are mapped from it, or built once and kept there "
           "for the next process; 'none': build them in this process only");
-ABSL_FLAG(std::string, camera, "",
-          "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: a built-in "
-          "scene's approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
-ABSL_FLAG(double, fov, 0, "vertical field of view, degrees; 0: a glTF model camera's own, else 60");
-ABSL_FLAG(double, near, 0, "near plane distance (0: a built-in scene's camera's, else 0.1)");
-ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT (each 1..16384)");
-ABSL_FLAG(std::string, aa, "box2", "edge anti-aliasing: box2 (2x2 box), box1 (pixel box), tent2");
-ABSL_FLAG(std::string, filter, "",
-          "texture filter for every material: nearest, bilinear, trilinear, aniso (seed 000's "
-          "tables), oiio (OpenImageIO's TextureSystem), reference (dense supersampling) "
-          "(default: each material's own)");
-ABSL_FLAG(double, aperture, 2, "texture filter aperture in pixels (1: pixel, 2: 2x2 square)");
-ABSL_FLAG(std::string, compression, "zip", "EXR compression: none, rle, zips, zip, piz, dwaa");
 ABSL_FLAG(int, zip_level, 4,
           "deflate level of zip and zips compression (libdeflate), 1 (fastest) .. 9 (smallest)");
-ABSL_FLAG(bool, float_pixels, false, "write 32-bit float channels instead of half");
-ABSL_FLAG(bool, transparent_sky, false,
-          "leave the sky transparent: alpha is what the scene covers, the colour premultiplied by "
-          "it (for compositing the frame over other imagery)");
-ABSL_FLAG(std::string, o, "frame.exr", "output EXR path");
 ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR");
 ABSL_FLAG(int, threads, 0, "worker threads (0: all cores)");
 ABSL_FLAG(int, repeat, 1, "render this many times and report the fastest (for benchmarks)");
@@ -72,15 +52,11 @@ ABSL_FLAG(std::string, scheduling, "cost",
 ABSL_FLAG(int, tile, 32, "tile side for --scheduling uniform, pixels");
 ABSL_FLAG(bool, calibrate, false,
           "fit the tile cost model on this machine (demo, skewed and triangle scenes, one thread) "
-          "and store it with the build; renders nothing else");
-ABSL_FLAG(std::string, mode, "raster",
-          "raster (Warnock windows, seed 002 edges), raytrace (seed 003: corner rays, texture "
-          "integrals over each pixel's projection), or both (raster then raytrace in one run; the "
-          "raytraced frame goes next to -o with a -raytrace suffix)");
-ABSL_FLAG(double, delta, 0.1,
-          "raytrace: allowed relative area error of the pixel-projection fragments (seed 003, "
-          "eq. 9)");
-ABSL_FLAG(int, max_depth, 3, "raytrace: subdivisions of a pixel whose corner rays disagree (0..8)");
+          "and store it in --cost-model; renders nothing else");
+ABSL_FLAG(std::string, cost_model, "",
+          "the tile cost model file: read for the frame, written by --calibrate (default: "
+          "$APERTURE_COST_MODEL, else share/aperture/cost_model.txt of this installation, beside "
+          "its bin/)");
 ABSL_FLAG(bool, stats, false,
           "print seed 002's frame statistics (F, kappa, l_cp), its predicted polygons per "
           "aperture and the measured mean");
@@ -115,7 +91,11 @@ int RunCalibration() {
                            {"triangles", &*triangles, origin}},
                           960, 540, 3);
   if (!result.ok()) return Fail(result.status());
-  const std::string path = StoredCostModelPath();
+  std::string path = absl::GetFlag(FLAGS_cost_model);
+  if (path.empty()) path = CostModelSearchPath().front();
+  std::error_code error;
+  if (const auto folder = std::filesystem::path(path).parent_path(); !folder.empty())
+    std::filesystem::create_directories(folder, error);
   if (auto s = SaveCostModel(result->model, path); !s.ok()) return Fail(s);
   std::printf(
       "%d tiles: per_pixel %.4g us, per_area %.4g us, per_boundary %.4g us; Spearman "
@@ -125,84 +105,35 @@ int RunCalibration() {
   return 0;
 }
 
-// The camera of a glTF model named by --camera (empty: its first camera, if it has any; a
-// position spec: none, the spec is used).
-absl::StatusOr<std::optional<Camera>> ModelCamera(const std::string& path,
-                                                  const std::vector<GltfCamera>& cameras,
-                                                  const std::string& spec) {
-  if (!spec.empty() && ParseCameraSpec(spec).ok()) return std::optional<Camera>();
-  if (spec.empty() && cameras.empty()) return std::optional<Camera>();
-  std::vector<std::string> names;
-  for (const GltfCamera& c : cameras) {
-    if (spec.empty() || c.name == spec) {
-      auto camera = CameraFromProto(c.camera);
-      if (!camera.ok())
-        return absl::Status(camera.status().code(), absl::StrCat(path, ": camera '", c.name,
-                                                                 "': ", camera.status().message()));
-      return std::optional<Camera>(*camera);
-    }
-    names.push_back(c.name);
-  }
-  return absl::InvalidArgumentError(
-      absl::StrCat("--camera '", spec, "' is neither X,Y,Z,YAW,PITCH,ROLL nor a camera of ", path,
-                   names.empty() ? std::string(" (it has none)")
-                                 : absl::StrCat(" (", absl::StrJoin(names, ", "), ")")));
-}
-
 int Run() {
   if (absl::GetFlag(FLAGS_calibrate)) return RunCalibration();
   // Options first, so that a mistake is reported before any work is done.
+  if (const std::string path = absl::GetFlag(FLAGS_cost_model); !path.empty())
+    if (auto s = UseCostModelFile(path); !s.ok()) return Fail(s);
   const std::string scene_arg = absl::GetFlag(FLAGS_scene);
   // A built-in scene by name (scene/builtin_scenes.h) comes with its camera; else a file.
   auto builtin = FindBuiltinScene(scene_arg);
   if (!builtin.ok() && scene_arg.rfind("tris-", 0) == 0) return Fail(builtin.status());
-  Camera camera = builtin.ok() ? builtin->camera : Camera{.position = {0, 1.7, 0}};
-  // A glTF model's cameras go by name; the first is the default.
-  // A model is read here, once: its cameras are part of the options.
-  std::optional<Camera> model_camera;
+  std::optional<v1::Camera> own_camera;
+  if (builtin.ok()) own_camera = CameraToProto(builtin->camera);
+  // A glTF model is read here, once: its cameras (by name, the first by default) are options.
+  std::vector<GltfCamera> model_cameras;
   std::optional<v1::Scene> model;
-  const std::string spec = absl::GetFlag(FLAGS_camera);
   if (!builtin.ok() && IsGltfPath(scene_arg)) {
-    std::vector<GltfCamera> cameras;
-    auto read = ReadSceneFile(scene_arg, &cameras);
+    auto read = ReadSceneFile(scene_arg, &model_cameras);
     if (!read.ok()) return Fail(read.status());
     model = *std::move(read);
-    auto found = ModelCamera(scene_arg, cameras, spec);
-    if (!found.ok()) return Fail(found.status());
-    model_camera = *found;
   }
-  if (model_camera) {
-    camera = *model_camera;
-  } else if (!spec.empty()) {
-    auto parsed = ParseCameraSpec(spec);
-    if (!parsed.ok()) return Fail(parsed.status());
-    parsed->near = camera.near;
-    camera = *parsed;
-  }
-  if (const double fov = absl::GetFlag(FLAGS_fov); fov != 0)
-    camera.vertical_fov_deg = fov;
-  else if (!model_camera)
-    camera.vertical_fov_deg = 60;
-  if (absl::GetFlag(FLAGS_near) != 0) camera.near = absl::GetFlag(FLAGS_near);
-  if (auto s = ValidateCamera(camera); !s.ok()) return Fail(s);
-
-  RenderSettings settings;
-  auto size = ParseImageSize(absl::GetFlag(FLAGS_size));
-  if (!size.ok()) return Fail(size.status());
-  settings.width = size->width;
-  settings.height = size->height;
-  auto aa = ParseAntiAliasing(absl::GetFlag(FLAGS_aa));
-  if (!aa.ok()) return Fail(aa.status());
-  settings.aa = *aa;
-  if (const std::string f = absl::GetFlag(FLAGS_filter); !f.empty()) {
-    auto mode = ParseFilterMode(f);
-    if (!mode.ok()) return Fail(mode.status());
-    settings.shading.override_filter = true;
-    settings.shading.filter = *mode;
-  }
-  settings.shading.texture_aperture = absl::GetFlag(FLAGS_aperture);
+  // The flags become the request a client would send, and the request the engine's job, as on
+  // the server: the same flags render the same frame here and through the service.
+  bool both_modes = false;
+  auto request = FrameRequestFromFlags(own_camera, model_cameras, &both_modes);
+  if (!request.ok()) return Fail(request.status());
+  auto job = FrameJobFromRequest(*request);
+  if (!job.ok()) return Fail(job.status());
+  const Camera& camera = job->camera;
+  RenderSettings& settings = job->settings;
   settings.threads = absl::GetFlag(FLAGS_threads);
-  settings.transparent_sky = absl::GetFlag(FLAGS_transparent_sky);
   settings.warnock.leaf_size = absl::GetFlag(FLAGS_leaf);
   if (const std::string mode = absl::GetFlag(FLAGS_scheduling); mode == "uniform") {
     settings.scheduling.mode = Scheduling::kUniform;
@@ -210,30 +141,17 @@ int Run() {
     return Fail(absl::InvalidArgumentError("unknown scheduling '" + mode + "' (cost, uniform)"));
   }
   settings.scheduling.uniform_tile = absl::GetFlag(FLAGS_tile);
-  ExrOptions exr;
-  auto compression = ParseExrCompression(absl::GetFlag(FLAGS_compression));
-  if (!compression.ok()) return Fail(compression.status());
-  exr.compression = *compression;
-  exr.pixel_type = absl::GetFlag(FLAGS_float_pixels) ? ExrPixelType::kFloat : ExrPixelType::kHalf;
+  if (auto s = ValidateRenderSettings(settings); !s.ok()) return Fail(s);
+  ExrOptions& exr = job->exr;
   exr.zip_level = absl::GetFlag(FLAGS_zip_level);
   if (exr.zip_level < 1 || exr.zip_level > 9)
     return Fail(absl::InvalidArgumentError(
         absl::StrCat("--zip_level ", exr.zip_level, " is outside 1..9")));
   exr.threads = settings.threads;  // encoding follows rendering: the cores are free again
-  if (auto s = ValidateRenderSettings(settings); !s.ok()) return Fail(s);
   // "both": raster, then raytrace, on the same scene in one run (the issue 7 benchmark).
-  std::vector<RenderMode> modes;
-  if (absl::GetFlag(FLAGS_mode) == "both") {
-    modes = {RenderMode::kRaster, RenderMode::kRaytrace};
-  } else {
-    auto mode = ParseRenderMode(absl::GetFlag(FLAGS_mode));
-    if (!mode.ok()) return Fail(mode.status());
-    modes = {*mode};
-  }
-  TraceOptions trace_options;
-  trace_options.fragments.delta = absl::GetFlag(FLAGS_delta);
-  trace_options.max_depth = absl::GetFlag(FLAGS_max_depth);
-  if (auto s = ValidateTraceOptions(trace_options); !s.ok()) return Fail(s);
+  const std::vector<bool> raytrace_modes =
+      both_modes ? std::vector<bool>{false, true} : std::vector<bool>{job->mode.raytrace};
+  const TraceOptions& trace_options = job->mode.trace;
 
   // The shared store, so that a one-frame job maps what an earlier process built. A store that
   // cannot be opened (no /dev/shm, no permission) is not fatal: the tables are built here.
@@ -255,9 +173,9 @@ int Run() {
   if (built->name.empty()) built->name = scene_arg;
 
   double raster_ms = 0, raytrace_ms = 0;
-  for (const RenderMode mode : modes) {
+  for (const bool raytrace : raytrace_modes) {
     std::unique_ptr<TracedScene> traced;
-    if (mode == RenderMode::kRaytrace) {
+    if (raytrace) {
       const Stopwatch build_timer;
       auto ts = TracedScene::Build(*built, store);
       if (!ts.ok()) return Fail(ts.status());
@@ -267,7 +185,8 @@ int Run() {
     }
 
     // With both modes, --repeat is for the raster frame; the raytraced one renders once.
-    const int repeat = modes.size() > 1 && traced ? 1 : std::max(1, absl::GetFlag(FLAGS_repeat));
+    const int repeat =
+        raytrace_modes.size() > 1 && traced ? 1 : std::max(1, absl::GetFlag(FLAGS_repeat));
     absl::StatusOr<RenderedFrame> best;
     TraceStats trace_stats;
     for (int i = 0; i < repeat; ++i) {
@@ -288,7 +207,7 @@ int Run() {
     exr.metadata = FrameMetadata(built->name, camera, *best, settings.width, settings.height,
                                  traced ? "raytrace" : "raster");
     std::string out = absl::GetFlag(FLAGS_o);
-    if (modes.size() > 1 && traced) {  // both: the raytraced frame next to the raster one
+    if (raytrace_modes.size() > 1 && traced) {  // both: the raytraced frame next to the raster one
       std::filesystem::path path(out);
       out = (path.parent_path() / (path.stem().string() + "-raytrace" + path.extension().string()))
                 .string();
@@ -328,6 +247,7 @@ int Run() {
       std::printf("%zu %s tasks on %d threads, balance efficiency %.2f\n", stats.tasks.size(),
                   SchedulingName(settings.scheduling.mode), stats.concurrency,
                   stats.BalanceEfficiency());
+      std::printf("cost model: %s\n", DefaultCostModelSource().c_str());
       std::printf(
           "frame time: setup %.2f ms, raster %.2f ms (planning %.2f), encode %.2f ms (%s, %s)%s\n",
           stats.setup_ms, stats.raster_ms, stats.plan_ms, encode_ms,
@@ -338,7 +258,7 @@ int Run() {
     std::printf("wrote %s%s%s\n", out.c_str(), preview.empty() ? "" : " and ", preview.c_str());
     (traced ? raytrace_ms : raster_ms) = stats.setup_ms + stats.raster_ms;
   }
-  if (modes.size() > 1)
+  if (raytrace_modes.size() > 1)
     std::printf("raster %.1f ms, raytrace %.1f ms: raytrace takes %.1fx the raster frame\n",
                 raster_ms, raytrace_ms, raster_ms > 0 ? raytrace_ms / raster_ms : 0.0);
   if (absl::GetFlag(FLAGS_stats)) PrintStatistics(*built, camera, settings);

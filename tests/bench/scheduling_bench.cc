@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
   const Case cases[] = {{"demo", &*demo, demo_camera}, {"skewed", &*skewed, origin}};
   std::printf(
       "1920x1080, box2, trilinear, 2 threads, fastest of %d interleaved rounds; cost model %s\n",
-      repeat, StoredCostModelPath().c_str());
+      repeat, DefaultCostModelSource().c_str());
   for (const Case& c : cases) {
     // Every round renders once in each mode, so a drifting machine speed favours none of them.
     struct Mode {

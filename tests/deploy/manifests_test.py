@@ -286,6 +286,19 @@ def runtime_packages_of(binaries):
     return packages
 
 
+def install_runtime_component(build):
+    """What the build stage's `cmake --install build --component runtime` puts in bin/: installed
+    here from the test's own build folder into a temporary prefix."""
+    with tempfile.TemporaryDirectory() as prefix:
+        out = subprocess.run(["cmake", "--install", build, "--component", "runtime", "--prefix",
+                              prefix], capture_output=True, text=True)
+        check(out.returncode == 0, f"cmake --install --component runtime: {out.stderr}")
+        installed = sorted(os.listdir(os.path.join(prefix, "bin"))) if out.returncode == 0 else []
+    for b in ("aperture-server", "aperture", "aperture-tex", "aperture-render"):
+        check(b in installed, f"the runtime component does not install {b} (bin/: {installed})")
+    return installed
+
+
 def check_dockerfile(repo, bins):
     path = os.path.join(repo, "deploy/Dockerfile")
     stages = dockerfile_stages(path)
@@ -333,10 +346,14 @@ def check_dockerfile(repo, bins):
             users = [t for i, t in steps if i == "USER"]
             check(users and users[-1].split(":")[0] not in ("0", "root"),
                   "the runtime stage does not run as a non-root USER")
-            copied = " ".join(t for i, t in steps if i == "COPY")
-            for b in ("aperture-server", "aperture", "aperture-tex", "aperture-render"):
-                check(re.search(r"/" + re.escape(b) + r"(\s|$)", copied),
-                      f"the runtime stage does not copy {b}")
+            # The binaries arrive as CMake installed them (component runtime) in the build stage.
+            copied = [t for i, t in steps if i == "COPY"]
+            check(any(re.fullmatch(r"--from=build\s+/staging/usr/local/\s+/usr/local/", t)
+                      for t in copied),
+                  f"the runtime stage does not copy the build stage's install tree: {copied}")
+            # The build folder of the binaries under test (BUILD/server/aperture-server).
+            build = os.path.dirname(os.path.dirname(bins["aperture-server"]))
+            result["installed"] = install_runtime_component(build)
             result["entrypoint"] = exec_form([t for i, t in steps if i == "ENTRYPOINT"][-1])
             result["cmd"] = exec_form([t for i, t in steps if i == "CMD"][-1])
             result["expose"] = [int(p.split("/")[0]) for i, t in steps if i == "EXPOSE"

@@ -252,10 +252,5 @@ TEST_F(ExrWriterTest, UnwritablePathIsAnError) {
   EXPECT_FALSE(status.ok());
 }
 
-TEST(ExrCompression, ParsesKnownNamesOnly) {
-  EXPECT_EQ(*ParseExrCompression("piz"), ExrCompression::kPiz);
-  EXPECT_FALSE(ParseExrCompression("lzw").ok());
-}
-
 }  // namespace
 }  // namespace aperture

@@ -114,14 +114,17 @@ TEST_F(RenderCli, BadInputExitsNonZeroNamingTheProblem) {
       R"(, {"x": 1, "y": 0, "z": -5}, {"x": 1, "y": 1, "z": -5}, {"x": 0, "y": 1, "z": -5}]}]}]})";
   const std::string head = R"({"meshes": [{"id": "m", "polygons": [{"vertices": [)";
   const std::vector<BadRun> runs = {
-      {"--size 0x10", "image size 0x10"},
-      {"--size 16385x10", "outside 1..16384"},
+      {"--size 0x10", "options.width is 0"},
+      {"--size 16385x10", "must be 1..16384"},
       {"--size big", "WIDTHxHEIGHT"},
-      {"--aa box3", "unknown anti-aliasing 'box3'"},
-      {"--filter sharp", "unknown texture filter 'sharp'"},
+      {"--aa box3", "--aa 'box3' is not one of box1, box2, tent2"},
+      {"--filter sharp", "--filter 'sharp' is not one of"},
       {"--camera 1,2,3", "X,Y,Z,YAW,PITCH,ROLL"},
+      {"--camera nan,1,2,0,0,0", "camera position is not finite"},
+      {"--mode pathtrace", "--mode 'pathtrace' is not one of raster, raytrace, both"},
+      {"--region 0,0,4000x10", "region: 4000x10 at (0, 0) is empty or not inside"},
       {"--fov -5", "field of view"},
-      {"--compression lzw", "unknown EXR compression"},
+      {"--compression lzw", "--compression 'lzw' is not one of"},
       {"--scene " + Path("missing.json"), "cannot open scene file"},
       {"--scene " + WriteScene("syntax.json", "{\"meshes\": ["), "scene JSON is invalid"},
       {"--scene " + WriteScene("unknown.json", R"({"meshs": []})"), "meshs"},
