@@ -15,12 +15,25 @@ constexpr double kWorldToRepeats = 0.25;  // u = x / 4, v = z / 4
 
 struct Frame {
   double f, s, c, cx, cy;  // focal length (pixels), sin and cos of the pitch, image centre
+  double cos_yaw, sin_yaw;
+  // The yaw turns the texture's axes under the camera: (u, v) in the camera's ground frame
+  // rotated into the texture's. A rotation: derivatives turn the same way.
+  void Turn(double* u, double* v) const {
+    const double tu = cos_yaw * *u - sin_yaw * *v, tv = sin_yaw * *u + cos_yaw * *v;
+    *u = tu;
+    *v = tv;
+  }
 };
 
 Frame MakeFrame(const GrazingPlaneView& view) {
-  const double pitch = view.pitch_deg * M_PI / 180.0;
-  return {0.5 * view.height / std::tan(0.5 * view.fov_deg * M_PI / 180.0), std::sin(pitch),
-          std::cos(pitch), 0.5 * view.width, 0.5 * view.height};
+  const double pitch = view.pitch_deg * M_PI / 180.0, yaw = view.yaw_deg * M_PI / 180.0;
+  return {0.5 * view.height / std::tan(0.5 * view.fov_deg * M_PI / 180.0),
+          std::sin(pitch),
+          std::cos(pitch),
+          0.5 * view.width,
+          0.5 * view.height,
+          std::cos(yaw),
+          std::sin(yaw)};
 }
 
 }  // namespace
@@ -33,6 +46,7 @@ bool GroundPoint(const GrazingPlaneView& view, double px, double py, double* u, 
   if (q <= 0) return false;
   *u = kWorldToRepeats * dx / q;
   *v = kWorldToRepeats * (-dy * fr.s - fr.c) / q;
+  if (view.yaw_deg != 0) fr.Turn(u, v);
   return true;
 }
 
@@ -43,16 +57,24 @@ bool GroundFootprint(const GrazingPlaneView& view, int i, int j, TextureFootprin
   const double q = fr.s - dy * fr.c;
   if (q <= 0) return false;
   const double nz = -dy * fr.s - fr.c;
-  const double u = kWorldToRepeats * dx / q, v = kWorldToRepeats * nz / q;
   // seed 000, eq. 2 for this plane: U = dx / q, V = nz / q, with dq/dpy = cos / f,
   // d(nz)/dpy = sin / f and dx / dpx = 1 / f.
   const double a = view.aperture * kWorldToRepeats;
+  double u = kWorldToRepeats * dx / q, v = kWorldToRepeats * nz / q;
+  double dudx = a / (fr.f * q), dvdx = 0;
+  double dudy = a * (-dx * fr.c / fr.f) / (q * q),
+         dvdy = a * (fr.s * q - nz * fr.c) / (fr.f * q * q);
+  if (view.yaw_deg != 0) {
+    fr.Turn(&u, &v);
+    fr.Turn(&dudx, &dvdx);
+    fr.Turn(&dudy, &dvdy);
+  }
   f->u = u - std::floor(u);
   f->v = v - std::floor(v);
-  f->dudx = static_cast<float>(a / (fr.f * q));
-  f->dvdx = 0.0f;
-  f->dudy = static_cast<float>(a * (-dx * fr.c / fr.f) / (q * q));
-  f->dvdy = static_cast<float>(a * (fr.s * q - nz * fr.c) / (fr.f * q * q));
+  f->dudx = static_cast<float>(dudx);
+  f->dvdx = static_cast<float>(dvdx);
+  f->dudy = static_cast<float>(dudy);
+  f->dvdy = static_cast<float>(dvdy);
   return true;
 }
 
@@ -105,7 +127,7 @@ double NanosecondsPerSample(const GrazingPlaneView& view, const TextureSampler& 
 }
 
 Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, double density,
-                            int max_per_side) {
+                            int max_per_side, int min_per_side) {
   Image out(view.width, view.height);
   const double a = view.aperture, n = texture.width();
   tbb::parallel_for(0, view.height, [&](int j) {
@@ -121,10 +143,11 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
       if (j > 0)
         GroundFootprint(view, i, std::max(0, j - static_cast<int>(std::ceil(a / 2))), &far);
       auto strata = [&](double du, double dv) {
-        return std::clamp(static_cast<int>(std::ceil(std::hypot(du, dv) * n * density)), 2,
-                          max_per_side);
+        return std::clamp(static_cast<int>(std::ceil(std::hypot(du, dv) * n * density)),
+                          std::min(min_per_side, max_per_side), max_per_side);
       };
-      const int kx = strata(std::max(std::abs(f.dudx), std::abs(far.dudx)), 0.0);
+      const int kx = strata(std::max(std::abs(f.dudx), std::abs(far.dudx)),
+                            std::max(std::abs(f.dvdx), std::abs(far.dvdx)));
       const int ky = strata(std::max(std::abs(f.dudy), std::abs(far.dudy)),
                             std::max(std::abs(f.dvdy), std::abs(far.dvdy)));
       const uint64_t key = static_cast<uint64_t>(j) * view.width + i;
@@ -163,6 +186,39 @@ double Psnr(const Image& a, const Image& b, int first_row) {
   if (count == 0) return 0;
   const double mse = sum / static_cast<double>(count);
   return mse == 0 ? INFINITY : 10.0 * std::log10(1.0 / mse);
+}
+
+double FootprintLength(const GrazingPlaneView& view, int i, int j, int texture_size) {
+  TextureFootprint f;
+  if (!GroundFootprint(view, i, j, &f)) return 0;
+  // The derivatives carry the aperture a: one pixel's steps are 1 / a of them.
+  return texture_size / view.aperture *
+         std::max(std::hypot(f.dudx, f.dvdx), std::hypot(f.dudy, f.dvdy));
+}
+
+std::vector<double> PsnrByFootprintBand(const Image& a, const Image& b,
+                                        const GrazingPlaneView& view, int texture_size,
+                                        int first_row, const std::vector<double>& edges,
+                                        std::vector<uint64_t>* pixels) {
+  const size_t bands = edges.size() + 1;
+  std::vector<double> sum(bands, 0);
+  std::vector<uint64_t> count(bands, 0);
+  for (int j = first_row; j < a.height(); ++j)
+    for (int i = 0; i < a.width(); ++i) {
+      const double length = FootprintLength(view, i, j, texture_size);
+      const size_t band = std::upper_bound(edges.begin(), edges.end(), length) - edges.begin();
+      const Rgba &p = a.at(i, j), &q = b.at(i, j);
+      sum[band] += double(p.r - q.r) * (p.r - q.r) + double(p.g - q.g) * (p.g - q.g) +
+                   double(p.b - q.b) * (p.b - q.b);
+      ++count[band];
+    }
+  std::vector<double> psnr(bands, 0);
+  for (size_t k = 0; k < bands; ++k) {
+    const double mse = count[k] > 0 ? sum[k] / (3.0 * static_cast<double>(count[k])) : 0;
+    psnr[k] = count[k] == 0 ? 0 : mse == 0 ? INFINITY : 10.0 * std::log10(1.0 / mse);
+  }
+  if (pixels != nullptr) *pixels = count;
+  return psnr;
 }
 
 }  // namespace aperture

@@ -1,11 +1,13 @@
 // The canonical quality benchmark of DESIGN.md, computed directly per pixel: the ground plane
-// y = 0 with u = x / 4, v = z / 4 (texture repeated), seen from (0, 1, 0) looking along -z and
-// pitched down by theta, vertical field of view 60 degrees. Footprints are evaluated
-// analytically (seed 000, eq. 1-2 for this plane) and the reference integrates the bilinear
-// texture over each pixel's a x a screen square by stratified supersampling.
+// y = 0 with u = x / 4, v = z / 4 (texture repeated), seen from (0, 1, 0) looking along -z (or
+// turned by a yaw) and pitched down by theta, vertical field of view 60 degrees. Footprints are
+// evaluated analytically (seed 000, eq. 1-2 for this plane) and the reference integrates the
+// bilinear texture over each pixel's a x a screen square by stratified supersampling.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "base/image.h"
 #include "texture/texture_sampler.h"
@@ -17,6 +19,9 @@ struct GrazingPlaneView {
   double pitch_deg = 5;  // downwards
   double fov_deg = 60;   // vertical
   double aperture = 2;   // a: 2 = the paper's 2 x 2 pixel square, 1 = the pixel
+  // The camera turned about the vertical by this much (the texture's axes turned the other way
+  // under it): 0 looks along the texture's v axis (issue 22's yaw sweep).
+  double yaw_deg = 0;
 };
 
 // Texture coordinates (repeats, not wrapped) of the ground under image point (px, py) (pixel
@@ -34,10 +39,20 @@ Image RenderGroundImage(const GrazingPlaneView& view, const TextureSampler& samp
 double NanosecondsPerSample(const GrazingPlaneView& view, const TextureSampler& sampler,
                             int rows_step = 1);
 // The reference: per pixel, the average of the bilinear texture over the a x a square by
-// stratified jittered samples, `density` strata per texel of extent per side (2..max_per_side).
+// stratified jittered samples, `density` strata per texel of extent per side
+// (min_per_side..max_per_side).
 Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, double density,
-                            int max_per_side);
+                            int max_per_side, int min_per_side = 2);
 // PSNR (peak 1) over RGB of rows [first_row, height).
 double Psnr(const Image& a, const Image& b, int first_row);
+// The longer of pixel (i, j)'s two one-pixel steps in texels of a texture_size texture (0 above
+// the horizon).
+double FootprintLength(const GrazingPlaneView& view, int i, int j, int texture_size);
+// PSNR of the same rows by band of FootprintLength: band k holds lengths in [edges[k-1],
+// edges[k]) (the first from 0, the last without end); `pixels`: how many each band holds.
+std::vector<double> PsnrByFootprintBand(const Image& a, const Image& b,
+                                        const GrazingPlaneView& view, int texture_size,
+                                        int first_row, const std::vector<double>& edges,
+                                        std::vector<uint64_t>* pixels = nullptr);
 
 }  // namespace aperture

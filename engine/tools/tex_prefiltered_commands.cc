@@ -14,6 +14,7 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
 #include "base/stopwatch.h"
 #include "io/exr_writer.h"
@@ -178,16 +179,17 @@ absl::StatusOr<std::vector<BenchTexture>> LoadBenchTextures(const std::string& l
 }
 
 absl::StatusOr<Image> CachedReference(const GrazingPlaneView& view, const BenchTexture& texture,
-                                      double density, int max_per_side,
+                                      double density, int max_per_side, int min_per_side,
                                       const std::string& cache_dir, bool* cached) {
-  const std::string path = (std::filesystem::path(cache_dir) /
-                            absl::StrCat("ref_", texture.name, "_", texture.image.width(), "_p",
-                                         view.pitch_deg, "_a", view.aperture, "_d", density, "_m",
-                                         max_per_side, "_", view.width, "x", view.height, ".exr"))
-                               .string();
+  const std::string path =
+      (std::filesystem::path(cache_dir) /
+       absl::StrCat("ref_", texture.name, "_", texture.image.width(), "_p", view.pitch_deg, "_y",
+                    view.yaw_deg, "_a", view.aperture, "_d", density, "_m", max_per_side, "_n",
+                    min_per_side, "_", view.width, "x", view.height, ".exr"))
+          .string();
   *cached = std::filesystem::exists(path);
   if (*cached) return LoadImageFile(path);
-  Image ref = RenderGroundReference(view, texture.image, density, max_per_side);
+  Image ref = RenderGroundReference(view, texture.image, density, max_per_side, min_per_side);
   ExrOptions exr;
   exr.pixel_type = ExrPixelType::kFloat;
   if (auto s = WriteExrFile(ref, exr, path); !s.ok()) return s;
@@ -195,18 +197,22 @@ absl::StatusOr<Image> CachedReference(const GrazingPlaneView& view, const BenchT
 }
 
 int RunBenchFilter(int argc, char** argv) {
-  auto args = ParseArgs(argc, argv,
-                        {"--textures", "--data", "--angles", "--apertures", "--out", "--cache",
-                         "--ref-density", "--ref-max", "--timing-rows", "--threads"});
+  auto args = ParseArgs(
+      argc, argv,
+      {"--textures", "--data", "--angles", "--apertures", "--out", "--cache", "--ref-density",
+       "--ref-max", "--ref-min", "--timing-rows", "--threads", "--yaws"});
   if (!args.ok()) return Fail("bench-filter", std::string(args.status().message()));
   if (args->help || !args->positional.empty()) {
     std::fprintf(
         args->help ? stdout : stderr,
         "usage: aperture-tex bench-filter [--textures checker,NAME...] [--data DIR]\n"
-        "         [--angles 5,20,60] [--apertures 2,1] [--out DIR] [--cache DIR]\n"
-        "         [--ref-density D] [--ref-max K] [--timing-rows S] [--threads N]\n"
+        "         [--angles 5,20,60] [--yaws 0] [--apertures 2,1] [--out DIR] [--cache DIR]\n"
+        "         [--ref-density D] [--ref-max K] [--ref-min K] [--timing-rows S] [--threads N]\n"
         "The grazing-plane benchmark (DESIGN.md): PSNR of trilinear, aniso and oiio against\n"
         "the supersampled reference of the same aperture, and ns per sample single-threaded.\n"
+        "--yaws turns the camera about the vertical (0: along the texture's v axis); the\n"
+        "reference takes D strata per texel of extent per side, at least --ref-min (2) and at\n"
+        "most --ref-max (128).\n"
         "Writes every image as EXR under --out (default out/bench-filter); references are\n"
         "cached under --cache (default out/bench-filter/cache).\n");
     return args->help ? 0 : 2;
@@ -216,13 +222,16 @@ int RunBenchFilter(int argc, char** argv) {
   auto angles = ParseNumbers(args->Get("--angles", "5,20,60"), "--angles");
   auto apertures = ParseNumbers(args->Get("--apertures", "2,1"), "--apertures");
   auto density = ParseNumbers(args->Get("--ref-density", "2"), "--ref-density");
-  int ref_max = 0, timing_rows = 0, threads = 0;
-  if (!angles.ok() || !apertures.ok() || !density.ok())
-    return Fail("bench-filter", "--angles, --apertures and --ref-density take numbers");
+  auto yaws = ParseNumbers(args->Get("--yaws", "0"), "--yaws");
+  int ref_max = 0, ref_min = 0, timing_rows = 0, threads = 0;
+  if (!angles.ok() || !apertures.ok() || !density.ok() || !yaws.ok())
+    return Fail("bench-filter", "--angles, --yaws, --apertures and --ref-density take numbers");
   if (!absl::SimpleAtoi(args->Get("--ref-max", "128"), &ref_max) || ref_max < 2 ||
+      !absl::SimpleAtoi(args->Get("--ref-min", "2"), &ref_min) || ref_min < 1 ||
       !absl::SimpleAtoi(args->Get("--timing-rows", "4"), &timing_rows) || timing_rows < 1 ||
       !absl::SimpleAtoi(args->Get("--threads", "0"), &threads) || threads < 0)
-    return Fail("bench-filter", "--ref-max >= 2, --timing-rows >= 1, --threads >= 0");
+    return Fail("bench-filter",
+                "--ref-max >= 2, --ref-min >= 1, --timing-rows >= 1, --threads >= 0");
   for (double a : *apertures)
     if (a <= 0 || a > 16) return Fail("bench-filter", "apertures must be in (0, 16]");
   for (double t : *angles)
@@ -240,10 +249,13 @@ int RunBenchFilter(int argc, char** argv) {
   if (ec) return Fail("bench-filter", absl::StrCat("cannot create ", cache_dir));
 
   std::printf(
-      "| texture | theta | a | rows | trilinear dB | aniso dB | oiio dB | "
+      "| texture | theta | yaw | a | rows | trilinear dB | aniso dB | oiio dB | "
       "aniso - oiio | aniso - trilinear | trilinear ns | aniso ns | oiio ns | "
-      "oiio / aniso |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "oiio / aniso |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
+  // PSNR by band of footprint length (texels a pixel step spans), printed after the table.
+  const std::vector<double> kBandEdges = {2, 4, 16};
+  std::vector<std::string> band_rows;
   for (const BenchTexture& tex : *textures) {
     const Stopwatch build_timer;
     auto block = BuildPrefilteredTable(tex.image);
@@ -260,42 +272,61 @@ int RunBenchFilter(int argc, char** argv) {
                  tex.image.width(), tex.image.height(), block->bytes.size(), build_s);
     for (double a : *apertures) {
       for (double theta : *angles) {
-        GrazingPlaneView view;
-        view.pitch_deg = theta;
-        view.aperture = a;
-        const int first = FirstMeasuredRow(view);
-        const Stopwatch ref_timer;
-        bool cached = false;
-        auto ref = CachedReference(view, tex, density->front(), ref_max, cache_dir, &cached);
-        if (!ref.ok()) return Fail("bench-filter", std::string(ref.status().message()));
-        std::fprintf(stderr, "  theta %g a %g: reference %s in %.1f s\n", theta, a,
-                     cached ? "from cache" : "computed", ref_timer.Seconds());
-        const std::string stem = absl::StrCat(out_dir, "/", tex.name, "_p", theta, "_a", a);
-        struct Mode {
-          const char* name;
-          const TextureSampler* sampler;
-          double psnr = 0, ns = 0;
-        };
-        Mode modes[] = {{"trilinear", &trilinear}, {"aniso", &aniso}, {"oiio", oiio->get()}};
-        for (Mode& m : modes) {
-          const Image img = RenderGroundImage(view, *m.sampler);
-          m.psnr = Psnr(img, *ref, first);
-          m.ns = NanosecondsPerSample(view, *m.sampler, timing_rows);
-          if (auto s = WriteExrFile(img, {}, absl::StrCat(stem, "_", m.name, ".exr")); !s.ok())
+        for (double yaw : *yaws) {
+          GrazingPlaneView view;
+          view.pitch_deg = theta;
+          view.yaw_deg = yaw;
+          view.aperture = a;
+          const int first = FirstMeasuredRow(view);
+          const Stopwatch ref_timer;
+          bool cached = false;
+          auto ref =
+              CachedReference(view, tex, density->front(), ref_max, ref_min, cache_dir, &cached);
+          if (!ref.ok()) return Fail("bench-filter", std::string(ref.status().message()));
+          std::fprintf(stderr, "  theta %g yaw %g a %g: reference %s in %.1f s\n", theta, yaw, a,
+                       cached ? "from cache" : "computed", ref_timer.Seconds());
+          const std::string stem =
+              absl::StrCat(out_dir, "/", tex.name, "_p", theta, "_y", yaw, "_a", a);
+          struct Mode {
+            const char* name;
+            const TextureSampler* sampler;
+            double psnr = 0, ns = 0;
+          };
+          Mode modes[] = {{"trilinear", &trilinear}, {"aniso", &aniso}, {"oiio", oiio->get()}};
+          std::string band_row = absl::StrCat("| ", tex.name, " | ", theta, " | ", yaw, " | ", a);
+          for (Mode& m : modes) {
+            const Image img = RenderGroundImage(view, *m.sampler);
+            m.psnr = Psnr(img, *ref, first);
+            std::vector<uint64_t> pixels;
+            const std::vector<double> bands =
+                PsnrByFootprintBand(img, *ref, view, tex.image.width(), first, kBandEdges, &pixels);
+            for (size_t k = 0; k < bands.size(); ++k)
+              absl::StrAppend(&band_row, " | ",
+                              pixels[k] == 0 ? "-" : absl::StrFormat("%.2f", bands[k]));
+            m.ns = NanosecondsPerSample(view, *m.sampler, timing_rows);
+            if (auto s = WriteExrFile(img, {}, absl::StrCat(stem, "_", m.name, ".exr")); !s.ok())
+              return Fail("bench-filter", std::string(s.message()));
+          }
+          if (auto s = WriteExrFile(*ref, {}, absl::StrCat(stem, "_reference.exr")); !s.ok())
             return Fail("bench-filter", std::string(s.message()));
+          std::printf(
+              "| %s | %g | %g | %g | %d-%d | %.2f | %.2f | %.2f | %+.2f | %+.2f | %.0f | %.0f | "
+              "%.0f | %.1fx |\n",
+              tex.name.c_str(), theta, yaw, a, first, view.height - 1, modes[0].psnr, modes[1].psnr,
+              modes[2].psnr, modes[1].psnr - modes[2].psnr, modes[1].psnr - modes[0].psnr,
+              modes[0].ns, modes[1].ns, modes[2].ns, modes[2].ns / modes[1].ns);
+          std::fflush(stdout);
+          band_rows.push_back(band_row + " |");
         }
-        if (auto s = WriteExrFile(*ref, {}, absl::StrCat(stem, "_reference.exr")); !s.ok())
-          return Fail("bench-filter", std::string(s.message()));
-        std::printf(
-            "| %s | %g | %g | %d-%d | %.2f | %.2f | %.2f | %+.2f | %+.2f | %.0f | %.0f | "
-            "%.0f | %.1fx |\n",
-            tex.name.c_str(), theta, a, first, view.height - 1, modes[0].psnr, modes[1].psnr,
-            modes[2].psnr, modes[1].psnr - modes[2].psnr, modes[1].psnr - modes[0].psnr,
-            modes[0].ns, modes[1].ns, modes[2].ns, modes[2].ns / modes[1].ns);
-        std::fflush(stdout);
       }
     }
   }
+  std::printf(
+      "\nPSNR by footprint length (texels a pixel step spans), trilinear / aniso / oiio:\n\n"
+      "| texture | theta | yaw | a | tri < 2 | tri 2-4 | tri 4-16 | tri >= 16 | aniso < 2 | "
+      "aniso 2-4 | aniso 4-16 | aniso >= 16 | oiio < 2 | oiio 2-4 | oiio 4-16 | oiio >= 16 |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& row : band_rows) std::printf("%s\n", row.c_str());
   return 0;
 }
 
