@@ -212,30 +212,35 @@ bool HaveAvx2() { return false; }
 
 ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size) {
   // seed 000, eq. 2: one pixel step of the paper's 2 x 2 aperture is half the a-scaled
-  // derivative (a = 2); in texel units.
+  // derivative (a = 2); in texel units. The pixel's aperture is then the parallelogram
+  // {s X + t Y : |s|, |t| <= 1} with X = (dUx, dVx), Y = (dUy, dVy).
   const double s = 0.5 * texture_size;
   const double dUx = f.dudx * s, dVx = f.dvdx * s, dUy = f.dudy * s, dVy = f.dvdy * s;
   ApertureShape out;
   if (!std::isfinite(dUx) || !std::isfinite(dVx) || !std::isfinite(dUy) || !std::isfinite(dVy))
     return out;
-  // seed 000, eq. 3: side lengths of the pixel parallelogram (about 6% error).
-  const double aUx = std::abs(dUx), aVx = std::abs(dVx), aUy = std::abs(dUy), aVy = std::abs(dVy);
-  const double Dx = std::max(aUx, aVx) + 0.5 * std::min(aUx, aVx);
-  const double Dy = std::max(aUy, aVy) + 0.5 * std::min(aUy, aVy);
-  if (Dx == 0 && Dy == 0) return out;
-  // seed 000, eq. 4: the longer side (the y step if Dy >= Dx, else the x step) gives the tilt
-  // axis and tangent; the other side gives L.
-  const bool long_is_y = Dy >= Dx;
-  const double lU = long_is_y ? dUy : dUx, lV = long_is_y ? dVy : dVx;  // long side
-  const double oU = long_is_y ? dUx : dUy, oV = long_is_y ? dVx : dVy;  // other side
-  // Selects rather than branches: the axis changes from sample to sample.
-  const bool along_u = std::abs(lU) >= std::abs(lV);
-  const double major_l = along_u ? lU : lV, minor_l = along_u ? lV : lU;
-  const double major_o = along_u ? oU : oV, minor_o = along_u ? oV : oU;
+  // The table's copies are parallelograms with a pair of sides parallel to a texture axis: half
+  // extent H along the major axis with slope tg, half thickness L along the minor one, i.e.
+  // {s H (1, tg) + t L (0, 1)} (axes named major, minor). Seed 000 reads H, L and tg off the
+  // pixel parallelogram's bounding extents (eq. 3-4), which depend on how the footprint is turned
+  // against the texture: a square footprint turned 45 degrees gets a copy of twice its area.
+  // Our reading (issue 22): take the copy with the pixel parallelogram's second moments,
+  //   H^2 (1, tg) (1, tg)^T + L^2 (0, 1) (0, 1)^T = X X^T + Y Y^T,
+  // the Cholesky factor of the right side: H^2 = M_major, tg = M_cross / M_major,
+  // L = |X x Y| / H. The copy then has the pixel's area and its variance in every direction, so
+  // a footprint and the same footprint turned get copies of equal area and shape; along a
+  // texture axis (Y parallel to the major axis, or X and Y along the axes) it is the paper's.
+  // The major axis is the one with the larger moment, so |tg| <= 1 as the table's tilts need.
+  const double Muu = dUx * dUx + dUy * dUy, Mvv = dVx * dVx + dVy * dVy;
+  const double Muv = dUx * dVx + dUy * dVy;
+  const double area = std::abs(dUx * dVy - dVx * dUy);  // |X x Y|
+  if (Muu == 0 && Mvv == 0) return out;
+  const bool along_u = Muu >= Mvv;
+  const double major = along_u ? Muu : Mvv;
   out.axis = along_u ? TiltAxis::kU : TiltAxis::kV;
-  out.H = along_u ? aUx + aUy : aVx + aVy;
-  out.tg = minor_l / major_l;
-  out.L = std::abs(minor_o - major_o * out.tg);
+  out.H = std::sqrt(major);
+  out.tg = Muv / major;
+  out.L = area / out.H;
   return out;
 }
 

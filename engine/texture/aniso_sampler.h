@@ -18,8 +18,9 @@ struct ApertureShape {
   double H = 0, L = 0, tg = 0;
 };
 
-// seed 000, eq. 3-4, from a footprint whose derivatives are in repeats per pixel times the
-// aperture a (the paper's 2 x 2 aperture is a = 2, derivatives of one pixel step).
+// The table copy for a footprint whose derivatives are in repeats per pixel times the aperture a
+// (the paper's 2 x 2 aperture is a = 2, derivatives of one pixel step): seed 000, eq. 2-4 read as
+// the parallelogram with the pixel's second moments (rotation-invariant; see the definition).
 ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size);
 
 // The copies one sample reads and their weights (seed 000, eq. 5).

@@ -34,10 +34,12 @@ TEST(AnisoAperture, AxisTangentAndSidesAt0_45_90DegreesAndMirrored) {
       // Long side (the y step) along U: 0 degrees, and mirrored.
       {0, 1, 8, 0, TiltAxis::kU, 8, 1, 0},
       {0, 1, -8, 0, TiltAxis::kU, 8, 1, 0},
-      // 45 degrees and its mirror images.
-      {1, -1, 8, 8, TiltAxis::kU, 9, 2, 1},
-      {1, 1, 8, -8, TiltAxis::kU, 9, 2, -1},
-      {-1, -1, -8, 8, TiltAxis::kU, 9, 2, -1},
+      // 45 degrees and its mirror images: the parallelogram with the pixel's second moments,
+      // H^2 = 65, tg = +-63 / 65, L = |X x Y| / H = 16 / sqrt(65) (the paper's bounding extents
+      // gave H = 9, L = 2, tg = +-1: 1.12x the area).
+      {1, -1, 8, 8, TiltAxis::kU, std::sqrt(65.0), 16 / std::sqrt(65.0), 63.0 / 65},
+      {1, 1, 8, -8, TiltAxis::kU, std::sqrt(65.0), 16 / std::sqrt(65.0), -63.0 / 65},
+      {-1, -1, -8, 8, TiltAxis::kU, std::sqrt(65.0), 16 / std::sqrt(65.0), -63.0 / 65},
       // 90 degrees: along V.
       {1, 0, 0, 8, TiltAxis::kV, 8, 1, 0},
       {1, 0, 0, -8, TiltAxis::kV, 8, 1, 0},
@@ -58,6 +60,48 @@ TEST(AnisoAperture, AxisTangentAndSidesAt0_45_90DegreesAndMirrored) {
   }
   EXPECT_EQ(ApertureFromFootprint(Footprint(0, 0, 0, 0), kN).axis, TiltAxis::kNone);
   EXPECT_EQ(ApertureFromFootprint(Footprint(NAN, 0, 1, 0), kN).axis, TiltAxis::kNone);
+}
+
+// Issue 22: a footprint and the same footprint turned by any angle get copies of the same area
+// (the pixel parallelogram's, |X x Y|) and the same second moments, turned with it.
+TEST(AnisoAperture, TurnedFootprintsGetCopiesOfEqualAreaAndShape) {
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> side(-40, 40), turn(0, 2 * M_PI);
+  // The copy's moment matrix in (u, v): H^2 (1, tg)(1, tg)^T + L^2 (0, 1)(0, 1)^T along its axis.
+  struct Moments {
+    double uu, uv, vv;
+  };
+  auto moments = [](const ApertureShape& a) {
+    const double major = a.H * a.H, cross = a.H * a.H * a.tg;
+    const double minor = a.H * a.H * a.tg * a.tg + a.L * a.L;
+    return a.axis == TiltAxis::kU ? Moments{major, cross, minor} : Moments{minor, cross, major};
+  };
+  int checked = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double x[2] = {side(rng), side(rng)}, y[2] = {side(rng), side(rng)};
+    const double area = std::abs(x[0] * y[1] - x[1] * y[0]);
+    if (area < 1) continue;  // nearly degenerate: float derivatives lose the area's digits
+    const ApertureShape a = ApertureFromFootprint(Footprint(x[0], x[1], y[0], y[1]), kN);
+    const double t = turn(rng), c = std::cos(t), s = std::sin(t);
+    const ApertureShape b =
+        ApertureFromFootprint(Footprint(c * x[0] - s * x[1], s * x[0] + c * x[1],
+                                        c * y[0] - s * y[1], s * y[0] + c * y[1]),
+                              kN);
+    ASSERT_NE(a.axis, TiltAxis::kNone);
+    // Areas equal the pixel's, to the float rounding of the footprint's derivatives.
+    const double tolerance = 1e-5 * (std::hypot(x[0], x[1]) * std::hypot(y[0], y[1]));
+    EXPECT_NEAR(a.H * a.L, area, tolerance);
+    EXPECT_NEAR(b.H * b.L, area, tolerance);
+    // The same moments, turned: trace and determinant are invariant.
+    const Moments ma = moments(a), mb = moments(b);
+    const double scale = ma.uu + ma.vv;
+    EXPECT_NEAR(ma.uu + ma.vv, mb.uu + mb.vv, 1e-5 * scale);
+    EXPECT_NEAR(ma.uu * ma.vv - ma.uv * ma.uv, mb.uu * mb.vv - mb.uv * mb.uv, 1e-5 * scale * scale);
+    EXPECT_LE(std::abs(a.tg), 1.0);
+    EXPECT_LE(std::abs(b.tg), 1.0);
+    ++checked;
+  }
+  EXPECT_GT(checked, 1900);
 }
 
 class AnisoSamplerTest : public testing::Test {
