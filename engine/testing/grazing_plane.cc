@@ -47,6 +47,8 @@ bool GroundPoint(const GrazingPlaneView& view, double px, double py, double* u, 
   *u = kWorldToRepeats * dx / q;
   *v = kWorldToRepeats * (-dy * fr.s - fr.c) / q;
   if (view.yaw_deg != 0) fr.Turn(u, v);
+  *u += view.origin_u;
+  *v += view.origin_v;
   return true;
 }
 
@@ -69,6 +71,8 @@ bool GroundFootprint(const GrazingPlaneView& view, int i, int j, TextureFootprin
     fr.Turn(&dudx, &dvdx);
     fr.Turn(&dudy, &dvdy);
   }
+  u += view.origin_u;
+  v += view.origin_v;
   f->u = u - std::floor(u);
   f->v = v - std::floor(v);
   f->dudx = static_cast<float>(dudx);

@@ -22,6 +22,9 @@ struct GrazingPlaneView {
   // The camera turned about the vertical by this much (the texture's axes turned the other way
   // under it): 0 looks along the texture's v axis (issue 22's yaw sweep).
   double yaw_deg = 0;
+  // The texture coordinates (repeats) of the ground under the camera: moving the camera over the
+  // plane (bench-flicker's fly-over) moves them.
+  double origin_u = 0, origin_v = 0;
 };
 
 // Texture coordinates (repeats, not wrapped) of the ground under image point (px, py) (pixel

@@ -15,6 +15,7 @@ namespace {
 
 std::vector<TexCommand> AllCommands() {
   std::vector<TexCommand> all = PrefilteredTableCommands();
+  for (const TexCommand& c : FilterFlickerCommands()) all.push_back(c);
   for (const TexCommand& c : PackedTextureCommands()) all.push_back(c);
   for (const TexCommand& c : StoreCommands()) all.push_back(c);
   return all;

@@ -13,6 +13,8 @@ struct TexCommand {
 
 // Prefiltered anisotropic tables (seed 000): prefilter, info, bench-filter.
 std::vector<TexCommand> PrefilteredTableCommands();
+// The filters' temporal stability benchmark: bench-flicker.
+std::vector<TexCommand> FilterFlickerCommands();
 // Packed vector textures (seed 001): pack, unpack, info, bench-packed.
 std::vector<TexCommand> PackedTextureCommands();
 // The machine's shared texture store: bake, store.

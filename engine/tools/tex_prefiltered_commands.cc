@@ -26,57 +26,11 @@
 #include "texture/prefiltered_table.h"
 #include "texture/prefiltered_table_builder.h"
 #include "texture/table_column_kernels.h"
+#include "tools/tex_bench_args.h"
 #include "tools/tex_commands.h"
 
 namespace aperture {
 namespace {
-
-int Fail(const char* command, const std::string& message) {
-  std::fprintf(stderr, "aperture-tex %s: %s\n", command, message.c_str());
-  return 2;
-}
-
-// `--name value` options after positional arguments; returns false on an unknown option.
-struct Args {
-  std::vector<std::string> positional;
-  std::vector<std::pair<std::string, std::string>> options;
-  bool help = false;
-
-  std::string Get(const std::string& name, const std::string& fallback) const {
-    for (const auto& [k, v] : options)
-      if (k == name) return v;
-    return fallback;
-  }
-};
-
-absl::StatusOr<Args> ParseArgs(int argc, char** argv, const std::vector<std::string>& known) {
-  Args args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      args.help = true;
-    } else if (a.rfind("-", 0) == 0 && a.size() > 1) {
-      if (std::find(known.begin(), known.end(), a) == known.end())
-        return absl::InvalidArgumentError(absl::StrCat("unknown option '", a, "'"));
-      if (i + 1 >= argc) return absl::InvalidArgumentError(absl::StrCat(a, " needs a value"));
-      args.options.emplace_back(a, argv[++i]);
-    } else {
-      args.positional.push_back(a);
-    }
-  }
-  return args;
-}
-
-absl::StatusOr<std::vector<double>> ParseNumbers(const std::string& text, const char* what) {
-  std::vector<double> out;
-  for (absl::string_view part : absl::StrSplit(text, ',')) {
-    double value = 0;
-    if (!absl::SimpleAtod(part, &value) || !std::isfinite(value))
-      return absl::InvalidArgumentError(absl::StrCat(what, ": '", part, "' is not a number"));
-    out.push_back(value);
-  }
-  return out;
-}
 
 // ---- prefilter -------------------------------------------------------------------------------
 
@@ -153,30 +107,6 @@ int RunInfo(int argc, char** argv) {
 }
 
 // ---- bench-filter ----------------------------------------------------------------------------
-
-struct BenchTexture {
-  std::string name;
-  Image image;
-};
-
-absl::StatusOr<std::vector<BenchTexture>> LoadBenchTextures(const std::string& list,
-                                                            const std::string& data_dir) {
-  std::vector<BenchTexture> out;
-  for (absl::string_view part : absl::StrSplit(list, ',')) {
-    const std::string name(part);
-    if (name == "checker") {
-      out.push_back({"checker", MakeCheckerboard(1024, 8, {1, 1, 1, 1}, {0, 0, 0, 1})});
-      continue;
-    }
-    std::string path = name;
-    if (!std::filesystem::exists(path)) path = (std::filesystem::path(data_dir) / name).string();
-    if (!std::filesystem::exists(path)) path += ".png";
-    auto image = LoadImageFile(path);
-    if (!image.ok()) return image.status();
-    out.push_back({std::filesystem::path(path).stem().string(), ResizeToPowerOfTwo(*image)});
-  }
-  return out;
-}
 
 absl::StatusOr<Image> CachedReference(const GrazingPlaneView& view, const BenchTexture& texture,
                                       double density, int max_per_side, int min_per_side,

@@ -1,0 +1,68 @@
+#include "tools/tex_bench_args.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "texture/image_file.h"
+
+namespace aperture {
+
+int Fail(const char* command, const std::string& message) {
+  std::fprintf(stderr, "aperture-tex %s: %s\n", command, message.c_str());
+  return 2;
+}
+
+absl::StatusOr<Args> ParseArgs(int argc, char** argv, const std::vector<std::string>& known) {
+  Args args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      args.help = true;
+    } else if (a.rfind("-", 0) == 0 && a.size() > 1) {
+      if (std::find(known.begin(), known.end(), a) == known.end())
+        return absl::InvalidArgumentError(absl::StrCat("unknown option '", a, "'"));
+      if (i + 1 >= argc) return absl::InvalidArgumentError(absl::StrCat(a, " needs a value"));
+      args.options.emplace_back(a, argv[++i]);
+    } else {
+      args.positional.push_back(a);
+    }
+  }
+  return args;
+}
+
+absl::StatusOr<std::vector<double>> ParseNumbers(const std::string& text, const char* what) {
+  std::vector<double> out;
+  for (absl::string_view part : absl::StrSplit(text, ',')) {
+    double value = 0;
+    if (!absl::SimpleAtod(part, &value) || !std::isfinite(value))
+      return absl::InvalidArgumentError(absl::StrCat(what, ": '", part, "' is not a number"));
+    out.push_back(value);
+  }
+  return out;
+}
+
+absl::StatusOr<std::vector<BenchTexture>> LoadBenchTextures(const std::string& list,
+                                                            const std::string& data_dir) {
+  std::vector<BenchTexture> out;
+  for (absl::string_view part : absl::StrSplit(list, ',')) {
+    const std::string name(part);
+    if (name == "checker") {
+      out.push_back({"checker", MakeCheckerboard(1024, 8, {1, 1, 1, 1}, {0, 0, 0, 1})});
+      continue;
+    }
+    std::string path = name;
+    if (!std::filesystem::exists(path)) path = (std::filesystem::path(data_dir) / name).string();
+    if (!std::filesystem::exists(path)) path += ".png";
+    auto image = LoadImageFile(path);
+    if (!image.ok()) return image.status();
+    out.push_back({std::filesystem::path(path).stem().string(), ResizeToPowerOfTwo(*image)});
+  }
+  return out;
+}
+
+}  // namespace aperture
