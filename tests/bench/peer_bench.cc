@@ -6,7 +6,11 @@
 //   plane-T  DESIGN.md's grazing plane pitched down T degrees, 1024^2 checkerboard of 8 x 8
 //            cells repeated every 4 m: llvmpipe trilinear against Aperture trilinear and aniso.
 //
+//   filter   with --filter_yaws: bench-filter's plane turned by each yaw, llvmpipe trilinear and
+//            anisotropic 16 against Aperture's filters and OpenImageIO, PSNR against the box.
+//
 // Usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] [--psnr_pixels P]
+//                   [--filter_yaws Y,Y,... [--filter_pitch T]]
 // (scripts/bench-peers.sh builds and runs it with LP_NUM_THREADS=2; docs/BENCHMARKS.md.)
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -31,6 +35,11 @@
 #include "scene/scene_builder.h"
 #include "support/reference_render.h"
 #include "support/test_scenes.h"
+#include "testing/grazing_plane.h"
+#include "texture/aniso_sampler.h"
+#include "texture/mip_pyramid.h"
+#include "texture/oiio_sampler.h"
+#include "texture/prefiltered_table_builder.h"
 
 namespace aperture {
 namespace {
@@ -91,10 +100,12 @@ class Peer {
 
   // Draws with `draw` into the window (1x) or the 4x MSAA buffer resolved into the window;
   // returns milliseconds from clear to glFinish.
-  double Frame(bool msaa, const std::function<void()>& draw) {
+  // `width` x `height`: the lower-left part of the window only (the filter views' 1024 x 768).
+  double Frame(bool msaa, const std::function<void()>& draw, int width = kWidth,
+               int height = kHeight) {
     const double start = Now();
     glBindFramebuffer(GL_FRAMEBUFFER, msaa ? msaa_fbo_ : 0);
-    glViewport(0, 0, kWidth, kHeight);
+    glViewport(0, 0, width, height);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     draw();
@@ -109,12 +120,13 @@ class Peer {
     return Now() - start;
   }
 
-  // The window as linear RGB floats, row 0 at the top (OpenGL's row 0 is the bottom).
-  Image Read() const {
-    Image image = Image::Uninitialized(kWidth, kHeight);
-    for (int y = 0; y < kHeight; ++y) {
-      for (int x = 0; x < kWidth; ++x) {
-        const uint32_t p = pixels_[static_cast<size_t>(kHeight - 1 - y) * kWidth + x];
+  // The window (or its lower-left width x height) as linear RGB floats, row 0 at the top
+  // (OpenGL's row 0 is the bottom).
+  Image Read(int width = kWidth, int height = kHeight) const {
+    Image image = Image::Uninitialized(width, height);
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const uint32_t p = pixels_[static_cast<size_t>(height - 1 - y) * kWidth + x];
         image.at(x, y) = {(p & 0xff) / 255.0f, ((p >> 8) & 0xff) / 255.0f,
                           ((p >> 16) & 0xff) / 255.0f, 1};
       }
@@ -129,10 +141,10 @@ class Peer {
 };
 
 // The same perspective as Aperture's camera: 60 degrees vertical, near 0.1 (as Camera's).
-void LoadProjection(double near, double far) {
+void LoadProjection(double near, double far, double aspect = double(kWidth) / kHeight) {
   glMatrixMode(GL_PROJECTION);
   glLoadIdentity();
-  const double top = near * std::tan(kFovDeg * M_PI / 360), right = top * kWidth / kHeight;
+  const double top = near * std::tan(kFovDeg * M_PI / 360), right = top * aspect;
   glFrustum(-right, right, -top, top, near, far);
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
@@ -156,6 +168,8 @@ struct Options {
   std::vector<int> tris = {10000, 100000};
   std::vector<double> planes = {5, 20, 60};
   int psnr_pixels = 3000;
+  std::vector<double> filter_yaws;  // empty: no filter-quality table
+  double filter_pitch = 5;
 };
 
 double AperturePlaneOrTrisMs(const Scene& scene, const Camera& camera, RenderSettings settings,
@@ -367,6 +381,105 @@ void RunPlane(Peer& peer, double pitch_deg, const Options& o) {
   std::fflush(stdout);
 }
 
+// The grazing plane of `aperture-tex bench-filter` (1024 x 768, a = 1, the 1024^2 checkerboard
+// of 8 x 8 cells, u = x / 4, v = z / 4 turned by the yaw) from each of --filter_yaws: llvmpipe's
+// trilinear and anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO, every image
+// scored against the same supersampled pixel box (at least 16 x 16 strata a pixel, 4 per texel of
+// extent per side) over the rows bench-filter measures (issue 22, part 1).
+void RunFilterQuality(Peer& peer, const Options& o) {
+  const Image checker = MakeCheckerboard(1024, 8, {1, 1, 1, 1}, {0, 0, 0, 1});
+  const int n = checker.width();
+  std::vector<uint8_t> texels(static_cast<size_t>(n) * n * 4);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Rgba& c = checker.at(i, j);
+      uint8_t* t = &texels[(static_cast<size_t>(j) * n + i) * 4];
+      t[0] = static_cast<uint8_t>(std::lround(c.r * 255)),
+      t[1] = static_cast<uint8_t>(std::lround(c.g * 255));
+      t[2] = static_cast<uint8_t>(std::lround(c.b * 255)), t[3] = 255;
+    }
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  auto block = BuildPrefilteredTable(checker);
+  if (!block.ok()) std::exit(1);
+  auto table = block->View();
+  auto oiio = OiioSampler::Create(checker);
+  if (!table.ok() || !oiio.ok()) std::exit(1);
+  const MipPyramid pyramid(checker);
+  const TrilinearSampler trilinear(pyramid);
+  const AnisoSampler aniso(*table);
+
+  // The plane in tiles growing away from the camera, each with its texture coordinates moved by
+  // whole repeats to near zero: one quad 20 km wide would carry coordinates of +-5000 repeats,
+  // and llvmpipe's float interpolation of them is off by a third of a texel near the camera.
+  std::vector<double> edges = {0};
+  for (double e = 0.25; e <= 32768; e *= 2) edges.push_back(e), edges.insert(edges.begin(), -e);
+  std::printf(
+      "\nfilter quality: checkerboard, 1024x768, pitch %g, a = 1, PSNR against the pixel box\n\n"
+      "| yaw | llvmpipe trilinear | llvmpipe aniso 16 | Aperture trilinear | Aperture aniso | "
+      "OpenImageIO | aniso - best peer |\n|---|---:|---:|---:|---:|---:|---:|\n",
+      o.filter_pitch);
+  for (double yaw : o.filter_yaws) {
+    GrazingPlaneView view;
+    view.pitch_deg = o.filter_pitch;
+    view.yaw_deg = yaw;
+    view.aperture = 1;
+    const int first = FirstMeasuredRow(view);
+    const Image reference = RenderGroundReference(view, checker, 4, 128, 16);
+    const double c = std::cos(yaw * M_PI / 180), s = std::sin(yaw * M_PI / 180);
+    float max_anisotropy = 1;
+    auto draw = [&] {
+      glBindTexture(GL_TEXTURE_2D, texture);
+      glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY_EXT, max_anisotropy);
+      LoadProjection(0.1, 100000, double(view.width) / view.height);
+      glRotated(o.filter_pitch, 1, 0, 0);
+      glTranslated(0, -1, 0);
+      glEnable(GL_TEXTURE_2D);
+      glColor3f(1, 1, 1);
+      glBegin(GL_QUADS);
+      for (size_t a = 0; a + 1 < edges.size(); ++a)
+        for (size_t b = 0; b + 1 < edges.size(); ++b) {
+          const double x0 = edges[a], x1 = edges[a + 1], z0 = edges[b], z1 = edges[b + 1];
+          // (u, v) = R(yaw) (x / 4, z / 4), as GroundPoint turns them.
+          auto tex = [&](double x, double z, double* u, double* v) {
+            *u = 0.25 * (c * x - s * z), *v = 0.25 * (s * x + c * z);
+          };
+          double cu, cv;
+          tex(0.5 * (x0 + x1), 0.5 * (z0 + z1), &cu, &cv);
+          cu = std::floor(cu), cv = std::floor(cv);
+          for (const auto& [x, z] : {std::pair{x0, z1}, {x1, z1}, {x1, z0}, {x0, z0}}) {
+            double u, v;
+            tex(x, z, &u, &v);
+            glTexCoord2d(u - cu, v - cv);
+            glVertex3d(x, 0, z);
+          }
+        }
+      glEnd();
+      glDisable(GL_TEXTURE_2D);
+    };
+    double gl[2];
+    for (int k = 0; k < 2; ++k) {
+      max_anisotropy = k == 0 ? 1 : 16;
+      peer.Frame(false, draw, view.width, view.height);
+      gl[k] = Psnr(peer.Read(view.width, view.height), reference, first);
+    }
+    const double tri = Psnr(RenderGroundImage(view, trilinear), reference, first);
+    const double ani = Psnr(RenderGroundImage(view, aniso), reference, first);
+    const double oi = Psnr(RenderGroundImage(view, **oiio), reference, first);
+    std::printf("| %g | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f |\n", yaw, gl[0], gl[1], tri, ani,
+                oi, ani - std::max({gl[0], gl[1], oi}));
+    std::fflush(stdout);
+  }
+  glDeleteTextures(1, &texture);
+}
+
 template <typename T>
 std::vector<T> ParseList(const char* s) {
   std::vector<T> out;
@@ -394,10 +507,14 @@ int main(int argc, char** argv) {
       o.planes = aperture::ParseList<double>(argv[i + 1]);
     } else if (flag == "--psnr_pixels") {
       o.psnr_pixels = std::max(1, std::atoi(argv[i + 1]));
+    } else if (flag == "--filter_yaws") {
+      o.filter_yaws = aperture::ParseList<double>(argv[i + 1]);
+    } else if (flag == "--filter_pitch") {
+      o.filter_pitch = std::atof(argv[i + 1]);
     } else {
       std::fprintf(stderr,
                    "usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] "
-                   "[--psnr_pixels P]\n");
+                   "[--psnr_pixels P] [--filter_yaws Y,Y,... [--filter_pitch T]]\n");
       return 2;
     }
   }
@@ -412,5 +529,6 @@ int main(int argc, char** argv) {
       o.rounds, std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(unset)");
   for (int n : o.tris) aperture::RunTris(peer, n, o);
   for (double t : o.planes) aperture::RunPlane(peer, t, o);
+  if (!o.filter_yaws.empty()) aperture::RunFilterQuality(peer, o);
   return 0;
 }
