@@ -6,6 +6,7 @@
 #   scripts/bench-peers.sh                       # tris-10k and tris-100k, planes at 5, 20, 60 deg
 #   ROUNDS=7 TRIS=10000,100000,1000000 scripts/bench-peers.sh
 #   PLANES=5 TRIS=10000 scripts/bench-peers.sh
+#   FILTER_YAWS=0,15,30,45,60,90 PLANES= TRIS= scripts/bench-peers.sh   # filter quality only (issue 22)
 #
 # OSMesa (Debian's libosmesa6-dev) is a benchmark dependency, not a product one: installed here
 # when missing, then the build is reconfigured so that the peer_bench target exists.
@@ -22,5 +23,6 @@ fi
 scripts/build.sh >/dev/null
 cmake build >/dev/null   # picks up OSMesa if it was just installed
 cmake --build build -j "$(nproc)" --target peer_bench >/dev/null
-LP_NUM_THREADS=2 build/tests/peer_bench --rounds "${ROUNDS:-5}" --tris "${TRIS:-10000,100000}" \
-  --planes "${PLANES:-5,20,60}" --psnr_pixels "${PSNR_PIXELS:-3000}" 2>&1 | grep -v '\[info\]'
+LP_NUM_THREADS=2 build/tests/peer_bench --rounds "${ROUNDS:-5}" --tris "${TRIS-10000,100000}" \
+  --planes "${PLANES-5,20,60}" --psnr_pixels "${PSNR_PIXELS:-3000}" \
+  --filter_yaws "${FILTER_YAWS:-}" 2>&1 | grep -v '\[info\]'
