@@ -192,6 +192,21 @@ double Psnr(const Image& a, const Image& b, int first_row) {
   return mse == 0 ? INFINITY : 10.0 * std::log10(1.0 / mse);
 }
 
+std::vector<double> PsnrByRow(const Image& a, const Image& b, int first_row) {
+  std::vector<double> rows(a.height(), NAN);
+  for (int j = std::max(0, first_row); j < a.height(); ++j) {
+    double sum = 0;
+    for (int i = 0; i < a.width(); ++i) {
+      const Rgba &p = a.at(i, j), &q = b.at(i, j);
+      sum += double(p.r - q.r) * (p.r - q.r) + double(p.g - q.g) * (p.g - q.g) +
+             double(p.b - q.b) * (p.b - q.b);
+    }
+    const double mse = sum / (3.0 * a.width());
+    rows[j] = mse == 0 ? INFINITY : 10.0 * std::log10(1.0 / mse);
+  }
+  return rows;
+}
+
 double FootprintLength(const GrazingPlaneView& view, int i, int j, int texture_size) {
   TextureFootprint f;
   if (!GroundFootprint(view, i, j, &f)) return 0;

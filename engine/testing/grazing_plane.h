@@ -48,6 +48,8 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
                             int max_per_side, int min_per_side = 2);
 // PSNR (peak 1) over RGB of rows [first_row, height).
 double Psnr(const Image& a, const Image& b, int first_row);
+// PSNR of each row (RGB, peak 1); rows before `first_row` are NaN.
+std::vector<double> PsnrByRow(const Image& a, const Image& b, int first_row);
 // The longer of pixel (i, j)'s two one-pixel steps in texels of a texture_size texture (0 above
 // the horizon).
 double FootprintLength(const GrazingPlaneView& view, int i, int j, int texture_size);

@@ -26,6 +26,7 @@
 #include "texture/prefiltered_table.h"
 #include "texture/prefiltered_table_builder.h"
 #include "texture/table_column_kernels.h"
+#include "tools/row_plot.h"
 #include "tools/tex_bench_args.h"
 #include "tools/tex_commands.h"
 
@@ -143,7 +144,9 @@ int RunBenchFilter(int argc, char** argv) {
         "--yaws turns the camera about the vertical (0: along the texture's v axis); the\n"
         "reference takes D strata per texel of extent per side, at least --ref-min (2) and at\n"
         "most --ref-max (128).\n"
-        "Writes every image as EXR under --out (default out/bench-filter); references are\n"
+        "Writes every image as EXR under --out (default out/bench-filter), and per view a plot\n"
+        "of PSNR by row (_rows.png: trilinear blue, aniso red, oiio green; grid every 10 dB,\n"
+        "rows from the first measured one, left, to the bottom); references are\n"
         "cached under --cache (default out/bench-filter/cache).\n");
     return args->help ? 0 : 2;
   }
@@ -224,9 +227,14 @@ int RunBenchFilter(int argc, char** argv) {
           };
           Mode modes[] = {{"trilinear", &trilinear}, {"aniso", &aniso}, {"oiio", oiio->get()}};
           std::string band_row = absl::StrCat("| ", tex.name, " | ", theta, " | ", yaw, " | ", a);
+          // Per-row PSNR, one line per mode: trilinear blue, aniso red, oiio green.
+          const Rgba kColours[] = {
+              {0.1f, 0.2f, 0.9f, 1}, {0.9f, 0.1f, 0.1f, 1}, {0.1f, 0.6f, 0.1f, 1}};
+          std::vector<PlotSeries> rows;
           for (Mode& m : modes) {
             const Image img = RenderGroundImage(view, *m.sampler);
             m.psnr = Psnr(img, *ref, first);
+            rows.push_back({PsnrByRow(img, *ref, first), kColours[rows.size()]});
             std::vector<uint64_t> pixels;
             const std::vector<double> bands =
                 PsnrByFootprintBand(img, *ref, view, tex.image.width(), first, kBandEdges, &pixels);
@@ -238,6 +246,10 @@ int RunBenchFilter(int argc, char** argv) {
               return Fail("bench-filter", std::string(s.message()));
           }
           if (auto s = WriteExrFile(*ref, {}, absl::StrCat(stem, "_reference.exr")); !s.ok())
+            return Fail("bench-filter", std::string(s.message()));
+          if (auto s =
+                  WritePngPreview(PlotRows(rows, first, 800, 300), absl::StrCat(stem, "_rows.png"));
+              !s.ok())
             return Fail("bench-filter", std::string(s.message()));
           std::printf(
               "| %s | %g | %g | %g | %d-%d | %.2f | %.2f | %.2f | %+.2f | %+.2f | %.0f | %.0f | "
