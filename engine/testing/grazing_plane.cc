@@ -192,6 +192,24 @@ double Psnr(const Image& a, const Image& b, int first_row) {
   return mse == 0 ? INFINITY : 10.0 * std::log10(1.0 / mse);
 }
 
+double MeanAbsoluteChange(const Image& a, const Image& a_prev, const Image* r, const Image* r_prev,
+                          int first_row) {
+  double sum = 0;
+  uint64_t count = 0;
+  for (int j = std::max(0, first_row); j < a.height(); ++j)
+    for (int i = 0; i < a.width(); ++i) {
+      const Rgba &p = a.at(i, j), &q = a_prev.at(i, j);
+      double d[3] = {double(p.r) - q.r, double(p.g) - q.g, double(p.b) - q.b};
+      if (r != nullptr) {
+        const Rgba &s = r->at(i, j), &w = r_prev->at(i, j);
+        d[0] -= double(s.r) - w.r, d[1] -= double(s.g) - w.g, d[2] -= double(s.b) - w.b;
+      }
+      sum += std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]);
+      count += 3;
+    }
+  return count ? sum / static_cast<double>(count) : 0;
+}
+
 std::vector<double> PsnrByRow(const Image& a, const Image& b, int first_row) {
   std::vector<double> rows(a.height(), NAN);
   for (int j = std::max(0, first_row); j < a.height(); ++j) {

@@ -48,6 +48,11 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
                             int max_per_side, int min_per_side = 2);
 // PSNR (peak 1) over RGB of rows [first_row, height).
 double Psnr(const Image& a, const Image& b, int first_row);
+// Mean over rows [first_row, height) and RGB of |a - a_prev|, or with a reference sequence
+// (r, r_prev not null) of |(a - a_prev) - (r - r_prev)|: the change between two frames a filter
+// makes beyond the reference's (bench-flicker's excess flicker).
+double MeanAbsoluteChange(const Image& a, const Image& a_prev, const Image* r, const Image* r_prev,
+                          int first_row);
 // PSNR of each row (RGB, peak 1); rows before `first_row` are NaN.
 std::vector<double> PsnrByRow(const Image& a, const Image& b, int first_row);
 // The longer of pixel (i, j)'s two one-pixel steps in texels of a texture_size texture (0 above

@@ -29,26 +29,6 @@ namespace {
 
 constexpr double kWorldToRepeats = 0.25;  // the plane's mapping: u = x / 4, v = z / 4
 
-// Mean over rows [first, height) and RGB of |(a - a_prev) - (r - r_prev)|, where r is null for
-// the plain change |a - a_prev|.
-double MeanChange(const Image& a, const Image& a_prev, const Image* r, const Image* r_prev,
-                  int first) {
-  double sum = 0;
-  uint64_t count = 0;
-  for (int j = first; j < a.height(); ++j)
-    for (int i = 0; i < a.width(); ++i) {
-      const Rgba &p = a.at(i, j), &q = a_prev.at(i, j);
-      double d[3] = {double(p.r) - q.r, double(p.g) - q.g, double(p.b) - q.b};
-      if (r) {
-        const Rgba &s = r->at(i, j), &w = r_prev->at(i, j);
-        d[0] -= double(s.r) - w.r, d[1] -= double(s.g) - w.g, d[2] -= double(s.b) - w.b;
-      }
-      sum += std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]);
-      count += 3;
-    }
-  return count ? sum / static_cast<double>(count) : 0;
-}
-
 struct Track {
   const char* name;
   const TextureSampler* sampler;  // null: the reference
@@ -141,10 +121,12 @@ int RunBenchFlicker(int argc, char** argv) {
     for (Track& track : tracks) {
       Image image = track.sampler ? RenderGroundImage(view, *track.sampler) : ref;
       if (t > 0) {
-        const double change = MeanChange(image, track.previous, nullptr, nullptr, first);
-        const double ref_change = MeanChange(ref, reference.previous, nullptr, nullptr, first);
-        const double excess =
-            track.sampler ? MeanChange(image, track.previous, &ref, &reference.previous, first) : 0;
+        const double change = MeanAbsoluteChange(image, track.previous, nullptr, nullptr, first);
+        const double ref_change =
+            MeanAbsoluteChange(ref, reference.previous, nullptr, nullptr, first);
+        const double excess = track.sampler ? MeanAbsoluteChange(image, track.previous, &ref,
+                                                                 &reference.previous, first)
+                                            : 0;
         const double psnr = Psnr(image, ref, first);
         track.change += change / (frames - 1);
         track.excess += excess / (frames - 1);

@@ -8,9 +8,10 @@
 //
 //   filter   with --filter_yaws: bench-filter's plane turned by each yaw, llvmpipe trilinear and
 //            anisotropic 16 against Aperture's filters and OpenImageIO, PSNR against the box.
+//   flicker  with --flicker_frames N: bench-flicker's turning fly-over with llvmpipe in the run.
 //
 // Usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] [--psnr_pixels P]
-//                   [--filter_yaws Y,Y,... [--filter_pitch T]]
+//                   [--filter_yaws Y,Y,... [--filter_pitch T]] [--flicker_frames N]
 // (scripts/bench-peers.sh builds and runs it with LP_NUM_THREADS=2; docs/BENCHMARKS.md.)
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <thread>
@@ -170,6 +172,7 @@ struct Options {
   int psnr_pixels = 3000;
   std::vector<double> filter_yaws;  // empty: no filter-quality table
   double filter_pitch = 5;
+  int flicker_frames = 0;  // 0: no flicker table
 };
 
 double AperturePlaneOrTrisMs(const Scene& scene, const Camera& camera, RenderSettings settings,
@@ -381,76 +384,78 @@ void RunPlane(Peer& peer, double pitch_deg, const Options& o) {
   std::fflush(stdout);
 }
 
-// The grazing plane of `aperture-tex bench-filter` (1024 x 768, a = 1, the 1024^2 checkerboard
-// of 8 x 8 cells, u = x / 4, v = z / 4 turned by the yaw) from each of --filter_yaws: llvmpipe's
-// trilinear and anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO, every image
-// scored against the same supersampled pixel box (at least 16 x 16 strata a pixel, 4 per texel of
-// extent per side) over the rows bench-filter measures (issue 22, part 1).
-void RunFilterQuality(Peer& peer, const Options& o) {
-  const Image checker = MakeCheckerboard(1024, 8, {1, 1, 1, 1}, {0, 0, 0, 1});
-  const int n = checker.width();
-  std::vector<uint8_t> texels(static_cast<size_t>(n) * n * 4);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const Rgba& c = checker.at(i, j);
-      uint8_t* t = &texels[(static_cast<size_t>(j) * n + i) * 4];
-      t[0] = static_cast<uint8_t>(std::lround(c.r * 255)),
-      t[1] = static_cast<uint8_t>(std::lround(c.g * 255));
-      t[2] = static_cast<uint8_t>(std::lround(c.b * 255)), t[3] = 255;
-    }
-  GLuint texture = 0;
-  glGenTextures(1, &texture);
-  glBindTexture(GL_TEXTURE_2D, texture);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  auto block = BuildPrefilteredTable(checker);
-  if (!block.ok()) std::exit(1);
-  auto table = block->View();
-  auto oiio = OiioSampler::Create(checker);
-  if (!table.ok() || !oiio.ok()) std::exit(1);
-  const MipPyramid pyramid(checker);
-  const TrilinearSampler trilinear(pyramid);
-  const AnisoSampler aniso(*table);
+// The checkerboard of the filter benchmarks (1024^2, 8 x 8 cells) as llvmpipe's texture with its
+// mip-maps and as Aperture's and OpenImageIO's samplers; and the grazing plane drawn through
+// llvmpipe exactly as a GrazingPlaneView sees it (u = x / 4, v = z / 4 turned by the yaw, plus the
+// view's texture origin).
+class FilterPeers {
+ public:
+  explicit FilterPeers(Peer& peer)
+      : peer_(peer),
+        checker_(MakeCheckerboard(1024, 8, {1, 1, 1, 1}, {0, 0, 0, 1})),
+        pyramid_(checker_),
+        trilinear_(pyramid_) {
+    const int n = checker_.width();
+    std::vector<uint8_t> texels(static_cast<size_t>(n) * n * 4);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Rgba& c = checker_.at(i, j);
+        uint8_t* t = &texels[(static_cast<size_t>(j) * n + i) * 4];
+        t[0] = static_cast<uint8_t>(std::lround(c.r * 255));
+        t[1] = static_cast<uint8_t>(std::lround(c.g * 255));
+        t[2] = static_cast<uint8_t>(std::lround(c.b * 255));
+        t[3] = 255;
+      }
+    glGenTextures(1, &texture_);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    auto block = BuildPrefilteredTable(checker_);
+    if (!block.ok()) std::exit(1);
+    block_ = *std::move(block);
+    auto table = block_.View();
+    auto oiio = OiioSampler::Create(checker_);
+    if (!table.ok() || !oiio.ok()) std::exit(1);
+    aniso_ = std::make_unique<AnisoSampler>(*table);
+    oiio_ = *std::move(oiio);
+    // The plane in tiles growing away from the camera, each with its texture coordinates moved
+    // by whole repeats to near zero: one quad 20 km wide would carry coordinates of +-5000
+    // repeats, and llvmpipe's float interpolation of them is off by a third of a texel near the
+    // camera.
+    edges_ = {0};
+    for (double e = 0.25; e <= 32768; e *= 2)
+      edges_.push_back(e), edges_.insert(edges_.begin(), -e);
+  }
+  ~FilterPeers() { glDeleteTextures(1, &texture_); }
 
-  // The plane in tiles growing away from the camera, each with its texture coordinates moved by
-  // whole repeats to near zero: one quad 20 km wide would carry coordinates of +-5000 repeats,
-  // and llvmpipe's float interpolation of them is off by a third of a texel near the camera.
-  std::vector<double> edges = {0};
-  for (double e = 0.25; e <= 32768; e *= 2) edges.push_back(e), edges.insert(edges.begin(), -e);
-  std::printf(
-      "\nfilter quality: checkerboard, 1024x768, pitch %g, a = 1, PSNR against the pixel box\n\n"
-      "| yaw | llvmpipe trilinear | llvmpipe aniso 16 | Aperture trilinear | Aperture aniso | "
-      "OpenImageIO | aniso - best peer |\n|---|---:|---:|---:|---:|---:|---:|\n",
-      o.filter_pitch);
-  for (double yaw : o.filter_yaws) {
-    GrazingPlaneView view;
-    view.pitch_deg = o.filter_pitch;
-    view.yaw_deg = yaw;
-    view.aperture = 1;
-    const int first = FirstMeasuredRow(view);
-    const Image reference = RenderGroundReference(view, checker, 4, 128, 16);
-    const double c = std::cos(yaw * M_PI / 180), s = std::sin(yaw * M_PI / 180);
-    float max_anisotropy = 1;
+  const Image& checker() const { return checker_; }
+  const TextureSampler& trilinear() const { return trilinear_; }
+  const TextureSampler& aniso() const { return *aniso_; }
+  const TextureSampler& oiio() const { return *oiio_; }
+
+  // The view through llvmpipe: trilinear (max_anisotropy 1) or anisotropic.
+  Image Llvmpipe(const GrazingPlaneView& view, float max_anisotropy) {
+    const double c = std::cos(view.yaw_deg * M_PI / 180), s = std::sin(view.yaw_deg * M_PI / 180);
     auto draw = [&] {
-      glBindTexture(GL_TEXTURE_2D, texture);
+      glBindTexture(GL_TEXTURE_2D, texture_);
       glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY_EXT, max_anisotropy);
       LoadProjection(0.1, 100000, double(view.width) / view.height);
-      glRotated(o.filter_pitch, 1, 0, 0);
+      glRotated(view.pitch_deg, 1, 0, 0);
       glTranslated(0, -1, 0);
       glEnable(GL_TEXTURE_2D);
       glColor3f(1, 1, 1);
       glBegin(GL_QUADS);
-      for (size_t a = 0; a + 1 < edges.size(); ++a)
-        for (size_t b = 0; b + 1 < edges.size(); ++b) {
-          const double x0 = edges[a], x1 = edges[a + 1], z0 = edges[b], z1 = edges[b + 1];
-          // (u, v) = R(yaw) (x / 4, z / 4), as GroundPoint turns them.
-          auto tex = [&](double x, double z, double* u, double* v) {
-            *u = 0.25 * (c * x - s * z), *v = 0.25 * (s * x + c * z);
-          };
+      // (u, v) = R(yaw) (x / 4, z / 4) + the origin, as GroundPoint computes them.
+      auto tex = [&](double x, double z, double* u, double* v) {
+        *u = 0.25 * (c * x - s * z) + view.origin_u, *v = 0.25 * (s * x + c * z) + view.origin_v;
+      };
+      for (size_t a = 0; a + 1 < edges_.size(); ++a)
+        for (size_t b = 0; b + 1 < edges_.size(); ++b) {
+          const double x0 = edges_[a], x1 = edges_[a + 1], z0 = edges_[b], z1 = edges_[b + 1];
           double cu, cv;
           tex(0.5 * (x0 + x1), 0.5 * (z0 + z1), &cu, &cv);
           cu = std::floor(cu), cv = std::floor(cv);
@@ -464,20 +469,115 @@ void RunFilterQuality(Peer& peer, const Options& o) {
       glEnd();
       glDisable(GL_TEXTURE_2D);
     };
-    double gl[2];
-    for (int k = 0; k < 2; ++k) {
-      max_anisotropy = k == 0 ? 1 : 16;
-      peer.Frame(false, draw, view.width, view.height);
-      gl[k] = Psnr(peer.Read(view.width, view.height), reference, first);
-    }
-    const double tri = Psnr(RenderGroundImage(view, trilinear), reference, first);
-    const double ani = Psnr(RenderGroundImage(view, aniso), reference, first);
-    const double oi = Psnr(RenderGroundImage(view, **oiio), reference, first);
-    std::printf("| %g | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f |\n", yaw, gl[0], gl[1], tri, ani,
-                oi, ani - std::max({gl[0], gl[1], oi}));
+    peer_.Frame(false, draw, view.width, view.height);
+    return peer_.Read(view.width, view.height);
+  }
+
+ private:
+  Peer& peer_;
+  Image checker_;
+  MipPyramid pyramid_;
+  TrilinearSampler trilinear_;
+  TableBlock block_;
+  std::unique_ptr<AnisoSampler> aniso_;
+  std::unique_ptr<OiioSampler> oiio_;
+  GLuint texture_ = 0;
+  std::vector<double> edges_;
+};
+
+// bench-filter's plane (1024 x 768, a = 1, the checkerboard) from each of --filter_yaws:
+// llvmpipe's trilinear and anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO,
+// every image scored against the same supersampled pixel box (at least 16 x 16 strata a pixel,
+// 4 per texel of extent per side) over the rows bench-filter measures (issue 22, part 1).
+void RunFilterQuality(FilterPeers& f, const Options& o) {
+  std::printf(
+      "\nfilter quality: checkerboard, 1024x768, pitch %g, a = 1, PSNR against the pixel box\n\n"
+      "| yaw | llvmpipe trilinear | llvmpipe aniso 16 | Aperture trilinear | Aperture aniso | "
+      "OpenImageIO | aniso - best peer |\n|---|---:|---:|---:|---:|---:|---:|\n",
+      o.filter_pitch);
+  for (double yaw : o.filter_yaws) {
+    GrazingPlaneView view;
+    view.pitch_deg = o.filter_pitch;
+    view.yaw_deg = yaw;
+    view.aperture = 1;
+    const int first = FirstMeasuredRow(view);
+    const Image reference = RenderGroundReference(view, f.checker(), 4, 128, 16);
+    const double gl = Psnr(f.Llvmpipe(view, 1), reference, first);
+    const double gl16 = Psnr(f.Llvmpipe(view, 16), reference, first);
+    const double tri = Psnr(RenderGroundImage(view, f.trilinear()), reference, first);
+    const double ani = Psnr(RenderGroundImage(view, f.aniso()), reference, first);
+    const double oi = Psnr(RenderGroundImage(view, f.oiio()), reference, first);
+    std::printf("| %g | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f |\n", yaw, gl, gl16, tri, ani, oi,
+                ani - std::max({gl, gl16, oi}));
     std::fflush(stdout);
   }
-  glDeleteTextures(1, &texture);
+}
+
+// aperture-tex bench-flicker's fly-over (320 x 240, pitch 3, turning 30 degrees over
+// --flicker_frames frames, 0.05 world units a frame, a = 1, the checkerboard) with llvmpipe in
+// the same run (issue 22, part 5): each filter's mean frame-to-frame change against the
+// reference's, and the excess flicker, the mean of |its change - the reference's|.
+void RunFlicker(FilterPeers& f, const Options& o) {
+  struct Track {
+    const char* name;
+    std::function<Image(const GrazingPlaneView&)> render;
+    Image previous;
+    double change = 0, excess = 0, psnr = 0;
+  };
+  std::vector<Track> tracks = {
+      {"llvmpipe trilinear", [&](const GrazingPlaneView& v) { return f.Llvmpipe(v, 1); }, {}},
+      {"llvmpipe aniso 16", [&](const GrazingPlaneView& v) { return f.Llvmpipe(v, 16); }, {}},
+      {"Aperture trilinear",
+       [&](const GrazingPlaneView& v) { return RenderGroundImage(v, f.trilinear()); },
+       {}},
+      {"Aperture aniso",
+       [&](const GrazingPlaneView& v) { return RenderGroundImage(v, f.aniso()); },
+       {}},
+      {"OpenImageIO",
+       [&](const GrazingPlaneView& v) { return RenderGroundImage(v, f.oiio()); },
+       {}}};
+  const int frames = o.flicker_frames;
+  GrazingPlaneView view;
+  view.width = 320;
+  view.height = 240;
+  view.pitch_deg = 3;
+  view.aperture = 1;
+  const int first = FirstMeasuredRow(view);
+  Image reference_previous;
+  double reference_change = 0;
+  for (int t = 0; t < frames; ++t) {
+    view.yaw_deg = 30.0 * t / (frames - 1);
+    const Image reference = RenderGroundReference(view, f.checker(), 4, 64, 8);
+    for (Track& track : tracks) {
+      Image image = track.render(view);
+      if (t > 0) {
+        track.change += MeanAbsoluteChange(image, track.previous, nullptr, nullptr, first);
+        track.excess +=
+            MeanAbsoluteChange(image, track.previous, &reference, &reference_previous, first);
+        track.psnr += Psnr(image, reference, first);
+      }
+      track.previous = std::move(image);
+    }
+    if (t > 0)
+      reference_change +=
+          MeanAbsoluteChange(reference, reference_previous, nullptr, nullptr, first);
+    reference_previous = reference;
+    const double yaw = view.yaw_deg * M_PI / 180;
+    view.origin_u += 0.05 * 0.25 * std::sin(yaw);
+    view.origin_v -= 0.05 * 0.25 * std::cos(yaw);
+  }
+  const double n = frames - 1;
+  std::printf(
+      "\nflicker: checkerboard, 320x240, pitch 3, turning 30 degrees over %d frames, 0.05 world "
+      "units a frame, a = 1; reference 8..64 strata a side, 4 per texel\n\n"
+      "| mode | mean PSNR | frame-to-frame change | / reference's | excess flicker |\n"
+      "|---|---:|---:|---:|---:|\n| reference | - | %.5f | 1.00 | - |\n",
+      frames, reference_change / n);
+  for (const Track& track : tracks)
+    std::printf("| %s | %.2f | %.5f | %.2f | %.5f |\n", track.name, track.psnr / n,
+                track.change / n, reference_change > 0 ? track.change / reference_change : 0.0,
+                track.excess / n);
+  std::fflush(stdout);
 }
 
 template <typename T>
@@ -511,10 +611,13 @@ int main(int argc, char** argv) {
       o.filter_yaws = aperture::ParseList<double>(argv[i + 1]);
     } else if (flag == "--filter_pitch") {
       o.filter_pitch = std::atof(argv[i + 1]);
+    } else if (flag == "--flicker_frames") {
+      o.flicker_frames = std::atoi(argv[i + 1]);
     } else {
       std::fprintf(stderr,
                    "usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] "
-                   "[--psnr_pixels P] [--filter_yaws Y,Y,... [--filter_pitch T]]\n");
+                   "[--psnr_pixels P] [--filter_yaws Y,Y,... [--filter_pitch T]] "
+                   "[--flicker_frames N]\n");
       return 2;
     }
   }
@@ -529,6 +632,10 @@ int main(int argc, char** argv) {
       o.rounds, std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(unset)");
   for (int n : o.tris) aperture::RunTris(peer, n, o);
   for (double t : o.planes) aperture::RunPlane(peer, t, o);
-  if (!o.filter_yaws.empty()) aperture::RunFilterQuality(peer, o);
+  if (!o.filter_yaws.empty() || o.flicker_frames > 1) {
+    aperture::FilterPeers filters(peer);
+    if (!o.filter_yaws.empty()) aperture::RunFilterQuality(filters, o);
+    if (o.flicker_frames > 1) aperture::RunFlicker(filters, o);
+  }
   return 0;
 }
