@@ -295,6 +295,21 @@ void RunTris(Peer& peer, int count, const Options& o) {
   std::fflush(stdout);
 }
 
+// An n x n RGBA8 texture for llvmpipe with its mip-maps (glGenerateMipmap: box averages, as
+// Aperture's pyramid), trilinear minification, repeated both ways.
+GLuint UploadRepeatingTexture(const std::vector<uint8_t>& rgba8, int n) {
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba8.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return texture;
+}
+
 void RunPlane(Peer& peer, double pitch_deg, const Options& o) {
   auto scene = BuildScene(testing::MakeGrazingPlaneScene(20000));
   if (!scene.ok()) std::exit(1);
@@ -314,14 +329,7 @@ void RunPlane(Peer& peer, double pitch_deg, const Options& o) {
         t[0] = t[1] = t[2] = v;
         t[3] = 255;
       }
-    glGenTextures(1, &texture);
-    glBindTexture(GL_TEXTURE_2D, texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
-    glGenerateMipmap(GL_TEXTURE_2D);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    texture = UploadRepeatingTexture(texels, n);
   }
   // llvmpipe's anisotropic filtering (GL_EXT_texture_filter_anisotropic, up to 16), the peer of
   // Aperture's aniso; 1 is plain trilinear.
@@ -406,14 +414,7 @@ class FilterPeers {
         t[2] = static_cast<uint8_t>(std::lround(c.b * 255));
         t[3] = 255;
       }
-    glGenTextures(1, &texture_);
-    glBindTexture(GL_TEXTURE_2D, texture_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, n, n, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
-    glGenerateMipmap(GL_TEXTURE_2D);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    texture_ = UploadRepeatingTexture(texels, n);
     auto block = BuildPrefilteredTable(checker_);
     if (!block.ok()) std::exit(1);
     block_ = *std::move(block);
