@@ -177,6 +177,14 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
   return out;
 }
 
+void MoveForward(GrazingPlaneView* view, double world_units) {
+  // Forward is (0, -1) in the camera's ground frame (v = z / 4, looking along -z), turned by the
+  // yaw as GroundPoint turns coordinates.
+  const double yaw = view->yaw_deg * M_PI / 180.0, step = world_units * kWorldToRepeats;
+  view->origin_u += step * std::sin(yaw);
+  view->origin_v -= step * std::cos(yaw);
+}
+
 double Psnr(const Image& a, const Image& b, int first_row) {
   double sum = 0;
   uint64_t count = 0;

@@ -46,6 +46,9 @@ double NanosecondsPerSample(const GrazingPlaneView& view, const TextureSampler& 
 // (min_per_side..max_per_side).
 Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, double density,
                             int max_per_side, int min_per_side = 2);
+// Moves the camera `world_units` forward along its heading (the turned view axis, on the ground):
+// the view's texture origin moves with it (bench-flicker's fly-over).
+void MoveForward(GrazingPlaneView* view, double world_units);
 // PSNR (peak 1) over RGB of rows [first_row, height).
 double Psnr(const Image& a, const Image& b, int first_row);
 // Mean over rows [first_row, height) and RGB of |a - a_prev|, or with a reference sequence

@@ -27,8 +27,6 @@
 namespace aperture {
 namespace {
 
-constexpr double kWorldToRepeats = 0.25;  // the plane's mapping: u = x / 4, v = z / 4
-
 struct Track {
   const char* name;
   const TextureSampler* sampler;  // null: the reference
@@ -118,12 +116,14 @@ int RunBenchFlicker(int argc, char** argv) {
     view.yaw_deg = turn * t / (frames - 1);
     const Image ref = RenderGroundReference(view, tex.image, density, ref_max, ref_min);
     Track& reference = tracks[0];
+    const double ref_change =
+        t > 0 ? MeanAbsoluteChange(ref, reference.previous, nullptr, nullptr, first) : 0;
     for (Track& track : tracks) {
       Image image = track.sampler ? RenderGroundImage(view, *track.sampler) : ref;
       if (t > 0) {
-        const double change = MeanAbsoluteChange(image, track.previous, nullptr, nullptr, first);
-        const double ref_change =
-            MeanAbsoluteChange(ref, reference.previous, nullptr, nullptr, first);
+        const double change =
+            track.sampler ? MeanAbsoluteChange(image, track.previous, nullptr, nullptr, first)
+                          : ref_change;
         const double excess = track.sampler ? MeanAbsoluteChange(image, track.previous, &ref,
                                                                  &reference.previous, first)
                                             : 0;
@@ -137,10 +137,7 @@ int RunBenchFlicker(int argc, char** argv) {
       if (&track != &reference) track.previous = std::move(image);
     }
     reference.previous = ref;
-    // The camera moves forward along its heading: (0, -1) in its ground frame, turned by the yaw.
-    const double yaw = view.yaw_deg * M_PI / 180.0;
-    view.origin_u += speed * kWorldToRepeats * std::sin(yaw);
-    view.origin_v -= speed * kWorldToRepeats * std::cos(yaw);
+    MoveForward(&view, speed);
     if ((t + 1) % 10 == 0 || t + 1 == frames)
       std::fprintf(stderr, "  frame %d of %d (%.0f s)\n", t + 1, frames, timer.Seconds());
   }

@@ -563,9 +563,7 @@ void RunFlicker(FilterPeers& f, const Options& o) {
       reference_change +=
           MeanAbsoluteChange(reference, reference_previous, nullptr, nullptr, first);
     reference_previous = reference;
-    const double yaw = view.yaw_deg * M_PI / 180;
-    view.origin_u += 0.05 * 0.25 * std::sin(yaw);
-    view.origin_v -= 0.05 * 0.25 * std::cos(yaw);
+    MoveForward(&view, 0.05);
   }
   const double n = frames - 1;
   std::printf(
