@@ -11,7 +11,16 @@
 namespace aperture {
 namespace {
 
-enum Table { kT = 0, kQT = 1, kTQ = 2, kQQ = 3 };
+enum Table {
+  kT = 0,
+  kQT = 1,
+  kTQ = 2,
+  kQQ = 3,
+  kM1Row = 4,
+  kM2Row = 5,
+  kM1Column = 6,
+  kM2Column = 7
+};
 
 int Wrap(int i, int n) { return ((i % n) + n) % n; }
 
@@ -50,9 +59,9 @@ int SplitPeriods(double lo, double hi, double period, Piece out[3]) {
 SummedAreaTable::SummedAreaTable(const Image& image, int channels)
     : width_(image.width()), height_(image.height()), channels_(std::clamp(channels, 1, 4)) {
   const int w2 = width_ + 2, h2 = height_ + 2;
-  tables_.assign(static_cast<size_t>(4) * w2 * h2 * channels_, 0.0);
+  tables_.assign(static_cast<size_t>(kTables) * w2 * h2 * channels_, 0.0);
   auto at = [&](int table, int i, int j) {
-    return &tables_[((static_cast<size_t>(j + 1) * w2 + (i + 1)) * 4 + table) * channels_];
+    return &tables_[((static_cast<size_t>(j + 1) * w2 + (i + 1)) * kTables + table) * channels_];
   };
   // The samples, wrapped one texel past every border.
   for (int j = -1; j <= height_; ++j)
@@ -82,6 +91,28 @@ SummedAreaTable::SummedAreaTable(const Image& image, int channels)
       double* q1 = at(kQQ, i + 1, j);
       for (int c = 0; c < channels_; ++c) q1[c] = q0[c] + 0.5 * (t0[c] + t1[c]);
     }
+  // The moments along each line (Line): over the piece [i, i + 1] of a line, G = Q_i + a(s) t_i +
+  // b(s) t_(i+1), so its integral is Q_i + t_i / 3 + t_(i+1) / 6 and the integral of s G is
+  // Q_i / 2 + 5 t_i / 24 + t_(i+1) / 8 (the moment of a = i + s adds i times the first).
+  auto moments = [&](int q, int m1, int m2, bool along_rows) {
+    const int lines = along_rows ? height_ : width_, cells = along_rows ? width_ : height_;
+    for (int line = -1; line <= lines; ++line)
+      for (int i = -1; i < cells; ++i) {
+        auto entry = [&](int table, int k) {
+          return along_rows ? at(table, k, line) : at(table, line, k);
+        };
+        const double *t0 = entry(kT, i), *t1 = entry(kT, i + 1), *g = entry(q, i);
+        const double *a1 = entry(m1, i), *a2 = entry(m2, i);
+        double *b1 = entry(m1, i + 1), *b2 = entry(m2, i + 1);
+        for (int c = 0; c < channels_; ++c) {
+          const double whole = g[c] + t0[c] / 3 + t1[c] / 6;
+          b1[c] = a1[c] + whole;
+          b2[c] = a2[c] + i * whole + 0.5 * g[c] + 5.0 / 24 * t0[c] + 0.125 * t1[c];
+        }
+      }
+  };
+  moments(kQT, kM1Row, kM2Row, true);
+  moments(kTQ, kM1Column, kM2Column, false);
   data_ = tables_.data();
   size_ = tables_.size();
 }
@@ -109,7 +140,7 @@ absl::StatusOr<std::unique_ptr<SummedAreaTable>> SummedAreaTable::View(
       (h.channels != 1 && h.channels != 3 && h.channels != 4))
     return absl::DataLossError(absl::StrCat("summed-area table block has a bad size ", h.width, "x",
                                             h.height, "x", h.channels));
-  const size_t doubles = size_t{4} * (h.width + 2) * (h.height + 2) * h.channels;
+  const size_t doubles = size_t{kTables} * (h.width + 2) * (h.height + 2) * h.channels;
   if (block.size() != sizeof(h) + doubles * sizeof(double))
     return absl::DataLossError(absl::StrCat("summed-area table block has ", block.size(),
                                             " bytes, not ", sizeof(h) + doubles * sizeof(double)));
@@ -136,6 +167,41 @@ void SummedAreaTable::Corner(double x, double y, double* out) const {
   for (int c = 0; c < channels_; ++c)
     out[c] = qq[c] + ar * qt0[c] + br * qt1[c] + as * tq0[c] + bs * tq1[c] +
              as * (ar * t00[c] + br * t01[c]) + bs * (ar * t10[c] + br * t11[c]);
+}
+
+void SummedAreaTable::Line(bool along_rows, int line, int cell, double a, bool moments,
+                           LineIntegrals* out) const {
+  const int i = along_rows ? cell : line, j = along_rows ? line : cell;
+  const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
+  const double* q = At(along_rows ? kQT : kTQ, i, j);
+  const double s = a - cell, s2 = s * s;
+  const double as = s - 0.5 * s2, bs = 0.5 * s2;  // the weights of G (as in Corner)
+  for (int c = 0; c < channels_; ++c) out->g[c] = q[c] + as * t0[c] + bs * t1[c];
+  if (!moments) return;
+  // Their integrals from the piece's start: s^2 / 2 - s^3 / 6 and s^3 / 6; and of s times them.
+  const double s3 = s2 * s, s4 = s3 * s;
+  const double A = 0.5 * s2 - s3 / 6, B = s3 / 6, A2 = s3 / 3 - 0.125 * s4, B2 = 0.125 * s4;
+  const double *m1 = At(along_rows ? kM1Row : kM1Column, i, j),
+               *m2 = At(along_rows ? kM2Row : kM2Column, i, j);
+  for (int c = 0; c < channels_; ++c) {
+    const double part = s * q[c] + A * t0[c] + B * t1[c];
+    out->m1[c] = m1[c] + part;
+    out->m2[c] = m2[c] + cell * part + 0.5 * s2 * q[c] + A2 * t0[c] + B2 * t1[c];
+  }
+}
+
+void SummedAreaTable::LineAt2(bool along_rows, int line, int cell, double a0, double a1, double* g0,
+                              double* g1) const {
+  const int i = along_rows ? cell : line, j = along_rows ? line : cell;
+  const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
+  const double* q = At(along_rows ? kQT : kTQ, i, j);
+  const double s0 = a0 - cell, s1 = a1 - cell;
+  const double as0 = s0 - 0.5 * s0 * s0, bs0 = 0.5 * s0 * s0;
+  const double as1 = s1 - 0.5 * s1 * s1, bs1 = 0.5 * s1 * s1;
+  for (int c = 0; c < channels_; ++c) {
+    g0[c] = q[c] + as0 * t0[c] + bs0 * t1[c];
+    g1[c] = q[c] + as1 * t0[c] + bs1 * t1[c];
+  }
 }
 
 // The integral of texel column i's piecewise-linear samples over [y0, y1] (the one-axis form of

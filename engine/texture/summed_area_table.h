@@ -11,6 +11,11 @@
 // the trapezoid prefix sums along x of every row (QT), along y of every column (TQ) and both (QQ).
 // Every table is accumulated in double, so a 4096 x 4096 texture keeps about 1e-9 absolute
 // precision (the sums reach 1.7e7; double carries 16 digits).
+//
+// Four more tables serve integrals over polygons by Green's theorem (trace/polygon_integral.h):
+// along every row, the prefix integral M1 of G and the prefix moment M2 of a G (a the coordinate
+// along the row), and the same along every column. With them an edge's integral costs one step per
+// row (or column) it crosses, whatever its length along the other axis.
 #pragma once
 
 #include <array>
@@ -29,7 +34,7 @@ namespace aperture {
 
 // The version of the block (ToBytes / View) and of the store key: a change to the block's layout
 // raises it, so that no process maps a block of another layout.
-inline constexpr uint32_t kSummedAreaTableVersion = 1;
+inline constexpr uint32_t kSummedAreaTableVersion = 2;
 
 class SummedAreaTable {
  public:
@@ -57,21 +62,38 @@ class SummedAreaTable {
   // The same over any rectangle of the periodic plane (split at the period borders).
   std::array<double, 4> IntegratePeriodic(double x0, double y0, double x1, double y1) const;
 
- private:
-  // Integral over [0.5 - 1, x] x [0.5 - 1, y] (from the centre of texel (-1, -1)), per channel.
+  // The integral over [-0.5, x] x [-0.5, y] (from the centre of texel (-1, -1)), per channel;
+  // x in [-0.5, width + 0.5], likewise y.
   void Corner(double x, double y, double* out) const;
+
+  // One texel row (`along_rows`) or column, `line` in [-1, height] (resp. width), as a function
+  // of the coordinate a along it, measured from texel centres (a = x - 0.5 along a row): G(a) its
+  // integral from a = -1, M1(a) the integral of G from -1, M2(a) the integral of a G(a) from -1.
+  // `cell` is the piece of the line a lies in, a in [cell, cell + 1], cell in [-1, size - 1].
+  struct LineIntegrals {
+    double g[4], m1[4], m2[4];
+  };
+  void Line(bool along_rows, int line, int cell, double a, bool moments, LineIntegrals* out) const;
+  // G alone at two points a0, a1 of one piece (`cell`), in g0 and g1.
+  void LineAt2(bool along_rows, int line, int cell, double a0, double a1, double* g0,
+               double* g1) const;
+
+ private:
   // One-axis integrals of texel column i over [y0, y1], of texel row j over [x0, x1].
   void AlongY(int i, double y0, double y1, double* out) const;
   void AlongX(int j, double x0, double x1, double* out) const;
   const double* At(int table, int i, int j) const {
-    return &data_[((static_cast<size_t>(j + 1) * (width_ + 2) + (i + 1)) * 4 + table) * channels_];
+    return &data_[((static_cast<size_t>(j + 1) * (width_ + 2) + (i + 1)) * kTables + table) *
+                  channels_];
   }
   SummedAreaTable() = default;
+  static constexpr int kTables = 8;
 
   int width_ = 0, height_ = 0, channels_ = 0;
-  // Four tables T, QT, TQ, QQ, each (width + 2) x (height + 2) entries for texel indices -1 ..
-  // width (resp. height), the borders wrapped; interleaved per texel (the four tables, each
-  // with its channels), so that one corner's nine reads touch few cache lines.
+  // Eight tables T, QT, TQ, QQ, M1 and M2 along rows, M1 and M2 along columns, each (width + 2) x
+  // (height + 2) entries for texel indices -1 .. width (resp. height), the borders wrapped;
+  // interleaved per texel (the tables, each with its channels), so that one corner's nine reads
+  // touch few cache lines.
   std::vector<double> tables_;    // owned (built here), or empty for a view
   const double* data_ = nullptr;  // tables_.data() or the viewed block's
   size_t size_ = 0;

@@ -3,6 +3,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -45,6 +46,10 @@ ABSL_FLAG(int, zip_level, 4,
 ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR");
 ABSL_FLAG(int, threads, 0, "worker threads (0: all cores)");
 ABSL_FLAG(int, repeat, 1, "render this many times and report the fastest (for benchmarks)");
+ABSL_FLAG(int, exact_steps, aperture::FragmentOptions{}.exact_steps,
+          "raytrace: a pixel's projection is integrated exactly (by its edges against the "
+          "summed-area table) when that takes at most this many row or column steps, else by seed "
+          "003's fragments within --delta; 0: fragments for every pixel, as the paper does");
 ABSL_FLAG(int, leaf, 8, "largest Warnock leaf window, pixels");
 ABSL_FLAG(std::string, scheduling, "cost",
           "task planning: cost (seed 002 cost-driven windows, most expensive first) or uniform "
@@ -151,7 +156,8 @@ int Run() {
   // "both": raster, then raytrace, on the same scene in one run (the issue 7 benchmark).
   const std::vector<bool> raytrace_modes =
       both_modes ? std::vector<bool>{false, true} : std::vector<bool>{job->mode.raytrace};
-  const TraceOptions& trace_options = job->mode.trace;
+  TraceOptions trace_options = job->mode.trace;
+  trace_options.fragments.exact_steps = std::max(0, absl::GetFlag(FLAGS_exact_steps));
 
   // The shared store, so that a one-frame job maps what an earlier process built. A store that
   // cannot be opened (no /dev/shm, no permission) is not fatal: the tables are built here.
@@ -232,10 +238,14 @@ int Run() {
           built->name.c_str(), settings.width, settings.height, stats.concurrency, t.corner_rays,
           t.corner_ms, t.corner_ms > 0 ? t.corner_rays / (1000.0 * t.corner_ms) : 0.0,
           t.subdivided_pixels, t.extra_rays);
+      const FragmentStats& f = t.fragments;
       std::printf(
-          "fragments: %.1f per projection (delta %g), mean S_fragments / S_quad - 1 = %.4f\n",
-          t.fragments.quads > 0 ? t.fragments.fragments / t.fragments.quads : 0.0,
-          trace_options.fragments.delta, t.fragments.MeanRelativeError());
+          "projections: %.1f %% exact by their edges (%.1f steps each, at most %d), the rest by "
+          "fragments: %.1f per projection (delta %g); mean S_fragments / S_quad - 1 = %.4f over "
+          "all (exact: 0), %.4f over those by fragments\n",
+          100 * f.ExactShare(), f.exact > 0 ? f.exact_steps / f.exact : 0.0,
+          trace_options.fragments.exact_steps, f.quads > 0 ? f.fragments / f.quads : 0.0,
+          trace_options.fragments.delta, f.MeanRelativeError(), f.FragmentMeanRelativeError());
       std::printf("frame time: corner rays %.2f ms, pixels %.2f ms, encode %.2f ms (%s, %s)%s\n",
                   t.corner_ms, t.shade_ms, encode_ms, ExrCompressionName(exr.compression),
                   exr.pixel_type == ExrPixelType::kHalf ? "half" : "float",

@@ -40,6 +40,10 @@ struct FragmentOptions {
   int max_level = 30;    // the finest grid, 2^-30 repeats
   int max_cells = 1024;  // grid columns (rows) per quad at most: coarser levels beyond that
   FragmentLevelRule rule = FragmentLevelRule::kPerAxisBound;
+  // A raster texture's quad is integrated exactly (trace/polygon_integral.h) when that takes at
+  // most this many steps (row or column bands summed over its edges), else by the fragments
+  // above; 0 integrates every quad by fragments, as seed 003 does.
+  int exact_steps = 64;
 };
 
 struct FragmentSet {

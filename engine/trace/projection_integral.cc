@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "trace/polygon_integral.h"
+
 namespace aperture {
 
 Rgba ProjectionIntegrator::Color(const std::array<TexPoint, 4>& quad, const TextureIntegral& sat,
@@ -11,6 +13,15 @@ Rgba ProjectionIntegrator::Color(const std::array<TexPoint, 4>& quad, const Text
   const double sx = std::floor(quad[0].x), sz = std::floor(quad[0].z);
   std::array<TexPoint, 4> q = quad;
   for (TexPoint& p : q) p.x -= sx, p.z -= sz;
+  if (const SummedAreaTable* table = sat.table(); table != nullptr && options_.exact_steps > 0) {
+    std::array<double, 4> mean;
+    int steps = 0;
+    if (PolygonMean(q, *table, options_.exact_steps, &mean, &steps)) {
+      if (stats) stats->exact += 1, stats->exact_steps += steps;
+      return {static_cast<float>(mean[0]), static_cast<float>(mean[1]), static_cast<float>(mean[2]),
+              static_cast<float>(mean[3])};
+    }
+  }
   BuildFragments(q, options_, &set_);
 
   const double w = sat.width(), h = sat.height();

@@ -16,14 +16,22 @@ namespace aperture {
 
 // Totals over the quads integrated, for the measured mean S_fragments / S_quad - 1.
 struct FragmentStats {
-  double quads = 0;
-  double relative_error_sum = 0;  // sum of S_fragments / S_quad - 1
+  double quads = 0;               // integrated by fragments
+  double relative_error_sum = 0;  // sum of S_fragments / S_quad - 1 over them
   double fragments = 0, children = 0;
+  double exact = 0, exact_steps = 0;  // quads integrated exactly, and their steps
 
-  double MeanRelativeError() const { return quads > 0 ? relative_error_sum / quads : 0; }
+  // The mean of S_fragments / S_quad - 1 over every quad, the exact ones counting 0 (they have no
+  // cover); and over the quads integrated by fragments only.
+  double MeanRelativeError() const {
+    return quads + exact > 0 ? relative_error_sum / (quads + exact) : 0;
+  }
+  double FragmentMeanRelativeError() const { return quads > 0 ? relative_error_sum / quads : 0; }
+  double ExactShare() const { return exact + quads > 0 ? exact / (exact + quads) : 0; }
   void Add(const FragmentStats& o) {
     quads += o.quads, relative_error_sum += o.relative_error_sum;
     fragments += o.fragments, children += o.children;
+    exact += o.exact, exact_steps += o.exact_steps;
   }
 };
 
@@ -32,8 +40,10 @@ class ProjectionIntegrator {
  public:
   explicit ProjectionIntegrator(FragmentOptions options) : options_(options) {}
 
-  // The mean of the texture over the fragments covering `quad` (texture repeats): raster
-  // textures by their summed-area table, packed vector textures by their own area integral.
+  // The mean of the texture over `quad` (texture repeats): exactly, by its edges against the
+  // summed-area table, where that is cheap enough (FragmentOptions::exact_steps); else over the
+  // fragments covering it, raster textures by their summed-area table, packed vector textures by
+  // their own area integral.
   Rgba Color(const std::array<TexPoint, 4>& quad, const TextureIntegral& texture,
              FragmentStats* stats = nullptr);
   Rgba Color(const std::array<TexPoint, 4>& quad, const SummedAreaTable& sat,

@@ -23,6 +23,8 @@ class TextureIntegral {
   // The same over any rectangle of the periodic plane.
   virtual std::array<double, 4> IntegratePeriodic(double x0, double y0, double x1,
                                                   double y1) const = 0;
+  // The summed-area table behind it, for exact integrals over polygons; null when it has none.
+  virtual const SummedAreaTable* table() const { return nullptr; }
 };
 
 // A raster texture: the bilinear texture's integral from its summed-area table.
@@ -39,6 +41,7 @@ class TableIntegral final : public TextureIntegral {
                                           double y1) const override {
     return table_.IntegratePeriodic(x0, y0, x1, y1);
   }
+  const SummedAreaTable* table() const override { return &table_; }
 
  private:
   const SummedAreaTable& table_;

@@ -13,7 +13,8 @@
 // all against the 64 x 64-sample reference (testing/supersample_reference).
 //
 // Usage: raytrace_quality_bench [--textures checker,asphalt_torcs_1024] [--angles 5,20,60]
-//          [--delta 0.1] [--threads 2] [--data ../shared/data/raster] [--out out/raytrace-bench]
+//          [--delta 0.1] [--exact-steps 0,64] [--threads 2] [--data ../shared/data/raster]
+//          [--out out/raytrace-bench]
 //          [--ref-min 64] [--ref-max 128] [--curved-sizes 48,192] [--max-depth 3]
 //          (--textures "" or --curved-sizes "": skip that table)
 #include <tbb/global_control.h>
@@ -115,12 +116,13 @@ double Seconds(std::chrono::steady_clock::time_point start) {
 }
 
 // The curved scenes' table (see the file comment); 0 or 2 (error).
-int RunCurved(const std::vector<int>& sizes, double delta, int max_depth,
-              const std::string& out_dir) {
+int RunCurved(const std::vector<int>& sizes, double delta, const std::vector<int>& exact_steps,
+              int max_depth, const std::string& out_dir) {
   std::printf(
-      "\n| scene | size | centre | 2x2 | 4x4 | 8x8 | raytrace | raytrace - best supersample | "
-      "mean S_frag/S_quad - 1 | fragments / pixel | raytrace ms |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "\n| scene | size | centre | 2x2 | 4x4 | 8x8 | exact steps | exact pixels | raytrace | "
+      "raytrace - best supersample | mean S_frag/S_quad - 1 (fragment pixels) | fragments / "
+      "fragment pixel | raytrace ms |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const CurvedSceneKind kind : {CurvedSceneKind::kSphere, CurvedSceneKind::kCylinder}) {
     const CurvedTestScene test = MakeCurvedTestScene(kind);
     auto scene = BuildScene(test.scene);
@@ -157,26 +159,32 @@ int RunCurved(const std::vector<int>& sizes, double delta, int max_depth,
       }
       RenderSettings settings;
       settings.width = settings.height = size;
-      TraceOptions options;
-      options.fragments.delta = delta;
-      options.max_depth = max_depth;
-      TraceStats stats;
-      auto frame = (*traced)->Render(test.camera, settings, options, &stats);
-      if (!frame.ok()) {
-        std::fprintf(stderr, "%s\n", std::string(frame.status().message()).c_str());
-        return 2;
+      for (const int steps : exact_steps) {
+        TraceOptions options;
+        options.fragments.delta = delta;
+        options.fragments.exact_steps = steps;
+        options.max_depth = max_depth;
+        TraceStats stats;
+        auto frame = (*traced)->Render(test.camera, settings, options, &stats);
+        if (!frame.ok()) {
+          std::fprintf(stderr, "%s\n", std::string(frame.status().message()).c_str());
+          return 2;
+        }
+        const double rt = Psnr(frame->image, ref, 0);
+        (void)WriteExrFile(
+            frame->image, {},
+            absl::StrCat(out_dir, "/", name, "_", size, "_raytrace_exact", steps, ".exr"));
+        std::printf(
+            "| %s | %d | %.2f | %.2f | %.2f | %.2f | %d | %.1f %% | %.2f | %+.2f | %.4f | %.1f | "
+            "%.0f |\n",
+            name.c_str(), size, psnr[0], psnr[1], psnr[2], psnr[3], steps,
+            100 * stats.fragments.ExactShare(), rt, rt - best,
+            stats.fragments.FragmentMeanRelativeError(),
+            stats.fragments.quads > 0 ? stats.fragments.fragments / stats.fragments.quads : 0.0,
+            stats.corner_ms + stats.shade_ms);
+        std::fflush(stdout);
       }
-      const double rt = Psnr(frame->image, ref, 0);
-      (void)WriteExrFile(frame->image, {},
-                         absl::StrCat(out_dir, "/", name, "_", size, "_raytrace.exr"));
       (void)WriteExrFile(ref, {}, absl::StrCat(out_dir, "/", name, "_", size, "_reference.exr"));
-      std::printf(
-          "| %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f | %.4f | %.1f | %.0f |\n",
-          name.c_str(), size, psnr[0], psnr[1], psnr[2], psnr[3], rt, rt - best,
-          stats.fragments.MeanRelativeError(),
-          stats.fragments.quads > 0 ? stats.fragments.fragments / stats.fragments.quads : 0.0,
-          stats.corner_ms + stats.shade_ms);
-      std::fflush(stdout);
     }
   }
   return 0;
@@ -194,14 +202,20 @@ int Run(int argc, char** argv) {
   const int ref_max = std::atoi(get("--ref-max", "128").c_str());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::max(1, threads));
   std::filesystem::create_directories(out_dir + "/cache");
+  std::vector<int> exact_step_list;
+  for (absl::string_view a :
+       absl::StrSplit(get("--exact-steps", std::to_string(FragmentOptions{}.exact_steps).c_str()),
+                      ',', absl::SkipEmpty()))
+    exact_step_list.push_back(std::atoi(std::string(a).c_str()));
   std::vector<double> angles;
   for (absl::string_view a : absl::StrSplit(get("--angles", "5,20,60"), ','))
     angles.push_back(std::atof(std::string(a).c_str()));
 
   std::printf(
-      "| texture | theta | nearest | bilinear | trilinear | aniso | oiio | raytrace | raytrace - "
-      "best raster | mean S_frag/S_quad - 1 | fragments / pixel | raytrace ms |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| texture | theta | nearest | bilinear | trilinear | aniso | oiio | exact steps | exact "
+      "pixels | raytrace | raytrace - best raster | mean S_frag/S_quad - 1 (fragment pixels) | "
+      "fragments / fragment pixel | raytrace ms |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (absl::string_view part :
        absl::StrSplit(get("--textures", "checker,asphalt_torcs_1024"), ',', absl::SkipEmpty())) {
@@ -262,24 +276,31 @@ int Run(int argc, char** argv) {
       RenderSettings settings;
       settings.width = view.width;
       settings.height = view.height;
-      TraceOptions options;
-      options.fragments.delta = delta;
-      TraceStats stats;
-      auto frame = (*traced)->Render(camera, settings, options, &stats);
-      if (!frame.ok()) {
-        std::fprintf(stderr, "%s\n", std::string(frame.status().message()).c_str());
-        return 2;
+      // One raytrace per --exact-steps value (0: seed 003's fragments for every pixel), each a row.
+      for (int exact_steps : exact_step_list) {
+        TraceOptions options;
+        options.fragments.delta = delta;
+        options.fragments.exact_steps = exact_steps;
+        TraceStats stats;
+        auto frame = (*traced)->Render(camera, settings, options, &stats);
+        if (!frame.ok()) {
+          std::fprintf(stderr, "%s\n", std::string(frame.status().message()).c_str());
+          return 2;
+        }
+        const double rt = Psnr(frame->image, ref, first);
+        (void)WriteExrFile(frame->image, {},
+                           absl::StrCat(stem, "_raytrace_exact", exact_steps, ".exr"));
+        std::printf(
+            "| %s | %g | %.2f | %.2f | %.2f | %.2f | %.2f | %d | %.1f %% | %.2f | %+.2f | %.4f | "
+            "%.1f | %.0f |\n",
+            name.c_str(), theta, psnr[0], psnr[1], psnr[2], psnr[3], psnr[4], exact_steps,
+            100 * stats.fragments.ExactShare(), rt, rt - best_raster,
+            stats.fragments.FragmentMeanRelativeError(),
+            stats.fragments.quads > 0 ? stats.fragments.fragments / stats.fragments.quads : 0.0,
+            stats.corner_ms + stats.shade_ms);
+        std::fflush(stdout);
       }
-      const double rt = Psnr(frame->image, ref, first);
-      (void)WriteExrFile(frame->image, {}, absl::StrCat(stem, "_raytrace.exr"));
       (void)WriteExrFile(ref, {}, absl::StrCat(stem, "_reference.exr"));
-      std::printf(
-          "| %s | %g | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f | %.4f | %.1f | %.0f |\n",
-          name.c_str(), theta, psnr[0], psnr[1], psnr[2], psnr[3], psnr[4], rt, rt - best_raster,
-          stats.fragments.MeanRelativeError(),
-          stats.fragments.quads > 0 ? stats.fragments.fragments / stats.fragments.quads : 0.0,
-          stats.corner_ms + stats.shade_ms);
-      std::fflush(stdout);
     }
   }
   std::vector<int> curved_sizes;
@@ -287,7 +308,8 @@ int Run(int argc, char** argv) {
        absl::StrSplit(get("--curved-sizes", "48,192"), ',', absl::SkipEmpty()))
     curved_sizes.push_back(std::atoi(std::string(a).c_str()));
   if (!curved_sizes.empty())
-    return RunCurved(curved_sizes, delta, std::atoi(get("--max-depth", "3").c_str()), out_dir);
+    return RunCurved(curved_sizes, delta, exact_step_list,
+                     std::atoi(get("--max-depth", "3").c_str()), out_dir);
   return 0;
 }
 

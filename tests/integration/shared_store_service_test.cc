@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 
+#include "absl/strings/str_cat.h"
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "integration/server_process.h"
 #include "scene/camera_proto.h"
@@ -22,6 +23,7 @@
 #include "scene/scene_file.h"
 #include "testing/curved_scenes.h"
 #include "texture/image_file.h"
+#include "texture/summed_area_table.h"
 
 namespace aperture::testing {
 namespace {
@@ -191,7 +193,8 @@ TEST_F(SharedStoreServiceTest, RaytraceTablesBuiltByOneServerAreMappedByTheOther
   EXPECT_EQ(b.Store().entries_attached(), 1u);
   bool listed = false;
   for (const auto& item : fs::directory_iterator(store_))
-    listed = listed || item.path().filename().string().rfind("sat-v1-c3-", 0) == 0;
+    listed = listed || item.path().filename().string().rfind(
+                           absl::StrCat("sat-v", kSummedAreaTableVersion, "-c3-"), 0) == 0;
   EXPECT_TRUE(listed);
 
   auto decode = [](const std::string& exr) {

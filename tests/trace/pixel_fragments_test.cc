@@ -353,6 +353,7 @@ TEST(ProjectionIntegral, DiamondMatchesItsCoverAndAConstantTextureIsExact) {
   const std::array<TexPoint, 4> q{{{0.5 - h, 0.5}, {0.5, 0.5 - h}, {0.5 + h, 0.5}, {0.5, 0.5 + h}}};
   FragmentOptions opt;
   opt.delta = 0.2;
+  opt.exact_steps = 0;  // seed 003's fragments, not the exact integral
   ProjectionIntegrator integrator(opt);
   FragmentStats stats;
   const Rgba got = integrator.Color(q, sat, &stats);
@@ -386,6 +387,7 @@ TEST(ProjectionIntegral, MeasuredAreaErrorIsAtMostDelta) {
       FragmentOptions opt;
       opt.rule = rule;
       opt.delta = delta;
+      opt.exact_steps = 0;  // the fragments' own error
       // The work bound of 1,024 columns a quad caps the level of the random slivers (aspect up to
       // 1000 at any angle) before delta = 0.02 is reached; this test is about the level rules.
       opt.max_cells = 4096;
