@@ -15,6 +15,7 @@
 #include "base/stopwatch.h"
 #include "scene/shading.h"
 #include "texture/packed/packed_sampler.h"
+#include "texture/summed_area_levels.h"
 #include "texture/texture_entries.h"
 #include "trace/curved_intersect.h"
 #include "trace/texture_mapping.h"
@@ -363,22 +364,26 @@ absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
     for (const Rgba& texel : base.texels()) alpha = alpha || texel.a < 1.0f;
     const int channels = alpha ? 4 : 3;
     if (!store) {
-      ts->tables_[i] = std::make_shared<SummedAreaTable>(base, channels);
+      for (auto& table : BuildSummedAreaLevels(*t.pyramid, channels))
+        ts->tables_[i].push_back(std::move(table));
       continue;
     }
-    auto entry = GetOrBuildSummedAreaTable(*store, base, channels);
-    auto view = entry.ok() ? SummedAreaTable::View((*entry)->payload()) : entry.status();
-    if (!view.ok())
-      return absl::Status(view.status().code(), absl::StrCat("summed-area tables of texture '",
-                                                             t.id, "': ", view.status().message()));
+    auto entry = GetOrBuildSummedAreaTables(*store, *t.pyramid, channels);
+    auto views = entry.ok() ? ViewSummedAreaLevels((*entry)->payload()) : entry.status();
+    if (!views.ok())
+      return absl::Status(
+          views.status().code(),
+          absl::StrCat("summed-area tables of texture '", t.id, "': ", views.status().message()));
     ts->entries_.push_back(*std::move(entry));
-    ts->tables_[i] = std::move(*view);
+    for (auto& table : *views) ts->tables_[i].push_back(std::move(table));
   }
   // What the fragments integrate: the tables, and packed vector textures' runs in place.
   ts->integrals_.resize(scene.textures.size());
   for (size_t i = 0; i < scene.textures.size(); ++i) {
-    if (ts->tables_[i]) {
-      ts->integrals_[i] = std::make_unique<TableIntegral>(*ts->tables_[i]);
+    if (!ts->tables_[i].empty()) {
+      std::vector<const SummedAreaTable*> levels;
+      for (const auto& table : ts->tables_[i]) levels.push_back(table.get());
+      ts->integrals_[i] = std::make_unique<TableIntegral>(std::move(levels));
     } else if (const auto* p = dynamic_cast<const packed::PackedTextureSampler*>(
                    scene.textures[i]->packed_area.get());
                used[i] && p != nullptr) {

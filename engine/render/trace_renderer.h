@@ -65,9 +65,10 @@ class TracedScene {
   explicit TracedScene(const Scene& scene) : scene_(scene) {}
   const Scene& scene_;
   std::unique_ptr<RayScene> rays_;
-  std::vector<std::shared_ptr<const SummedAreaTable>> tables_;  // per scene texture, or null
-  std::vector<std::unique_ptr<TextureIntegral>> integrals_;     // per scene texture, or null
-  std::vector<std::shared_ptr<const StoreEntry>> entries_;      // the tables' mapped blocks
+  // Per scene texture (empty for none): the summed-area tables of its mip levels, the base first.
+  std::vector<std::vector<std::shared_ptr<const SummedAreaTable>>> tables_;
+  std::vector<std::unique_ptr<TextureIntegral>> integrals_;  // per scene texture, or null
+  std::vector<std::shared_ptr<const StoreEntry>> entries_;   // the tables' mapped blocks
 };
 
 }  // namespace aperture

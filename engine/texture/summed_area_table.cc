@@ -6,7 +6,6 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "texture/texture_entries.h"
 
 namespace aperture {
 namespace {
@@ -297,22 +296,6 @@ std::array<double, 4> SummedAreaTable::IntegratePeriodic(double x0, double y0, d
       for (int c = 0; c < 4; ++c) sum[c] += px[a].count * py[b].count * part[c];
     }
   return sum;
-}
-
-std::string SummedAreaTableKey(const Image& base, int channels) {
-  return absl::StrFormat("sat-v%d-c%d-%s", kSummedAreaTableVersion, channels,
-                         ImageContentHash(base));
-}
-
-absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTable(
-    const SharedStore& store, const Image& base, int channels) {
-  auto entry = store.GetOrBuild(SummedAreaTableKey(base, channels), EntryKind::kSummedAreaTable,
-                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
-                                  return SummedAreaTable(base, channels).ToBytes();
-                                });
-  if (!entry.ok()) return entry.status();
-  if (auto view = SummedAreaTable::View((*entry)->payload()); !view.ok()) return view.status();
-  return entry;
 }
 
 }  // namespace aperture

@@ -28,13 +28,12 @@
 
 #include "absl/status/statusor.h"
 #include "base/image.h"
-#include "store/shared_store.h"
 
 namespace aperture {
 
 // The version of the block (ToBytes / View) and of the store key: a change to the block's layout
 // raises it, so that no process maps a block of another layout.
-inline constexpr uint32_t kSummedAreaTableVersion = 2;
+inline constexpr uint32_t kSummedAreaTableVersion = 3;
 
 class SummedAreaTable {
  public:
@@ -98,14 +97,5 @@ class SummedAreaTable {
   const double* data_ = nullptr;  // tables_.data() or the viewed block's
   size_t size_ = 0;
 };
-
-// "sat-v<kSummedAreaTableVersion>-c<channels>-<XXH3-128 of the image's size and texels>": the
-// shared store's name for the tables of `base` (texture/texture_entries.h's ImageContentHash).
-std::string SummedAreaTableKey(const Image& base, int channels);
-
-// The summed-area tables of `base` (`channels` = 3 or 4) from the shared store, built into it when
-// it has none; the payload is a block SummedAreaTable::View accepts.
-absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTable(
-    const SharedStore& store, const Image& base, int channels);
 
 }  // namespace aperture

@@ -49,7 +49,8 @@ ABSL_FLAG(int, repeat, 1, "render this many times and report the fastest (for be
 ABSL_FLAG(int, exact_steps, aperture::FragmentOptions{}.exact_steps,
           "raytrace: a pixel's projection is integrated exactly (by its edges against the "
           "summed-area table) when that takes at most this many row or column steps, else by seed "
-          "003's fragments within --delta; 0: fragments for every pixel, as the paper does");
+          "003's fragments within --delta (where their work cap misses it, by a coarser mip "
+          "level's exact integral); 0: fragments for every pixel, as the paper does");
 ABSL_FLAG(int, leaf, 8, "largest Warnock leaf window, pixels");
 ABSL_FLAG(std::string, scheduling, "cost",
           "task planning: cost (seed 002 cost-driven windows, most expensive first) or uniform "
@@ -240,12 +241,16 @@ int Run() {
           t.subdivided_pixels, t.extra_rays);
       const FragmentStats& f = t.fragments;
       std::printf(
-          "projections: %.1f %% exact by their edges (%.1f steps each, at most %d), the rest by "
+          "projections: %.1f %% exact by their edges (%.1f steps each, at most %d; %.1f %% of all "
+          "on "
+          "a coarser mip level, %.1f levels up, where the fragments miss delta), the rest by "
           "fragments: %.1f per projection (delta %g); mean S_fragments / S_quad - 1 = %.4f over "
-          "all (exact: 0), %.4f over those by fragments\n",
+          "those by edges (0) or fragments, %.4f over those by fragments\n",
           100 * f.ExactShare(), f.exact > 0 ? f.exact_steps / f.exact : 0.0,
-          trace_options.fragments.exact_steps, f.quads > 0 ? f.fragments / f.quads : 0.0,
-          trace_options.fragments.delta, f.MeanRelativeError(), f.FragmentMeanRelativeError());
+          trace_options.fragments.exact_steps, 100 * f.Share(f.coarse),
+          f.coarse > 0 ? f.coarse_level_sum / f.coarse : 0.0,
+          f.quads > 0 ? f.fragments / f.quads : 0.0, trace_options.fragments.delta,
+          f.MeanRelativeError(), f.FragmentMeanRelativeError());
       std::printf("frame time: corner rays %.2f ms, pixels %.2f ms, encode %.2f ms (%s, %s)%s\n",
                   t.corner_ms, t.shade_ms, encode_ms, ExrCompressionName(exr.compression),
                   exr.pixel_type == ExrPixelType::kHalf ? "half" : "float",

@@ -70,8 +70,8 @@ int RunBake(int argc, char** argv) {
                  "         [--raytrace]\n"
                  "Fills the shared texture store (default %s) with every table and packed\n"
                  "texture the scenes use, so servers map them at once instead of building them;\n"
-                 "--raytrace: also the summed-area tables of the raytrace mode (32 bytes per\n"
-                 "texel and channel).\n"
+                 "--raytrace: also the summed-area tables of the raytrace mode (64 bytes per\n"
+                 "texel and channel, and a third more for the mip levels).\n"
                  "Entries already there are checked and kept; broken ones are rebuilt.\n",
                  kDefaultStoreDirectory);
     return args->help ? 0 : 2;

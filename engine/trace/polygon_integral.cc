@@ -7,17 +7,20 @@
 namespace aperture {
 namespace {
 
-bool Convex(const std::array<TexPoint, 4>& q, double* twice_area) {
+// Green's theorem holds for any simple polygon: a quad is one unless a pair of opposite sides
+// cross (a bow tie, whose two loops would count with opposite signs). Near the horizon a
+// projection's short sides are nearly collinear with the long ones, so convexity is not asked.
+bool Simple(const std::array<TexPoint, 4>& q, double* twice_area) {
+  auto side = [](const TexPoint& a, const TexPoint& b, const TexPoint& p) {
+    return (b.x - a.x) * (p.z - a.z) - (b.z - a.z) * (p.x - a.x);
+  };
+  auto cross = [&](const TexPoint& a, const TexPoint& b, const TexPoint& c, const TexPoint& d) {
+    return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+  };
   double area = 0;
-  int positive = 0, negative = 0;
-  for (int k = 0; k < 4; ++k) {
-    const TexPoint &a = q[k], &b = q[(k + 1) % 4], &c = q[(k + 2) % 4];
-    const double turn = (b.x - a.x) * (c.z - b.z) - (b.z - a.z) * (c.x - b.x);
-    positive += turn > 0, negative += turn < 0;
-    area += a.x * b.z - b.x * a.z;
-  }
+  for (int k = 0; k < 4; ++k) area += q[k].x * q[(k + 1) % 4].z - q[(k + 1) % 4].x * q[k].z;
   *twice_area = area;
-  return positive == 0 || negative == 0;
+  return !cross(q[0], q[1], q[2], q[3]) && !cross(q[1], q[2], q[3], q[0]);
 }
 
 // Integrates the texture over the band between texel lines `n` and n + 1 (rows when `rows`),
@@ -220,13 +223,13 @@ bool PolygonMean(const std::array<TexPoint, 4>& quad, const SummedAreaTable& tab
   constexpr int kMaxSide = 4096;
   if (table.width() > kMaxSide || table.height() > kMaxSide) return false;
   double twice_area = 0;
-  if (!Convex(quad, &twice_area) || !(std::abs(twice_area) > 0)) return false;
-  // Moved by whole periods next to the origin, in texel units; at most 64 periods across (the
-  // offsets per period stay small against the sums).
+  if (!Simple(quad, &twice_area) || !(std::abs(twice_area) > 0)) return false;
+  // Moved by whole periods next to the origin, in texel units; at most 4,096 periods across (the
+  // per-period offsets stay small against the sums).
   double x0 = quad[0].x, x1 = x0, z0 = quad[0].z, z1 = z0;
   for (const TexPoint& p : quad)
     x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), z0 = std::min(z0, p.z), z1 = std::max(z1, p.z);
-  if (!(x1 - x0 <= 64 && z1 - z0 <= 64)) return false;
+  if (!(x1 - x0 <= 4096 && z1 - z0 <= 4096)) return false;
   const double sx = std::floor(x0), sz = std::floor(z0), w = table.width(), h = table.height();
   TexPoint v[4];
   for (int k = 0; k < 4; ++k) v[k] = {(quad[k].x - sx) * w, (quad[k].z - sz) * h};

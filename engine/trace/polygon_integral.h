@@ -21,12 +21,12 @@
 
 namespace aperture {
 
-// The mean of the texture over the convex quad (texture repeats, any position, either
+// The mean of the texture over the simple quad (texture repeats, any position, either
 // orientation), exact to rounding, in `mean`. The work is the `steps`: row or column bands, and
 // periods within them, over all edges, one per edge at least. False, and `mean` untouched, when
-// the quad is not convex, has no area, spans more than 64 unit textures, takes more than
-// `max_steps` steps, or the table is over 4,096 texels on a side (for precision): the caller then
-// uses seed 003's fragments.
+// the quad is not simple (a bow tie), has no area, spans more than 4,096 unit textures, takes more
+// than `max_steps` steps, or the table is over 4,096 texels on a side (for precision): the caller
+// then uses seed 003's fragments.
 bool PolygonMean(const std::array<TexPoint, 4>& quad, const SummedAreaTable& table, int max_steps,
                  std::array<double, 4>* mean, int* steps = nullptr);
 

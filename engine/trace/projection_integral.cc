@@ -1,10 +1,56 @@
 #include "trace/projection_integral.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "trace/polygon_integral.h"
 
 namespace aperture {
+
+bool ProjectionIntegrator::ExactMean(const std::array<TexPoint, 4>& q, const TextureIntegral& sat,
+                                     std::array<double, 4>* mean, int* base_steps,
+                                     FragmentStats* stats) const {
+  if (base_steps) *base_steps = 0;
+  const SummedAreaTable* base = sat.table(0);
+  const int budget = options_.exact_steps;
+  if (base == nullptr || budget <= 0) return false;
+  int steps = 0;
+  if (PolygonMean(q, *base, budget, mean, &steps)) {
+    if (stats) stats->exact += 1, stats->exact_steps += steps;
+    return true;
+  }
+  if (base_steps) *base_steps = steps;
+  return false;
+}
+
+void ProjectionIntegrator::CoarseMean(const std::array<TexPoint, 4>& q, const TextureIntegral& sat,
+                                      int base_steps, std::array<double, 4>* mean,
+                                      FragmentStats* stats) const {
+  // The finest mip level whose exact integral fits the work budget: about the base's steps
+  // halved per level.
+  const int budget = options_.exact_steps;
+  int steps = 0;
+  int level = std::max(1, static_cast<int>(std::ceil(std::log2(double(base_steps) / budget))));
+  for (; sat.table(level) != nullptr; ++level)
+    if (PolygonMean(q, *sat.table(level), budget, mean, &steps)) break;
+  if (sat.table(level) == nullptr) {
+    // Not even the coarsest table (2 texels on a side) fits: a projection over thousands of
+    // periods, whose mean is the texture's own (the last mip level, one texel).
+    level = 0;
+    while (sat.table(level) != nullptr) ++level;
+    const SummedAreaTable& base = *sat.table(0);
+    double whole[4];
+    base.Corner(base.width() - 0.5, base.height() - 0.5, whole);
+    const double inv = 1.0 / (double(base.width()) * base.height());
+    *mean = {};
+    for (int c = 0; c < base.channels(); ++c) (*mean)[c] = whole[c] * inv;
+    steps = 0;
+  }
+  if (stats) {
+    stats->exact += 1, stats->exact_steps += steps;
+    stats->coarse += 1, stats->coarse_level_sum += level;
+  }
+}
 
 Rgba ProjectionIntegrator::Color(const std::array<TexPoint, 4>& quad, const TextureIntegral& sat,
                                  FragmentStats* stats) {
@@ -13,16 +59,21 @@ Rgba ProjectionIntegrator::Color(const std::array<TexPoint, 4>& quad, const Text
   const double sx = std::floor(quad[0].x), sz = std::floor(quad[0].z);
   std::array<TexPoint, 4> q = quad;
   for (TexPoint& p : q) p.x -= sx, p.z -= sz;
-  if (const SummedAreaTable* table = sat.table(); table != nullptr && options_.exact_steps > 0) {
-    std::array<double, 4> mean;
-    int steps = 0;
-    if (PolygonMean(q, *table, options_.exact_steps, &mean, &steps)) {
-      if (stats) stats->exact += 1, stats->exact_steps += steps;
-      return {static_cast<float>(mean[0]), static_cast<float>(mean[1]), static_cast<float>(mean[2]),
-              static_cast<float>(mean[3])};
-    }
-  }
+  auto colour = [](const std::array<double, 4>& m) {
+    return Rgba{static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2]),
+                static_cast<float>(m[3])};
+  };
+  std::array<double, 4> mean;
+  int base_steps = 0;
+  if (ExactMean(q, sat, &mean, &base_steps, stats)) return colour(mean);
   BuildFragments(q, options_, &set_);
+  // Fragments that miss eq. 9's bound (their work cap stopped them: a thin projection slanted
+  // across many texels, near the horizon) would be integrated at their cost for an error over
+  // delta: the exact integral of a coarser mip level instead, within the exact integral's budget.
+  if (base_steps > options_.exact_steps && set_.area > set_.quad_area * (1 + options_.delta)) {
+    CoarseMean(q, sat, base_steps, &mean, stats);
+    return colour(mean);
+  }
 
   const double w = sat.width(), h = sat.height();
   double sum[4] = {};

@@ -20,18 +20,25 @@ struct FragmentStats {
   double relative_error_sum = 0;  // sum of S_fragments / S_quad - 1 over them
   double fragments = 0, children = 0;
   double exact = 0, exact_steps = 0;  // quads integrated exactly, and their steps
+  // Of those, on a coarser mip level where the fragments' work cap breaks eq. 9's bound, and the
+  // sum of their levels (the texture's size in levels for its mean).
+  double coarse = 0, coarse_level_sum = 0;
 
-  // The mean of S_fragments / S_quad - 1 over every quad, the exact ones counting 0 (they have no
-  // cover); and over the quads integrated by fragments only.
+  // The mean of S_fragments / S_quad - 1 over the quads integrated exactly (counting 0: they
+  // have no cover) or by fragments, not those on a coarser level; and over the fragments' only.
   double MeanRelativeError() const {
-    return quads + exact > 0 ? relative_error_sum / (quads + exact) : 0;
+    const double n = quads + exact - coarse;
+    return n > 0 ? relative_error_sum / n : 0;
   }
   double FragmentMeanRelativeError() const { return quads > 0 ? relative_error_sum / quads : 0; }
-  double ExactShare() const { return exact + quads > 0 ? exact / (exact + quads) : 0; }
+  double ExactShare() const { return Share(exact); }
+  double Share(double count) const { return exact + quads > 0 ? count / (exact + quads) : 0; }
   void Add(const FragmentStats& o) {
     quads += o.quads, relative_error_sum += o.relative_error_sum;
     fragments += o.fragments, children += o.children;
     exact += o.exact, exact_steps += o.exact_steps;
+    coarse += o.coarse;
+    coarse_level_sum += o.coarse_level_sum;
   }
 };
 
@@ -52,6 +59,15 @@ class ProjectionIntegrator {
   }
 
  private:
+  // The exact mean of the base level; false for the fragments, with the base level's steps in
+  // `base_steps` (0 when its shape was refused).
+  bool ExactMean(const std::array<TexPoint, 4>& q, const TextureIntegral& sat,
+                 std::array<double, 4>* mean, int* base_steps, FragmentStats* stats) const;
+  // The exact mean of the finest coarser mip level within the step budget, or the texture's mean
+  // when none is.
+  void CoarseMean(const std::array<TexPoint, 4>& q, const TextureIntegral& sat, int base_steps,
+                  std::array<double, 4>* mean, FragmentStats* stats) const;
+
   FragmentOptions options_;
   FragmentSet set_;
   std::vector<TexRect> children_;

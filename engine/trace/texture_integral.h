@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "texture/packed/area_integral.h"
 #include "texture/summed_area_table.h"
@@ -23,14 +24,18 @@ class TextureIntegral {
   // The same over any rectangle of the periodic plane.
   virtual std::array<double, 4> IntegratePeriodic(double x0, double y0, double x1,
                                                   double y1) const = 0;
-  // The summed-area table behind it, for exact integrals over polygons; null when it has none.
-  virtual const SummedAreaTable* table() const { return nullptr; }
+  // The summed-area table of mip level `level` behind it (0: the texture itself), for exact
+  // integrals over polygons; null when it has none.
+  virtual const SummedAreaTable* table(int /*level*/) const { return nullptr; }
 };
 
-// A raster texture: the bilinear texture's integral from its summed-area table.
+// A raster texture: the bilinear texture's integral from its summed-area table, and the tables
+// of its coarser mip levels when given (the base first).
 class TableIntegral final : public TextureIntegral {
  public:
-  explicit TableIntegral(const SummedAreaTable& table) : table_(table) {}
+  explicit TableIntegral(const SummedAreaTable& table) : table_(table), levels_{&table} {}
+  explicit TableIntegral(std::vector<const SummedAreaTable*> levels)
+      : table_(*levels.front()), levels_(std::move(levels)) {}
   int width() const override { return table_.width(); }
   int height() const override { return table_.height(); }
   int channels() const override { return table_.channels(); }
@@ -41,10 +46,13 @@ class TableIntegral final : public TextureIntegral {
                                           double y1) const override {
     return table_.IntegratePeriodic(x0, y0, x1, y1);
   }
-  const SummedAreaTable* table() const override { return &table_; }
+  const SummedAreaTable* table(int level) const override {
+    return level >= 0 && level < static_cast<int>(levels_.size()) ? levels_[level] : nullptr;
+  }
 
  private:
   const SummedAreaTable& table_;
+  std::vector<const SummedAreaTable*> levels_;
 };
 
 // A packed vector texture: texels constant over their squares (a palette image), integrated over

@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <random>
 
 #include "render/trace_renderer.h"
 #include "scene/scene_builder.h"
 #include "testing/curved_scenes.h"
+#include "texture/summed_area_levels.h"
 #include "texture/summed_area_table.h"
 #include "texture/texture_entries.h"
 
@@ -40,6 +42,39 @@ TEST(SummedAreaTableStore, BlockRoundTripsAndDamageIsRefused) {
   bad[0] = std::byte{'X'};
   EXPECT_FALSE(SummedAreaTable::View(bad).ok());
   EXPECT_FALSE(SummedAreaTable::View(std::span(block).first(16)).ok());
+}
+
+TEST(SummedAreaTableStore, LevelsBlockRoundTripsAndDamageIsRefused) {
+  // A 16 x 4 texture: levels 16x4, 8x2 (the next, 4x1, is under 2 texels on a side).
+  Image img(16, 4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u01(0, 1);
+  for (Rgba& t : img.texels()) t = {u01(rng), u01(rng), u01(rng), 1};
+  const MipPyramid pyramid(img);
+  EXPECT_EQ(SummedAreaLevelCount(pyramid), 2);
+  const std::vector<std::byte> block = SummedAreaLevelsToBytes(pyramid, 3);
+  auto levels = ViewSummedAreaLevels(block);
+  ASSERT_TRUE(levels.ok()) << levels.status();
+  ASSERT_EQ(levels->size(), 2u);
+  const auto built = BuildSummedAreaLevels(pyramid, 3);
+  for (int l = 0; l < 2; ++l) {
+    EXPECT_EQ((*levels)[l]->width(), pyramid.level(l).width());
+    const auto a = built[l]->Integrate(0.3, 0.2, 1.9, 1.7),
+               b = (*levels)[l]->Integrate(0.3, 0.2, 1.9, 1.7);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(a[c], b[c]);
+  }
+  // Truncated, a wrong magic, a level index pointing past the end.
+  EXPECT_FALSE(ViewSummedAreaLevels(std::span(block).first(block.size() - 8)).ok());
+  EXPECT_FALSE(ViewSummedAreaLevels(std::span(block).first(20)).ok());
+  std::vector<std::byte> bad = block;
+  bad[0] = std::byte{'X'};
+  EXPECT_FALSE(ViewSummedAreaLevels(bad).ok());
+  bad = block;
+  const uint64_t past = block.size() + 8;
+  std::memcpy(bad.data() + 32, &past, sizeof(past));
+  auto refused = ViewSummedAreaLevels(bad);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("level 0"), std::string::npos) << refused.status();
 }
 
 TEST(SummedAreaTableStore, TracedSceneFromTheStoreRendersTheSamePixels) {

@@ -11,6 +11,8 @@
 #include <random>
 #include <vector>
 
+#include "texture/mip_pyramid.h"
+#include "texture/summed_area_levels.h"
 #include "trace/projection_integral.h"
 
 namespace aperture {
@@ -235,10 +237,11 @@ TEST(PolygonIntegral, RefusesWhatItCannotTakeExactly) {
   const SummedAreaTable table(img, 3);
   std::array<double, 4> mean{-1, -1, -1, -1};
   int steps = 0;
-  // A bow tie (not convex), a quad without area, one over 64 unit textures, one over the budget.
+  // A bow tie, a quad without area, one over 4,096 unit textures, one over the budget.
   EXPECT_FALSE(PolygonMean({{{0.1, 0.1}, {0.4, 0.4}, {0.4, 0.1}, {0.1, 0.4}}}, table, 100, &mean));
   EXPECT_FALSE(PolygonMean({{{0.1, 0.1}, {0.2, 0.2}, {0.3, 0.3}, {0.4, 0.4}}}, table, 100, &mean));
-  EXPECT_FALSE(PolygonMean({{{0.1, 0.1}, {90, 0.1}, {90, 0.2}, {0.1, 0.2}}}, table, 1000, &mean));
+  EXPECT_FALSE(
+      PolygonMean({{{0.1, 0.1}, {5000, 0.1}, {5000, 0.2}, {0.1, 0.2}}}, table, 1000, &mean));
   const std::array<TexPoint, 4> diagonal{{{0.1, 0.1}, {0.9, 0.8}, {0.85, 0.9}, {0.05, 0.2}}};
   EXPECT_FALSE(PolygonMean(diagonal, table, 5, &mean, &steps));
   EXPECT_GT(steps, 5);
@@ -272,6 +275,50 @@ TEST(PolygonIntegral, FragmentsConvergeOnTheExactMean) {
   EXPECT_NEAR(integrator.Color(q, table, &stats).r, exact[0], 1e-6);
   EXPECT_EQ(stats.exact, 1);
   EXPECT_EQ(stats.quads, 0);
+}
+
+TEST(PolygonIntegral, ProjectionsTheFragmentsCannotBoundTakeACoarserLevel) {
+  // Next to the horizon: a projection 0.3 repeats wide and 1,700 long, slanted. Its fragments hit
+  // the work cap (1,024 columns) and miss delta; it takes the texture's mean (no level's steps
+  // fit), which over 2,000 periods is its true mean within a small fraction of the contrast. A
+  // shorter slanted sliver over 12 periods takes a coarser level, near the exact base integral.
+  const Image img = RandomTexture(64, 64, 17);
+  const MipPyramid pyramid(img);
+  const auto tables = BuildSummedAreaLevels(pyramid, 3);
+  std::vector<const SummedAreaTable*> levels;
+  for (const auto& t : tables) levels.push_back(t.get());
+  const TableIntegral texture(levels);
+  ProjectionIntegrator integrator{FragmentOptions{}};
+
+  FragmentStats stats;
+  const std::array<TexPoint, 4> horizon{
+      {{0.22, 0.99}, {0.71, 0.99}, {1315.81, 1719.23}, {1315.64, 1719.23}}};
+  const Rgba far = integrator.Color(horizon, texture, &stats);
+  EXPECT_EQ(stats.coarse, 1);
+  double mean[3] = {};
+  for (const Rgba& t : img.texels()) mean[0] += t.r, mean[1] += t.g, mean[2] += t.b;
+  EXPECT_NEAR(far.r, mean[0] / img.texels().size(), 1e-6);
+  EXPECT_NEAR(far.b, mean[2] / img.texels().size(), 1e-6);
+
+  stats = {};
+  const std::array<TexPoint, 4> sliver{{{0.1, 0.1}, {0.104, 0.1}, {9.3, 7.9}, {9.296, 7.9}}};
+  const Rgba got = integrator.Color(sliver, texture, &stats);
+  std::array<double, 4> exact;
+  ASSERT_TRUE(PolygonMean(sliver, *levels[0], 1 << 20, &exact));
+  std::printf("sliver: coarse %.0f (level %.0f), %.4f against the exact %.4f\n", stats.coarse,
+              stats.coarse_level_sum, got.r, exact[0]);
+  EXPECT_EQ(stats.coarse, 1);
+  EXPECT_GE(stats.coarse_level_sum, 1);
+  EXPECT_NEAR(got.r, exact[0], 0.02);
+
+  // With exact integrals off, seed 003's fragments take both, as the paper does.
+  FragmentOptions paper;
+  paper.exact_steps = 0;
+  ProjectionIntegrator fragments(paper);
+  stats = {};
+  fragments.Color(sliver, texture, &stats);
+  EXPECT_EQ(stats.coarse, 0);
+  EXPECT_EQ(stats.quads, 1);
 }
 
 }  // namespace

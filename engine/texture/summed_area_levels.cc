@@ -1,0 +1,115 @@
+#include "texture/summed_area_levels.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "texture/texture_entries.h"
+
+namespace aperture {
+namespace {
+
+constexpr char kMagic[8] = {'A', 'P', 'S', 'A', 'T', 'L', 'v', 0};
+struct LevelsHeader {
+  char magic[8];
+  uint32_t version;
+  int32_t levels;
+  uint32_t reserved[4];
+};
+static_assert(sizeof(LevelsHeader) == 32);
+constexpr int kMaxLevels = 32;
+
+size_t RoundUp8(size_t n) { return (n + 7) & ~size_t{7}; }
+
+}  // namespace
+
+int SummedAreaLevelCount(const MipPyramid& pyramid) {
+  int n = 0;
+  while (n < pyramid.levels() &&
+         (n == 0 || std::min(pyramid.level(n).width(), pyramid.level(n).height()) >= 2))
+    ++n;
+  return n;
+}
+
+std::vector<std::unique_ptr<SummedAreaTable>> BuildSummedAreaLevels(const MipPyramid& pyramid,
+                                                                    int channels) {
+  std::vector<std::unique_ptr<SummedAreaTable>> levels;
+  for (int l = 0; l < SummedAreaLevelCount(pyramid); ++l)
+    levels.push_back(std::make_unique<SummedAreaTable>(pyramid.level(l), channels));
+  return levels;
+}
+
+std::vector<std::byte> SummedAreaLevelsToBytes(const MipPyramid& pyramid, int channels) {
+  std::vector<std::vector<std::byte>> blocks;
+  for (const auto& table : BuildSummedAreaLevels(pyramid, channels))
+    blocks.push_back(table->ToBytes());
+  LevelsHeader h{};
+  std::memcpy(h.magic, kMagic, sizeof(kMagic));
+  h.version = kSummedAreaTableVersion;
+  h.levels = static_cast<int32_t>(blocks.size());
+  const size_t index_bytes = 2 * sizeof(uint64_t) * blocks.size();
+  size_t offset = RoundUp8(sizeof(h) + index_bytes);
+  std::vector<uint64_t> index;
+  for (const auto& b : blocks) {
+    index.push_back(offset);
+    index.push_back(b.size());
+    offset = RoundUp8(offset + b.size());
+  }
+  std::vector<std::byte> out(offset);
+  std::memcpy(out.data(), &h, sizeof(h));
+  std::memcpy(out.data() + sizeof(h), index.data(), index_bytes);
+  for (size_t l = 0; l < blocks.size(); ++l)
+    std::memcpy(out.data() + index[2 * l], blocks[l].data(), blocks[l].size());
+  return out;
+}
+
+absl::StatusOr<std::vector<std::unique_ptr<SummedAreaTable>>> ViewSummedAreaLevels(
+    std::span<const std::byte> block) {
+  LevelsHeader h;
+  if (block.size() < sizeof(h))
+    return absl::DataLossError("summed-area tables block is shorter than its header");
+  std::memcpy(&h, block.data(), sizeof(h));
+  if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0 || h.version != kSummedAreaTableVersion)
+    return absl::DataLossError("not a summed-area tables block of this version");
+  if (h.levels < 1 || h.levels > kMaxLevels)
+    return absl::DataLossError(absl::StrCat("summed-area tables block has ", h.levels, " levels"));
+  const size_t index_bytes = 2 * sizeof(uint64_t) * h.levels;
+  if (block.size() < sizeof(h) + index_bytes)
+    return absl::DataLossError("summed-area tables block is shorter than its index");
+  std::vector<uint64_t> index(2 * h.levels);
+  std::memcpy(index.data(), block.data() + sizeof(h), index_bytes);
+  std::vector<std::unique_ptr<SummedAreaTable>> levels;
+  for (int l = 0; l < h.levels; ++l) {
+    const uint64_t offset = index[2 * l], size = index[2 * l + 1];
+    if (offset % 8 != 0 || offset < sizeof(h) + index_bytes || offset > block.size() ||
+        size > block.size() - offset)
+      return absl::DataLossError(
+          absl::StrCat("summed-area tables block: level ", l, " lies outside the block"));
+    auto view = SummedAreaTable::View(block.subspan(offset, size));
+    if (!view.ok())
+      return absl::Status(view.status().code(),
+                          absl::StrCat("level ", l, ": ", view.status().message()));
+    levels.push_back(*std::move(view));
+  }
+  return levels;
+}
+
+std::string SummedAreaTableKey(const MipPyramid& pyramid, int channels) {
+  return absl::StrFormat("sat-v%d-c%d-%s", kSummedAreaTableVersion, channels,
+                         ImageContentHash(pyramid.level(0)));
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTables(
+    const SharedStore& store, const MipPyramid& pyramid, int channels) {
+  auto entry = store.GetOrBuild(SummedAreaTableKey(pyramid, channels), EntryKind::kSummedAreaTable,
+                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
+                                  return SummedAreaLevelsToBytes(pyramid, channels);
+                                });
+  if (!entry.ok()) return entry.status();
+  if (auto view = ViewSummedAreaLevels((*entry)->payload()); !view.ok()) return view.status();
+  return entry;
+}
+
+}  // namespace aperture
