@@ -10,7 +10,8 @@
 #             time over the mean, demo and skewed scenes, ROUNDS rounds, and the median;
 #   node      a farm node's throughput (issue 21): 1920x1080 demo frames/s from `aperture load`
 #             at concurrency 1, 2 and 4, zip and none, NODE_S seconds each, against the raster-only
-#             rate (1000 / the fastest local setup + raster ms on 2 threads); with BEFORE_DIR (a
+#             rate (1000 / the fastest local setup + raster ms on 2 threads), with the server's and
+#             the client's CPU per frame and the rate the two cores allow; with BEFORE_DIR (a
 #             folder holding an older aperture-server) that server is measured too, interleaved.
 #   sim       a simulator host on RenderStream (issue 20): `aperture sim` of the demo at 1280x720
 #             and 1920x1080 at SIM_RATES (default 5 10 15 20 30), SIM_S seconds each (default 6),
@@ -200,19 +201,38 @@ node() {
     "raster-only $raster_fps frames/s"
   local builds=("$server_bin")
   [ -n "${BEFORE_DIR:-}" ] && builds=("$BEFORE_DIR/aperture-server" "$server_bin")
+  # CPU per frame of the server (/proc/PID/stat utime + stime) and of the client (the shell's
+  # `times` for its children), and the frame rate the two cores allow with both on this machine:
+  # 2 cores / (server + client CPU per frame); and with the client elsewhere: 2 / server.
+  local tck
+  tck=$(getconf CLK_TCK)
+  server_cpu() { awk '{print $14 + $15}' "/proc/$pid/stat"; }
   for c in zip none; do
     for n in 1 2 4; do
       for bin in "${builds[@]}"; do
         server_bin="$bin" start_server "$work/store-node" --max-queue 64
         "$client_bin" render --server "$address" --scene demo --size 1920x1080 \
           -o "$work/warm.exr" >/dev/null
-        "$client_bin" load --server "$address" --scene demo --size 1920x1080 --compression "$c" \
-          --concurrency "$n" --duration "$node_s" --json |
-          awk -v b="$bin" -v c="$c" -v n="$n" -v r="$raster_fps" '{
+        local before after report client
+        before=$(server_cpu)
+        report=$( { "$client_bin" load --server "$address" --scene demo --size 1920x1080 \
+          --compression "$c" --concurrency "$n" --duration "$node_s" --json; times; } )
+        after=$(server_cpu)
+        # `times` prints the shell's then its children's user and system time (XmY.YYYs).
+        client=$(echo "$report" | tail -1 | awk '{
+          t = 0; for (i = 1; i <= 2; ++i) { split($i, p, "m"); sub(/s/, "", p[2]);
+          t += p[1] * 60 + p[2] } printf "%.3f", t }')
+        echo "$report" | grep '"frames_per_s"' |
+          awk -v b="$bin" -v c="$c" -v n="$n" -v r="$raster_fps" -v s="$node_s" \
+            -v sv="$(( after - before ))" -v tck="$tck" -v cl="$client" '{
             match($0, /"frames_per_s": *[0-9.]+/); f = substr($0, RSTART, RLENGTH);
             sub(/.*: */, "", f);
-            printf "%-28s %-4s concurrency %d: %6.2f frames/s, %3.0f %% of raster-only\n",
-                   b, c, n, f, 100 * f / r }'
+            frames = f * s; scpu = 1000 * sv / tck / frames; ccpu = 1000 * cl / frames;
+            printf "%-28s %-4s concurrency %d: %6.2f frames/s, %3.0f %% of raster-only;" \
+                   " CPU per frame: server %.1f ms, client %.1f ms; the cores allow %.2f" \
+                   " frames/s (%.0f %% reached), %.2f with the client elsewhere\n",
+                   b, c, n, f, 100 * f / r, scpu, ccpu, 2000 / (scpu + ccpu),
+                   100 * f * (scpu + ccpu) / 2000, 2000 / scpu }'
         stop_server
       done
     done

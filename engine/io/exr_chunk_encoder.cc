@@ -11,6 +11,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "io/exr_deflate.h"
+#include "io/exr_pack.h"
 
 namespace aperture {
 namespace {
@@ -187,6 +188,9 @@ class ChunkWriter {
       if (r == EXR_ERR_SUCCESS) {
         PointAtRows(encode, y);
         if (!initialized) r = exr_encoding_choose_default_routines(context_, part_, &encode);
+        if (!initialized) {
+          if (ExrPackFn pack = FastRgbaPack()) encode.convert_and_pack_fn = pack;
+        }
         if (!initialized && deflate_) {
           encode.compress_fn = &DeflateExrChunk;
           encode.encoding_user_data = const_cast<int*>(&zip_level_);

@@ -1,5 +1,6 @@
 #include "io/exr_writer.h"
 
+#include <Imath/half.h>
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -9,6 +10,8 @@
 #include <filesystem>
 #include <iterator>
 #include <random>
+
+#include "io/exr_pack.h"
 
 namespace aperture {
 namespace {
@@ -250,6 +253,82 @@ TEST_F(ExrWriterTest, ZipLevelIsApplied) {
 TEST_F(ExrWriterTest, UnwritablePathIsAnError) {
   auto status = WriteExrFile(Gradient(4, 4), {}, (dir_ / "no/such/dir/x.exr").string());
   EXPECT_FALSE(status.ok());
+}
+
+// The encoder's chunk packing (io/exr_pack: F16C conversion and a transpose, when the processor
+// has them) against an independent conversion: every value read back by OpenImageIO equals
+// Imath::half of the frame's float (round to nearest even), bit for bit, or the float itself;
+// over widths that leave every tail length of the eight-pixel groups, and values at the edges of
+// half's range: subnormals, ties, the largest half, overflow to infinity, signed zeros.
+Image Awkward(int w, int h, uint32_t seed) {
+  const float specials[] = {
+      0.0f,     -0.0f,   1.0f,           -1.0f,           65504.0f,  65519.99f,
+      65520.0f, 1e6f,    -1e6f,          6.0e-8f,         5.96e-8f,  2.98e-8f,
+      1e-5f,    6.1e-5f, 1.00048828125f, 1.000732421875f, 0.333333f, 1e-30f};
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> any(-4, 4);
+  std::uniform_int_distribution<int> pick(0, 3 * static_cast<int>(std::size(specials)));
+  Image img(w, h);
+  for (Rgba& t : img.texels()) {
+    float* v = &t.r;
+    for (int c = 0; c < 4; ++c) {
+      const int k = pick(rng);
+      v[c] = k < static_cast<int>(std::size(specials)) ? specials[k] : any(rng);
+    }
+  }
+  return img;
+}
+
+std::vector<uint8_t> ReadRaw(const std::string& bytes, OIIO::TypeDesc type, OIIO::ImageSpec* spec) {
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  OIIO::ImageSpec config;
+  void* p = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
+  auto in = OIIO::ImageInput::open("frame.exr", &config, &reader);
+  EXPECT_TRUE(in) << OIIO::geterror();
+  if (!in) return {};
+  *spec = in->spec();
+  std::vector<uint8_t> out(static_cast<size_t>(spec->width) * spec->height * spec->nchannels *
+                           type.size());
+  EXPECT_TRUE(in->read_image(0, 0, 0, spec->nchannels, type, out.data()));
+  return out;
+}
+
+TEST(ExrPack, EveryValueIsImathsHalfOrTheFloat) {
+  std::printf("packing: %s\n", FastRgbaPack() ? "F16C" : "OpenEXR core's own");
+  for (int width : {1, 7, 8, 9, 15, 16, 17, 1283})
+    for (ExrCompression compression : {ExrCompression::kNone, ExrCompression::kZip})
+      for (ExrPixelType type : {ExrPixelType::kHalf, ExrPixelType::kFloat}) {
+        const Image img = Awkward(width, 37, static_cast<uint32_t>(width));
+        ExrOptions options;
+        options.compression = compression;
+        options.pixel_type = type;
+        auto bytes = EncodeExr(img, options);
+        ASSERT_TRUE(bytes.ok()) << bytes.status();
+        OIIO::ImageSpec spec;
+        const bool half = type == ExrPixelType::kHalf;
+        const auto raw =
+            ReadRaw(*bytes, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT, &spec);
+        ASSERT_EQ(spec.nchannels, 4);
+        ASSERT_EQ(spec.width, width);
+        // OpenImageIO returns the channels as R, G, B, A.
+        size_t mismatches = 0;
+        for (size_t i = 0; i < img.texels().size(); ++i)
+          for (int c = 0; c < 4; ++c) {
+            const float v = (&img.texels()[i].r)[c];
+            const size_t at = 4 * i + c;
+            if (half) {
+              const uint16_t want = Imath::half(v).bits();
+              uint16_t got;
+              std::memcpy(&got, raw.data() + 2 * at, 2);
+              mismatches += got != want;
+            } else {
+              mismatches += std::memcmp(raw.data() + 4 * at, &v, 4) != 0;
+            }
+          }
+        EXPECT_EQ(mismatches, 0u) << "width " << width << " " << ExrCompressionName(compression)
+                                  << (half ? " half" : " float");
+      }
 }
 
 }  // namespace
