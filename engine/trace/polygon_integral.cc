@@ -69,7 +69,13 @@ class BandIntegrator {
   // The band's piece cut at the periods along a (a = -1 + m cells), each moved into the table.
   void InBand(long n, double a1, double t1, double a2, double t2, double* sum) const {
     if (t1 == t2) return;
-    const int lo = Line(n), hi = Line(n + 1);
+    // The table holds lines -1 .. lines (the borders wrapped): within them no wrap is needed.
+    const bool inside = n >= -1 && n < lines_;
+    const int lo = inside ? static_cast<int>(n) : Line(n), hi = inside ? lo + 1 : Line(n + 1);
+    if (a1 >= -1 && a1 <= cells_ - 1 && a2 >= -1 && a2 <= cells_ - 1) {
+      InPeriod(lo, hi, a1, t1, a2, t2, sum);  // within the first period: no offset
+      return;
+    }
     const double m1 = std::floor((a1 + 1) / cells_), m2 = std::floor((a2 + 1) / cells_);
     const double dir = m2 >= m1 ? 1 : -1;
     double pa = a1, pt = t1;
@@ -174,15 +180,23 @@ bool IntegrateWithin(const SummedAreaTable& table, const TexPoint* v, int n, int
   constexpr int kMaxVertices = 16;
   n = std::min(n, kMaxVertices);
   bool by_columns[kMaxVertices];
-  *steps = 0;
+  // Each edge in its cheaper form, unless one form for all is cheaper still: a vertex where the
+  // form changes costs a corner lookup, about two steps (small quads, magnified texels).
+  int all_rows = 0, all_columns = 0, mixed = 0, changes = 0;
   for (int e = 0; e < n; ++e) {
     const TexPoint &p = v[e], &q = v[(e + 1) % n];
     const int by_rows = rows.Steps(p.x - 0.5, p.z - 0.5, q.x - 0.5, q.z - 0.5),
               by_cols = columns.Steps(p.z - 0.5, p.x - 0.5, q.z - 0.5, q.x - 0.5);
     by_columns[e] = by_cols < by_rows;
-    *steps += 1 + std::min(by_rows, by_cols);
+    all_rows += 1 + by_rows, all_columns += 1 + by_cols, mixed += 1 + std::min(by_rows, by_cols);
   }
+  for (int e = 0; e < n; ++e) changes += by_columns[e] != by_columns[(e + 1) % n];
+  constexpr int kCornerSteps = 2;
+  mixed += kCornerSteps * changes;
+  *steps = std::min({mixed, all_rows, all_columns});
   if (*steps > max_steps) return false;
+  if (*steps != mixed)
+    for (int e = 0; e < n; ++e) by_columns[e] = *steps != all_rows;
   double sum[4] = {}, cross[4] = {};
   for (int e = 0; e < n; ++e) {
     const TexPoint &p = v[e], &q = v[(e + 1) % n];
