@@ -89,6 +89,27 @@ int FirstMeasuredRow(const GrazingPlaneView& view) {
   return std::clamp(static_cast<int>(std::floor(horizon + 0.5)) + 1, 0, view.height);
 }
 
+Scene GrazingPlaneScene(std::shared_ptr<const SceneTexture> texture) {
+  Scene scene;
+  scene.name = "grazing-plane";
+  scene.textures.push_back(std::move(texture));
+  Material m;
+  m.id = "ground";
+  m.texture = 0;
+  m.unlit = true;
+  scene.materials.push_back(m);
+  ScenePolygon ground;
+  const double l = 20000;
+  ground.vertices = {{-l, 0, -l}, {-l, 0, l}, {l, 0, l}, {l, 0, -l}};
+  ground.normal = {0, 1, 0};
+  ground.mapping.su = {0.25, 0, 0};
+  ground.mapping.sv = {0, 0, 0.25};
+  scene.polygons.push_back(ground);
+  scene.ambient = {1, 1, 1, 1};
+  scene.sky = {0, 0, 0, 1};
+  return scene;
+}
+
 Image RenderGroundImage(const GrazingPlaneView& view, const TextureSampler& sampler) {
   Image out(view.width, view.height);
   tbb::parallel_for(0, view.height, [&](int j) {

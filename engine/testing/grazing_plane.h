@@ -7,9 +7,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "base/image.h"
+#include "scene/scene.h"
 #include "texture/texture_sampler.h"
 
 namespace aperture {
@@ -34,6 +36,11 @@ bool GroundPoint(const GrazingPlaneView& view, double px, double py, double* u, 
 bool GroundFootprint(const GrazingPlaneView& view, int i, int j, TextureFootprint* f);
 // The first row whose whole 2 x 2 aperture lies below the horizon (the measured rows).
 int FirstMeasuredRow(const GrazingPlaneView& view);
+
+// The plane as a scene for the ray tracer (seed 003): a 40 km square ground polygon at y = 0, u =
+// x / 4, v = z / 4 (repeats), unlit white under `texture`, black sky; seen from (0, 1, 0) with the
+// view's pitch it is the view above (at yaw 0).
+Scene GrazingPlaneScene(std::shared_ptr<const SceneTexture> texture);
 
 // Every pixel through `sampler` (sky = 0), in parallel with oneTBB.
 Image RenderGroundImage(const GrazingPlaneView& view, const TextureSampler& sampler);

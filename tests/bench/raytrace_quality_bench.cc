@@ -82,29 +82,6 @@ Image Reference(const GrazingPlaneView& view, const Image& texture, int min_side
   return out;
 }
 
-// The grazing plane as a scene: a 40 km square ground polygon, u = x / 4, v = z / 4, unlit
-// white, sky 0.
-Scene GroundScene(std::shared_ptr<const SceneTexture> texture) {
-  Scene scene;
-  scene.name = "grazing-plane";
-  scene.textures.push_back(std::move(texture));
-  Material m;
-  m.id = "ground";
-  m.texture = 0;
-  m.unlit = true;
-  scene.materials.push_back(m);
-  ScenePolygon ground;
-  const double l = 20000;
-  ground.vertices = {{-l, 0, -l}, {-l, 0, l}, {l, 0, l}, {l, 0, -l}};
-  ground.normal = {0, 1, 0};
-  ground.mapping.su = {0.25, 0, 0};
-  ground.mapping.sv = {0, 0, 0.25};
-  scene.polygons.push_back(ground);
-  scene.ambient = {1, 1, 1, 1};
-  scene.sky = {0, 0, 0, 1};
-  return scene;
-}
-
 std::map<std::string, std::string> ParseFlags(int argc, char** argv) {
   std::map<std::string, std::string> flags;
   for (int i = 1; i + 1 < argc; i += 2) flags[argv[i]] = argv[i + 1];
@@ -232,7 +209,7 @@ int Run(int argc, char** argv) {
       image = ResizeToPowerOfTwo(*loaded);
     }
     auto texture = MakeSceneTexture(name, image);
-    const Scene scene = GroundScene(texture);
+    const Scene scene = GrazingPlaneScene(texture);
     auto traced = TracedScene::Build(scene);
     if (!traced.ok()) {
       std::fprintf(stderr, "%s\n", std::string(traced.status().message()).c_str());

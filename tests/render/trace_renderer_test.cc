@@ -10,6 +10,7 @@
 #include <random>
 
 #include "render/frame_renderer.h"
+#include "testing/grazing_plane.h"
 
 namespace aperture {
 namespace {
@@ -127,21 +128,8 @@ TEST(TraceRenderer, TheGrazingPlanesAreaErrorRespectsDelta) {
   // every projection and over those the fragments integrate: the thin ones next to the horizon,
   // whose fragments the work cap would stop short of delta, take a coarser level's exact
   // integral instead (they are counted apart).
-  Scene scene;
-  scene.textures.push_back(
+  const Scene scene = GrazingPlaneScene(
       MakeSceneTexture("checker", MakeCheckerboard(256, 8, {1, 1, 1, 1}, {0, 0, 0, 1})));
-  Material m;
-  m.texture = 0;
-  m.unlit = true;
-  scene.materials.push_back(m);
-  ScenePolygon ground;
-  const double l = 20000;
-  ground.vertices = {{-l, 0, -l}, {-l, 0, l}, {l, 0, l}, {l, 0, -l}};
-  ground.normal = {0, 1, 0};
-  ground.mapping.su = {0.25, 0, 0};
-  ground.mapping.sv = {0, 0, 0.25};
-  scene.polygons.push_back(ground);
-  scene.sky = {0, 0, 0, 1};
   auto traced = TracedScene::Build(scene);
   ASSERT_TRUE(traced.ok()) << traced.status();
   Camera camera;
