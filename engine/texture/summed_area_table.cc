@@ -10,17 +10,6 @@
 namespace aperture {
 namespace {
 
-enum Table {
-  kT = 0,
-  kQT = 1,
-  kTQ = 2,
-  kQQ = 3,
-  kM1Row = 4,
-  kM2Row = 5,
-  kM1Column = 6,
-  kM2Column = 7
-};
-
 int Wrap(int i, int n) { return ((i % n) + n) % n; }
 
 // One axis of [lo, hi] cut at the period borders: pieces within [0, period], each with how many
@@ -166,41 +155,6 @@ void SummedAreaTable::Corner(double x, double y, double* out) const {
   for (int c = 0; c < channels_; ++c)
     out[c] = qq[c] + ar * qt0[c] + br * qt1[c] + as * tq0[c] + bs * tq1[c] +
              as * (ar * t00[c] + br * t01[c]) + bs * (ar * t10[c] + br * t11[c]);
-}
-
-void SummedAreaTable::Line(bool along_rows, int line, int cell, double a, bool moments,
-                           LineIntegrals* out) const {
-  const int i = along_rows ? cell : line, j = along_rows ? line : cell;
-  const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
-  const double* q = At(along_rows ? kQT : kTQ, i, j);
-  const double s = a - cell, s2 = s * s;
-  const double as = s - 0.5 * s2, bs = 0.5 * s2;  // the weights of G (as in Corner)
-  for (int c = 0; c < channels_; ++c) out->g[c] = q[c] + as * t0[c] + bs * t1[c];
-  if (!moments) return;
-  // Their integrals from the piece's start: s^2 / 2 - s^3 / 6 and s^3 / 6; and of s times them.
-  const double s3 = s2 * s, s4 = s3 * s;
-  const double A = 0.5 * s2 - s3 / 6, B = s3 / 6, A2 = s3 / 3 - 0.125 * s4, B2 = 0.125 * s4;
-  const double *m1 = At(along_rows ? kM1Row : kM1Column, i, j),
-               *m2 = At(along_rows ? kM2Row : kM2Column, i, j);
-  for (int c = 0; c < channels_; ++c) {
-    const double part = s * q[c] + A * t0[c] + B * t1[c];
-    out->m1[c] = m1[c] + part;
-    out->m2[c] = m2[c] + cell * part + 0.5 * s2 * q[c] + A2 * t0[c] + B2 * t1[c];
-  }
-}
-
-void SummedAreaTable::LineAt2(bool along_rows, int line, int cell, double a0, double a1, double* g0,
-                              double* g1) const {
-  const int i = along_rows ? cell : line, j = along_rows ? line : cell;
-  const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
-  const double* q = At(along_rows ? kQT : kTQ, i, j);
-  const double s0 = a0 - cell, s1 = a1 - cell;
-  const double as0 = s0 - 0.5 * s0 * s0, bs0 = 0.5 * s0 * s0;
-  const double as1 = s1 - 0.5 * s1 * s1, bs1 = 0.5 * s1 * s1;
-  for (int c = 0; c < channels_; ++c) {
-    g0[c] = q[c] + as0 * t0[c] + bs0 * t1[c];
-    g1[c] = q[c] + as1 * t0[c] + bs1 * t1[c];
-  }
 }
 
 // The integral of texel column i's piecewise-linear samples over [y0, y1] (the one-axis form of

@@ -72,10 +72,46 @@ class SummedAreaTable {
   struct LineIntegrals {
     double g[4], m1[4], m2[4];
   };
-  void Line(bool along_rows, int line, int cell, double a, bool moments, LineIntegrals* out) const;
-  // G alone at two points a0, a1 of one piece (`cell`), in g0 and g1.
+  void Line(bool along_rows, int line, int cell, double a, bool moments, LineIntegrals* out) const {
+    const int i = along_rows ? cell : line, j = along_rows ? line : cell;
+    const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
+    const double* q = At(along_rows ? kQT : kTQ, i, j);
+    const double s = a - cell, s2 = s * s;
+    const double as = s - 0.5 * s2, bs = 0.5 * s2;  // the weights of G (as in Corner)
+    for (int c = 0; c < channels_; ++c) out->g[c] = q[c] + as * t0[c] + bs * t1[c];
+    if (!moments) return;
+    // Their integrals from the piece's start: s^2 / 2 - s^3 / 6 and s^3 / 6; and of s times them.
+    const double s3 = s2 * s, s4 = s3 * s;
+    const double A = 0.5 * s2 - s3 / 6, B = s3 / 6, A2 = s3 / 3 - 0.125 * s4, B2 = 0.125 * s4;
+    const double *m1 = At(along_rows ? kM1Row : kM1Column, i, j),
+                 *m2 = At(along_rows ? kM2Row : kM2Column, i, j);
+    for (int c = 0; c < channels_; ++c) {
+      const double part = s * q[c] + A * t0[c] + B * t1[c];
+      out->m1[c] = m1[c] + part;
+      out->m2[c] = m2[c] + cell * part + 0.5 * s2 * q[c] + A2 * t0[c] + B2 * t1[c];
+    }
+  }
+  // G alone at two points a0, a1 of one piece (`cell`), in g0 and g1. Inline: the exact
+  // integral's inner loop (trace/polygon_integral) calls it twice per step.
   void LineAt2(bool along_rows, int line, int cell, double a0, double a1, double* g0,
-               double* g1) const;
+               double* g1) const {
+    const int i = along_rows ? cell : line, j = along_rows ? line : cell;
+    const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
+    const double* q = At(along_rows ? kQT : kTQ, i, j);
+    const double s0 = a0 - cell, s1 = a1 - cell;
+    const double as0 = s0 - 0.5 * s0 * s0, bs0 = 0.5 * s0 * s0;
+    const double as1 = s1 - 0.5 * s1 * s1, bs1 = 0.5 * s1 * s1;
+    auto channels = [&](int n) {
+      for (int c = 0; c < n; ++c) {
+        g0[c] = q[c] + as0 * t0[c] + bs0 * t1[c];
+        g1[c] = q[c] + as1 * t0[c] + bs1 * t1[c];
+      }
+    };
+    if (channels_ == 3)
+      channels(3);  // RGB, the common table: a loop of known length
+    else
+      channels(channels_);
+  }
 
  private:
   // One-axis integrals of texel column i over [y0, y1], of texel row j over [x0, x1].
@@ -86,7 +122,8 @@ class SummedAreaTable {
                   channels_];
   }
   SummedAreaTable() = default;
-  static constexpr int kTables = 8;
+  // The tables, interleaved per texel in this order.
+  enum Table { kT, kQT, kTQ, kQQ, kM1Row, kM2Row, kM1Column, kM2Column, kTables };
 
   int width_ = 0, height_ = 0, channels_ = 0;
   // Eight tables T, QT, TQ, QQ, M1 and M2 along rows, M1 and M2 along columns, each (width + 2) x

@@ -39,9 +39,11 @@ class BandIntegrator {
   // Steps of an edge from (a1, b1) to (a2, b2) in this form: the bands it crosses, and the
   // periods along a within them.
   int Steps(double a1, double b1, double a2, double b2) const {
+    const double bands = std::abs(std::floor(b2) - std::floor(b1));
+    if (a1 >= -1 && a1 <= cells_ - 1 && a2 >= -1 && a2 <= cells_ - 1)
+      return static_cast<int>(bands);  // within the first period (InBand's shortcut)
     return static_cast<int>(
-        std::abs(std::floor(b2) - std::floor(b1)) +
-        std::abs(std::floor((a2 + 1) / cells_) - std::floor((a1 + 1) / cells_)));
+        bands + std::abs(std::floor((a2 + 1) / cells_) - std::floor((a1 + 1) / cells_)));
   }
 
   // The edge from (a1, b1) to (a2, b2), cut at the bands it crosses; adds to `sum`.
