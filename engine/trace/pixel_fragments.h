@@ -43,7 +43,7 @@ struct FragmentOptions {
   // A raster texture's quad is integrated exactly (trace/polygon_integral.h) when that takes at
   // most this many steps (row or column bands summed over its edges), else by the fragments
   // above; 0 integrates every quad by fragments, as seed 003 does.
-  int exact_steps = 64;
+  int exact_steps = 256;  // the fastest of 64 .. 1024 on the demo and the plane (BENCHMARKS.md)
 };
 
 struct FragmentSet {

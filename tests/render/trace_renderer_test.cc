@@ -140,7 +140,7 @@ TEST(TraceRenderer, TheGrazingPlanesAreaErrorRespectsDelta) {
   settings.width = 320;
   settings.height = 240;
   settings.threads = 2;
-  for (int exact_steps : {64, 0}) {
+  for (int exact_steps : {FragmentOptions{}.exact_steps, 0}) {
     TraceOptions options;
     options.fragments.exact_steps = exact_steps;
     TraceStats stats;
