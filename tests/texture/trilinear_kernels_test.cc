@@ -10,20 +10,13 @@
 #include <random>
 #include <vector>
 
+#include "testing/random_image.h"
+
 namespace aperture {
 namespace {
 
-Image Noise(int width, int height, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> value(0, 1);
-  Image image(width, height);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) image.at(x, y) = {value(rng), value(rng), value(rng), 1.0f};
-  return image;
-}
-
 TEST(TrilinearKernels, EveryKernelEqualsThePyramid) {
-  const MipPyramid pyramid(Noise(64, 16, 3));
+  const MipPyramid pyramid(RandomImage(64, 16, 3));
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord(0, 1);
   std::uniform_real_distribution<float> log_scale(-9, 2), sign(-1, 1), unit(0, 1);
@@ -71,7 +64,7 @@ TEST(TrilinearKernels, EveryKernelEqualsThePyramid) {
 
 // The portable kernel is the pyramid's Trilinear, sample by sample.
 TEST(TrilinearKernels, PortableIsTheSampler) {
-  const MipPyramid pyramid(Noise(32, 32, 4));
+  const MipPyramid pyramid(RandomImage(32, 32, 4));
   FootprintBatch batch;
   batch.count = 3;
   batch.Set(0, {0.25, 0.75, 0.001f, 0, 0, 0.001f});

@@ -11,21 +11,13 @@
 #include <random>
 #include <vector>
 
+#include "testing/random_image.h"
 #include "texture/mip_pyramid.h"
 #include "texture/summed_area_levels.h"
 #include "trace/projection_integral.h"
 
 namespace aperture {
 namespace {
-
-Image RandomTexture(int w, int h, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> v(0, 1);
-  Image img(w, h);
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) img.at(i, j) = {v(rng), v(rng), v(rng), v(rng)};
-  return img;
-}
 
 using Poly = std::vector<TexPoint>;
 
@@ -111,7 +103,7 @@ std::array<TexPoint, 4> RandomQuad(std::mt19937& rng, double cx, double cz, doub
 TEST(PolygonIntegral, RandomQuadsMatchTheCellByCellIntegral) {
   // Quads from a fraction of a texel to 60 texels across at every angle, so that edges take
   // both forms, cross up to two cells in a band (Gauss-Legendre) or many (the line moments).
-  const Image img = RandomTexture(37, 23, 5);
+  const Image img = RandomImage(37, 23, 5, true);
   const SummedAreaTable table(img, 4);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> x(1, 36), z(1, 22), size(0.02, 1);
@@ -138,7 +130,7 @@ TEST(PolygonIntegral, RandomQuadsMatchTheCellByCellIntegral) {
 }
 
 TEST(PolygonIntegral, RectanglesMatchTheTable) {
-  const Image img = RandomTexture(16, 16, 3);
+  const Image img = RandomImage(16, 16, 3, true);
   const SummedAreaTable table(img, 3);
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> v(0, 16);
@@ -185,7 +177,7 @@ TEST(PolygonIntegral, ABilinearPolynomialTextureIsIntegratedAnalytically) {
 
 TEST(PolygonIntegral, MeanOverPeriodsMatchesTheCellByCellIntegral) {
   // Quads across the period borders (texture repeats), in repeat units as the tracer gives them.
-  const Image img = RandomTexture(8, 6, 9);
+  const Image img = RandomImage(8, 6, 9, true);
   const SummedAreaTable table(img, 3);
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> c(-3, 3), size(0.05, 1);
@@ -208,7 +200,7 @@ TEST(PolygonIntegral, MeanOverPeriodsMatchesTheCellByCellIntegral) {
 
 TEST(PolygonIntegral, LongQuadsOverManyPeriodsMatchTheCellByCellIntegral) {
   // Pixels near the horizon: thin quads many periods long, at any angle, far from the origin.
-  const Image img = RandomTexture(8, 6, 13);
+  const Image img = RandomImage(8, 6, 13, true);
   const SummedAreaTable table(img, 3);
   std::mt19937 rng(21);
   std::uniform_real_distribution<double> angle(0, 2 * M_PI), len(2, 20), thin(0.01, 0.3),
@@ -233,7 +225,7 @@ TEST(PolygonIntegral, LongQuadsOverManyPeriodsMatchTheCellByCellIntegral) {
 }
 
 TEST(PolygonIntegral, RefusesWhatItCannotTakeExactly) {
-  const Image img = RandomTexture(8, 8, 1);
+  const Image img = RandomImage(8, 8, 1, true);
   const SummedAreaTable table(img, 3);
   std::array<double, 4> mean{-1, -1, -1, -1};
   int steps = 0;
@@ -251,7 +243,7 @@ TEST(PolygonIntegral, RefusesWhatItCannotTakeExactly) {
 
 TEST(PolygonIntegral, FragmentsConvergeOnTheExactMean) {
   // Seed 003's fragments (exact path off) approach the exact mean as delta falls.
-  const Image img = RandomTexture(64, 64, 8);
+  const Image img = RandomImage(64, 64, 8, true);
   const SummedAreaTable table(img, 3);
   const std::array<TexPoint, 4> q{{{0.31, 0.22}, {0.52, 0.27}, {0.50, 0.61}, {0.28, 0.48}}};
   std::array<double, 4> exact;
@@ -282,7 +274,7 @@ TEST(PolygonIntegral, ProjectionsTheFragmentsCannotBoundTakeACoarserLevel) {
   // the work cap (1,024 columns) and miss delta; it takes the texture's mean (no level's steps
   // fit), which over 2,000 periods is its true mean within a small fraction of the contrast. A
   // shorter slanted sliver over 12 periods takes a coarser level, near the exact base integral.
-  const Image img = RandomTexture(64, 64, 17);
+  const Image img = RandomImage(64, 64, 17, true);
   const MipPyramid pyramid(img);
   const auto tables = BuildSummedAreaLevels(pyramid, 3);
   std::vector<const SummedAreaTable*> levels;
