@@ -145,7 +145,7 @@ class BandIntegrator {
               double* sum) const {
     const double dt = t2 - t1;
     if (dt == 0) return;
-    static const double kG = 0.5 / std::sqrt(3.0);
+    constexpr double kG = 0.28867513459481287;  // 1 / (2 sqrt(3))
     const double ga = a1 + (0.5 - kG) * (a2 - a1), gb = a1 + (0.5 + kG) * (a2 - a1);
     const double ta = t1 + (0.5 - kG) * dt, tb = t1 + (0.5 + kG) * dt;
     double lo_a[4], lo_b[4], hi_a[4], hi_b[4];
