@@ -74,8 +74,8 @@ class SummedAreaTable {
   };
   void Line(bool along_rows, int line, int cell, double a, bool moments, LineIntegrals* out) const {
     const int i = along_rows ? cell : line, j = along_rows ? line : cell;
-    const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
-    const double* q = At(along_rows ? kQT : kTQ, i, j);
+    const LinePiece p = PieceOf(along_rows, i, j);
+    const double *t0 = p.t0, *t1 = p.t1, *q = p.q;
     const double s = a - cell, s2 = s * s;
     const double as = s - 0.5 * s2, bs = 0.5 * s2;  // the weights of G (as in Corner)
     for (int c = 0; c < channels_; ++c) out->g[c] = q[c] + as * t0[c] + bs * t1[c];
@@ -95,9 +95,8 @@ class SummedAreaTable {
   // integral's inner loop (trace/polygon_integral) calls it twice per step.
   void LineAt2(bool along_rows, int line, int cell, double a0, double a1, double* g0,
                double* g1) const {
-    const int i = along_rows ? cell : line, j = along_rows ? line : cell;
-    const double *t0 = At(kT, i, j), *t1 = along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1);
-    const double* q = At(along_rows ? kQT : kTQ, i, j);
+    const LinePiece p = PieceOf(along_rows, along_rows ? cell : line, along_rows ? line : cell);
+    const double *t0 = p.t0, *t1 = p.t1, *q = p.q;
     const double s0 = a0 - cell, s1 = a1 - cell;
     const double as0 = s0 - 0.5 * s0 * s0, bs0 = 0.5 * s0 * s0;
     const double as1 = s1 - 0.5 * s1 * s1, bs1 = 0.5 * s1 * s1;
@@ -120,6 +119,15 @@ class SummedAreaTable {
   const double* At(int table, int i, int j) const {
     return &data_[((static_cast<size_t>(j + 1) * (width_ + 2) + (i + 1)) * kTables + table) *
                   channels_];
+  }
+  // The entries one piece of a line reads: its samples at both ends and the prefix sum (QT along
+  // rows, TQ along columns) at its start, entry (i, j).
+  struct LinePiece {
+    const double *t0, *t1, *q;
+  };
+  LinePiece PieceOf(bool along_rows, int i, int j) const {
+    return {At(kT, i, j), along_rows ? At(kT, i + 1, j) : At(kT, i, j + 1),
+            At(along_rows ? kQT : kTQ, i, j)};
   }
   SummedAreaTable() = default;
   // The tables, interleaved per texel in this order.
