@@ -234,6 +234,10 @@ TEST(PolygonIntegral, RefusesWhatItCannotTakeExactly) {
   EXPECT_FALSE(PolygonMean({{{0.1, 0.1}, {0.2, 0.2}, {0.3, 0.3}, {0.4, 0.4}}}, table, 100, &mean));
   EXPECT_FALSE(
       PolygonMean({{{0.1, 0.1}, {5000, 0.1}, {5000, 0.2}, {0.1, 0.2}}}, table, 1000, &mean));
+  // Not numbers: a corner ray that went wrong.
+  EXPECT_FALSE(PolygonMean({{{0.1, 0.1}, {NAN, 0.2}, {0.4, 0.4}, {0.1, 0.4}}}, table, 100, &mean));
+  EXPECT_FALSE(
+      PolygonMean({{{0.1, 0.1}, {INFINITY, 0.2}, {0.4, 0.4}, {0.1, 0.4}}}, table, 100, &mean));
   const std::array<TexPoint, 4> diagonal{{{0.1, 0.1}, {0.9, 0.8}, {0.85, 0.9}, {0.05, 0.2}}};
   EXPECT_FALSE(PolygonMean(diagonal, table, 5, &mean, &steps));
   EXPECT_GT(steps, 5);
