@@ -89,32 +89,23 @@ template <typename Layout>
 }
 
 // The base probes of a thin aperture (see AddBaseProbes): visit(u', v', weight) for each, in
-// order, where they are read (a bilinear read of the base, untilted).
+// order, where they are read (a bilinear read of the base, untilted); `scale` multiplies every
+// weight.
 template <typename Visit>
 [[gnu::always_inline]] inline void ForEachBaseProbe(const CopyBlend& blend,
                                                     const ApertureShape& shape, float u, float v,
-                                                    float inv_size, Visit visit) {
+                                                    float inv_size, float scale, Visit visit) {
   // Along the major axis, and tg times that along the minor one; in repeats.
   const float step = blend.probe_step * inv_size;
   const float first = -0.5f * static_cast<float>(blend.probes - 1) * step;
-  const float tg = static_cast<float>(shape.tg), w = blend.probe_weight / 255.0f;
+  const float tg = static_cast<float>(shape.tg);
+  const float w = blend.probe_weight * scale, w_end = blend.probe_end_weight * scale;
   const bool along_u = shape.axis == TiltAxis::kU;
   for (int k = 0; k < blend.probes; ++k) {
     const float major = first + static_cast<float>(k) * step, minor = major * tg;
-    visit(u + (along_u ? major : minor), v + (along_u ? minor : major), w);
+    visit(u + (along_u ? major : minor), v + (along_u ? minor : major),
+          k == 0 || k == blend.probes - 1 ? w_end : w);
   }
-}
-
-// The base probes summed with their weights.
-template <typename Layout>
-[[gnu::always_inline]] inline V4 BaseProbes(const Layout& base, const CopyBlend& blend,
-                                            const ApertureShape& shape, float u, float v,
-                                            float inv_size) {
-  V4 sum = Zero();
-  ForEachBaseProbe(blend, shape, u, v, inv_size, [&](float pu, float pv, float w) {
-    sum = AddScaled(sum, CopySample(base, pu, pv, 0.0f), w);
-  });
-  return sum;
 }
 
 // x = 2^e (1 + m) with 0 <= m < 1, for finite x >= 1 (std::frexp without the library call).
@@ -136,8 +127,8 @@ inline double PowerOfTwo(int e) {
 
 // The copy reads of BlendReads ("jobs"): one CopySample each, with its weight in the sum.
 struct ReadJobs {
-  // A group of 8 samples reads at most 16 probes and 3 copies each; rounded up to whole vectors.
-  static constexpr int kMax = 160;
+  // A group of 8 samples reads at most two readings of 16 probes and 6 copies each.
+  static constexpr int kMax = 8 * 2 * (16 + CopyBlend::kMaxCopies);
   int count = 0;
   alignas(32) float u[kMax], v[kMax], tg[kMax];
   alignas(32) float width[kMax], height[kMax], lambda[kMax];
@@ -210,37 +201,77 @@ bool HaveAvx2() { return false; }
 
 }  // namespace
 
-ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size) {
+namespace {
+
+// The pixel parallelogram's second moments in texels^2 and its area (see ApertureFromFootprint).
+struct FootprintMoments {
+  bool finite = false;
+  double uu = 0, vv = 0, uv = 0, area = 0;
+};
+
+FootprintMoments MomentsOf(const TextureFootprint& f, int texture_size) {
   // seed 000, eq. 2: one pixel step of the paper's 2 x 2 aperture is half the a-scaled
   // derivative (a = 2); in texel units. The pixel's aperture is then the parallelogram
   // {s X + t Y : |s|, |t| <= 1} with X = (dUx, dVx), Y = (dUy, dVy).
   const double s = 0.5 * texture_size;
   const double dUx = f.dudx * s, dVx = f.dvdx * s, dUy = f.dudy * s, dVy = f.dvdy * s;
-  ApertureShape out;
+  FootprintMoments m;
   if (!std::isfinite(dUx) || !std::isfinite(dVx) || !std::isfinite(dUy) || !std::isfinite(dVy))
-    return out;
-  // The table's copies are parallelograms with a pair of sides parallel to a texture axis: half
-  // extent H along the major axis with slope tg, half thickness L along the minor one, i.e.
-  // {s H (1, tg) + t L (0, 1)} (axes named major, minor). Seed 000 reads H, L and tg off the
-  // pixel parallelogram's bounding extents (eq. 3-4), which depend on how the footprint is turned
-  // against the texture: a square footprint turned 45 degrees gets a copy of twice its area.
-  // Our reading (issue 22): take the copy with the pixel parallelogram's second moments,
-  //   H^2 (1, tg) (1, tg)^T + L^2 (0, 1) (0, 1)^T = X X^T + Y Y^T,
-  // the Cholesky factor of the right side: H^2 = M_major, tg = M_cross / M_major,
-  // L = |X x Y| / H. The copy then has the pixel's area and its variance in every direction, so
-  // a footprint and the same footprint turned get copies of equal area and shape; along a
-  // texture axis (Y parallel to the major axis, or X and Y along the axes) it is the paper's.
-  // The major axis is the one with the larger moment, so |tg| <= 1 as the table's tilts need.
-  const double Muu = dUx * dUx + dUy * dUy, Mvv = dVx * dVx + dVy * dVy;
-  const double Muv = dUx * dVx + dUy * dVy;
-  const double area = std::abs(dUx * dVy - dVx * dUy);  // |X x Y|
-  if (Muu == 0 && Mvv == 0) return out;
-  const bool along_u = Muu >= Mvv;
-  const double major = along_u ? Muu : Mvv;
-  out.axis = along_u ? TiltAxis::kU : TiltAxis::kV;
+    return m;
+  m.finite = true;
+  m.uu = dUx * dUx + dUy * dUy;
+  m.vv = dVx * dVx + dVy * dVy;
+  m.uv = dUx * dVx + dUy * dVy;
+  m.area = std::abs(dUx * dVy - dVx * dUy);  // |X x Y|
+  return m;
+}
+
+// The table's copies are parallelograms with a pair of sides parallel to a texture axis: half
+// extent H along the major axis with slope tg, half thickness L along the minor one, i.e.
+// {s H (1, tg) + t L (0, 1)} (axes named major, minor). Seed 000 reads H, L and tg off the
+// pixel parallelogram's bounding extents (eq. 3-4), which depend on how the footprint is turned
+// against the texture: a square footprint turned 45 degrees gets a copy of twice its area.
+// Our reading (issue 22): take the copy with the pixel parallelogram's second moments,
+//   H^2 (1, tg) (1, tg)^T + L^2 (0, 1) (0, 1)^T = X X^T + Y Y^T,
+// the Cholesky factor of the right side: H^2 = M_major, tg = M_cross / M_major,
+// L = |X x Y| / H. The copy then has the pixel's area and its variance in every direction, so
+// a footprint and the same footprint turned get copies of equal area and shape; along a
+// texture axis (Y parallel to the major axis, or X and Y along the axes) it is the paper's.
+// Along the axis of the larger moment |tg| <= 1, as the table's tilts need; along the other one
+// (only inside the blend zone of ReadingsOfFootprint) |tg| stays under 1.14.
+ApertureShape ShapeAlong(TiltAxis axis, const FootprintMoments& m) {
+  const double major = axis == TiltAxis::kU ? m.uu : m.vv;
+  ApertureShape out;
+  out.axis = axis;
   out.H = std::sqrt(major);
-  out.tg = Muv / major;
-  out.L = area / out.H;
+  out.tg = m.uv / major;
+  out.L = m.area / out.H;
+  return out;
+}
+
+}  // namespace
+
+ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size) {
+  const FootprintMoments m = MomentsOf(f, texture_size);
+  if (!m.finite || (m.uu == 0 && m.vv == 0)) return {};
+  return ShapeAlong(m.uu >= m.vv ? TiltAxis::kU : TiltAxis::kV, m);
+}
+
+ApertureReadings ReadingsOfFootprint(const TextureFootprint& f, int texture_size) {
+  const FootprintMoments m = MomentsOf(f, texture_size);
+  ApertureReadings out;
+  if (!m.finite || (m.uu == 0 && m.vv == 0)) return out;
+  // r = 1 along U, -1 along V, 0 on a diagonal; U's weight goes 0 -> 1 across |r| < zone.
+  const double r = (m.uu - m.vv) / (m.uu + m.vv);
+  const double along_u = std::clamp(0.5 + r / (2 * kAxisBlendZone), 0.0, 1.0);
+  if (along_u > 0) {
+    out.shape[out.count] = ShapeAlong(TiltAxis::kU, m);
+    out.weight[out.count++] = static_cast<float>(along_u);
+  }
+  if (along_u < 1) {
+    out.shape[out.count] = ShapeAlong(TiltAxis::kV, m);
+    out.weight[out.count++] = static_cast<float>(1.0 - along_u);
+  }
   return out;
 }
 
@@ -248,46 +279,69 @@ namespace {
 
 // Base probes carry the thin apertures up to this half-extent, fading out to twice it.
 constexpr double kProbeHalfExtent = 4.0;
-constexpr double kMinProbeD2 = 1.0 / 16;
+// Probes are this many texels apart along the long side once more than two are needed.
+constexpr double kProbeSpacing = 1.0;
 
 // Below L = 1 the table's thinnest copies are up to twice too thick across the long side: the
 // paper's table stops there. This mixes in bilinear probes of the base, spread along the long
 // side, so that the blend's variances are the aperture's own (box of half-sides H and L on the
 // bilinear texture: H^2 / 3 + 1/6 along the long side, L^2 / 3 + 1/6 across it, in texels^2).
 // Across, a probe carries 1/6 (the bilinear tent alone) and the copies of L = 1 carry
-// 1/3 + 1/6, so the copies keep the share L^2 and the probes take 1 - L^2.
-//  - H >= 1: the copies are the table's for (H, 1); N = ceil(2H) probes, 2H / sqrt(N^2 - 1)
-//    apart (about a texel), have the variance of the long side's box, H^2 / 3.
-//  - H < 1: the first copy (2 x 2 box) alone with the share L^2, and two probes at +-d, where
-//    d^2 = (H^2 - L^2) / (3 (1 - L^2)) makes the variance along the long side H^2 / 3 + 1/6 too
-//    (one read more than the base-to-first-copy blend, which is isotropic). At H = 1 both give
-//    the same two probes.
-// The variances carry on without a step where N changes, and across H = 1 and L = 1. The
-// probes fade out between kProbeHalfExtent and twice it, where they would get too many.
+// 1/3 + 1/6, so the copies keep the share L^2 and the probes take 1 - L^2. Along the long side
+// the probes' positions must have the variance T (their own tents add the 1/6):
+//  - H >= 1: the copies are the table's for (H, 1), T = H^2 / 3, the long side's box;
+//  - H < 1: the first copy (2 x 2 box) alone with the share L^2, and T = (H^2 - L^2) /
+//    (3 (1 - L^2)) makes the variance along the long side H^2 / 3 + 1/6 too. At H = 1 both are
+//    1/3; at H = L, T = 0 and the blend is the paper's (base and first copy by H^2).
+// Every change is continuous (issue 22, part 3): under T = s^2 / 4 (s = kProbeSpacing) two
+// probes at +-sqrt(T), which meet at the centre as T -> 0; above it 2J probes s apart, the
+// outer two of weight e growing from 0 (where they appear) to the others' (where the next pair
+// appears), e set so that the variance is T. The probes fade out between kProbeHalfExtent and
+// twice it.
 void AddBaseProbes(const ApertureShape& shape, CopyBlend& blend) {
   const double H = shape.H, L = std::min(shape.L, shape.H);
   if (!(L < 1.0) || H >= 2 * kProbeHalfExtent) return;
-  const double share = std::min(1.0, 2.0 - H / kProbeHalfExtent) * (1.0 - L * L);
+  // In float from here: this runs for every thin sample and its divisions showed in profiles.
+  const float share = static_cast<float>(std::min(1.0, 2.0 - H / kProbeHalfExtent) * (1.0 - L * L));
+  const float s2 = static_cast<float>(kProbeSpacing * kProbeSpacing);
+  float T = static_cast<float>(H * H) * (1.0f / 3.0f);
   if (H < 1.0) {
-    const double d2 = (H * H - L * L) / (3.0 * (1.0 - L * L));
-    // Probes under half a texel apart: the isotropic blend alone. It has the same variance
-    // along the long side as the probes' blend, and across it at most d^2 (1/16 texel^2) more.
-    if (d2 < kMinProbeD2) return;
+    T = static_cast<float>((H * H - L * L) / (3.0 * (1.0 - L * L)));
     blend.count = 1;
     blend.copy[0] = blend.copy[1];
     blend.weight[0] = 1.0f;
-    blend.probes = 2;
-    blend.probe_step = static_cast<float>(2.0 * std::sqrt(d2));
-  } else {
-    const int n = static_cast<int>(std::ceil(2.0 * H));
-    blend.probes = n;
-    blend.probe_step = static_cast<float>(2.0 * H / std::sqrt(n * n - 1.0));
   }
-  for (int c = 0; c < blend.count; ++c) blend.weight[c] *= static_cast<float>(1.0 - share);
-  blend.probe_weight = static_cast<float>(share / blend.probes);
+  if (T <= 0.25f * s2) {
+    blend.probes = 2;
+    blend.probe_step = 2.0f * std::sqrt(T);
+    blend.probe_end_weight = 0.5f * share;
+  } else {
+    const float t = T / s2;  // in units of the spacing^2
+    // The smallest J whose 2J evenly weighted probes reach t: (4 J^2 - 1) / 12 >= t.
+    const int J = std::max(2, static_cast<int>(std::ceil(0.5f * std::sqrt(12.0f * t + 1.0f))));
+    // The 2 (J - 1) inner probes alone have the variance A (e = 0); e solves
+    // A + 2 e ((J - 1/2)^2 - A) = t with inner weights (1 - 2 e) / (2 (J - 1)), and
+    // (J - 1/2)^2 - A = J (2J - 1) / 3.
+    const float Jf = static_cast<float>(J);
+    const float A = (4.0f * (Jf - 1.0f) * (Jf - 1.0f) - 1.0f) * (1.0f / 12.0f);
+    const float e = std::clamp(1.5f * (t - A) / (Jf * (2.0f * Jf - 1.0f)), 0.0f, 0.5f / Jf);
+    blend.probes = 2 * J;
+    blend.probe_step = static_cast<float>(kProbeSpacing);
+    blend.probe_end_weight = e * share;
+    blend.probe_weight = (1.0f - 2.0f * e) / (2.0f * (Jf - 1.0f)) * share;
+  }
+  for (int c = 0; c < blend.count; ++c) blend.weight[c] *= 1.0f - share;
 }
 
-// seed 000, eq. 5 (SelectTableCopies).
+// Between the two tilts nearest the tangent, the next one's weight by the fraction of the way
+// from the lower tilt's centre to the next one's: the nearer tilt alone within a quarter of the
+// spacing of its centre, a linear blend over the middle half. Continuous, and half the samples
+// read one tilt (a blend over the whole spacing cost 2 ms more a demo frame for 0.03 dB).
+inline float NextTiltWeight(float fraction) {
+  return std::clamp(2.0f * fraction - 0.5f, 0.0f, 1.0f);
+}
+
+// seed 000, eq. 5 (SelectTableCopies), with the two nearest tilts of each cell.
 [[gnu::always_inline]] inline CopyBlend TableCopies(const PrefilteredTable& table,
                                                     const ApertureShape& shape) {
   CopyBlend blend;
@@ -316,21 +370,31 @@ void AddBaseProbes(const ApertureShape& shape, CopyBlend& blend) {
   // seed 000, eq. 5: H = 2^eH (1 + M_H), L = 2^eL (1 + M_L).
   const auto [eH, mH] = SplitPowerOfTwo(H);
   const auto [eL, mL0] = SplitPowerOfTwo(L);
-  // Nearest tilt: tg_k = (2k + 1) / half - 1 has the bin [2k / half - 1, 2(k+1) / half - 1).
-  const double tilt_position = (shape.tg + 1.0) * 0.5;
+  // Tilt k of a cell of lambda copies, tg_k = (2k + 1) / half - 1 (half = lambda / 2), sits at
+  // k = (tg + 1) half / 2 - 1/2 on the tilt axis.
+  const float tilt_position = static_cast<float>((shape.tg + 1.0) * 0.5);
   const uint32_t v_offset = shape.axis == TiltAxis::kV ? 1 : 0;
   const PrefilteredTable::Cell* cells = &table.cell(0, 0);
-  auto copy_of = [&](int j, int i) {
+  auto add = [&](uint32_t copy, float weight) {
+    if (!(weight > 0.0f)) return;
+    blend.copy[blend.count] = copy;
+    blend.weight[blend.count++] = weight;
+  };
+  auto add_cell = [&](int j, int i, float weight) {
     const PrefilteredTable::Cell& c = cells[j * n + i];
     const int half = static_cast<int>(c.lambda / 2);  // 0 for the one untilted copy (lambda 1)
-    // |tg| <= 1 (the major component is the larger), so tilt_position >= 0: truncation is floor.
-    const int k = std::min(static_cast<int>(tilt_position * half), std::max(half - 1, 0));
-    return c.first + v_offset * static_cast<uint32_t>(half) + static_cast<uint32_t>(k);
+    if (half <= 1) return add(c.first + v_offset * static_cast<uint32_t>(half), weight);
+    // Beyond the outer tilts' centres the outer tilt alone (the skewed read follows tg).
+    const float k = std::clamp(tilt_position * static_cast<float>(half) - 0.5f, 0.0f,
+                               static_cast<float>(half - 1));
+    const int k0 = std::min(static_cast<int>(k), half - 2);
+    const float next = NextTiltWeight(k - static_cast<float>(k0));
+    const uint32_t first = c.first + v_offset * static_cast<uint32_t>(half) + k0;
+    add(first, weight * (1.0f - next));
+    add(first + 1, weight * next);
   };
   if (eL >= n) {  // L >= 2^n: the aperture covers whole periods both ways
-    blend.count = 1;
-    blend.copy[0] = copy_of(n, std::min(eH - n, n - 1));
-    blend.weight[0] = 1;
+    add_cell(n, std::min(eH - n, n - 1), 1.0f);
     return blend;
   }
   int i = eH - eL;
@@ -339,16 +403,12 @@ void AddBaseProbes(const ApertureShape& shape, CopyBlend& blend) {
     i = n - 1;
     mh = std::min(mh, mL);
   }
-  blend.count = 3;
-  blend.copy[0] = copy_of(eL, i);
-  blend.copy[2] = copy_of(eL + 1, i);
-  // R3 = (eH + 1, eL) when M_H >= M_L, else R4 = (eH, eL + 1); weights without a branch (the
+  // R1, then R3 = (eH + 1, eL) when M_H >= M_L, else R4 = (eH, eL + 1), then R2 (the
   // comparison is a coin toss from sample to sample).
   const bool r3 = mh >= mL;
-  blend.copy[1] = copy_of(r3 ? eL : eL + 1, r3 ? i + 1 : i - 1);
-  blend.weight[0] = static_cast<float>(1.0 - std::max(mh, mL));
-  blend.weight[1] = static_cast<float>(std::abs(mh - mL));
-  blend.weight[2] = static_cast<float>(std::min(mh, mL));
+  add_cell(eL, i, static_cast<float>(1.0 - std::max(mh, mL)));
+  add_cell(r3 ? eL : eL + 1, r3 ? i + 1 : i - 1, static_cast<float>(std::abs(mh - mL)));
+  add_cell(eL + 1, i, static_cast<float>(std::min(mh, mL)));
   return blend;
 }
 
@@ -392,9 +452,41 @@ Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg)
   return ToRgba(AddScaled(Zero(), r, 1.0f / 255.0f));
 }
 
+void AnisoSampler::Select(const TextureFootprint& f, Selection& out) const {
+  out.readings = ReadingsOfFootprint(f, table_.size());
+  for (int r = 0; r < out.readings.count; ++r)
+    out.blend[r] = SelectCopies(table_, out.readings.shape[r]);
+}
+
+template <typename Visit>
+void AnisoSampler::ForEachRead(const TextureFootprint& f, const Selection& s, Visit visit) const {
+  const float u = static_cast<float>(f.u), v = static_cast<float>(f.v);
+  const float inv_size = 1.0f / table_.size();
+  if (s.readings.count == 0) {
+    visit(layouts_[0], u, v, 0.0f, 1.0f / 255.0f);  // degenerate derivatives: the base, bilinear
+    return;
+  }
+  for (int r = 0; r < s.readings.count; ++r) {
+    const CopyBlend& blend = s.blend[r];
+    const ApertureShape& shape = s.readings.shape[r];
+    const float scale = s.readings.weight[r] / 255.0f;
+    if (blend.magnify) {
+      visit(layouts_[0], u, v, 0.0f, scale);
+      continue;
+    }
+    ForEachBaseProbe(blend, shape, u, v, inv_size, scale,
+                     [&](float pu, float pv, float w) { visit(layouts_[0], pu, pv, 0.0f, w); });
+    // The sample's own tangent: the skew interpolates between tilts (seed 000, eq. 6-9).
+    const float tg = static_cast<float>(shape.tg);
+    for (int c = 0; c < blend.count; ++c)
+      visit(layouts_[blend.copy[c]], u, v, tg, blend.weight[c] * scale);
+  }
+}
+
 Rgba AnisoSampler::Sample(const TextureFootprint& f) const {
-  const ApertureShape shape = ApertureFromFootprint(f, table_.size());
-  return Blend(f, shape, SelectCopies(table_, shape));
+  Selection s;
+  Select(f, s);
+  return Blend(f, s);
 }
 
 template <typename FootprintOf>
@@ -403,50 +495,32 @@ void AnisoSampler::SampleGroups(FootprintOf footprint_of, Rgba* out, int count) 
   // group before any read) gained nothing.
   constexpr int kGroup = 8;
   TextureFootprint footprints[kGroup];
-  ApertureShape shapes[kGroup];
-  CopyBlend blends[kGroup];
   for (int first = 0; first < count; first += kGroup) {
     const int n = std::min(kGroup, count - first);
-    for (int i = 0; i < n; ++i) {
-      footprints[i] = footprint_of(first + i);
-      shapes[i] = ApertureFromFootprint(footprints[i], table_.size());
-      blends[i] = SelectCopies(table_, shapes[i]);
-    }
+    for (int i = 0; i < n; ++i) footprints[i] = footprint_of(first + i);
     if (read_kernel_) {
-      BlendReads(footprints, shapes, blends, n, out + first);
+      BlendReads(footprints, n, out + first);
       continue;
     }
-    for (int i = 0; i < n; ++i) out[first + i] = Blend(footprints[i], shapes[i], blends[i]);
+    for (int i = 0; i < n; ++i) out[first + i] = Sample(footprints[i]);
   }
 }
 
-void AnisoSampler::BlendReads(const TextureFootprint* f, const ApertureShape* shapes,
-                              const CopyBlend* blends, int n, Rgba* out) const {
+void AnisoSampler::BlendReads(const TextureFootprint* f, int n, Rgba* out) const {
   ReadJobs jobs;  // uninitialised arrays: each job is written before the kernel reads it
-  auto add = [&](int sample, const CopyLayout& c, float u, float v, float tg, float weight) {
-    const int j = jobs.count++;
-    jobs.u[j] = u, jobs.v[j] = v, jobs.tg[j] = tg;
-    jobs.width[j] = c.width, jobs.height[j] = c.height, jobs.lambda[j] = c.lambda;
-    jobs.width_mask[j] = c.width_mask, jobs.height_mask[j] = c.height_mask;
-    jobs.tilt_v[j] = c.tilt_v ? ~0u : 0u;
-    jobs.texels[j] = c.texels, jobs.weight[j] = weight, jobs.sample[j] = sample;
-  };
-  // Blend's reads in Blend's order: the magnified base; or the probes, then the copies.
-  const float inv_size = 1.0f / table_.size();
+  // Blend's reads in Blend's order, each sample's selected just before its reads are listed.
+  Selection selection;
   for (int i = 0; i < n; ++i) {
-    const CopyBlend& blend = blends[i];
-    const float u = static_cast<float>(f[i].u), v = static_cast<float>(f[i].v);
-    if (blend.magnify) {
-      add(i, layouts_[0], u, v, 0.0f, 1.0f / 255.0f);
-      continue;
-    }
-    const float tg = static_cast<float>(shapes[i].tg);
-    ForEachBaseProbe(blend, shapes[i], u, v, inv_size,
-                     [&](float pu, float pv, float w) { add(i, layouts_[0], pu, pv, 0.0f, w); });
-    for (int c = 0; c < blend.count; ++c) {
-      if (blend.weight[c] == 0.0f) continue;
-      add(i, layouts_[blend.copy[c]], u, v, tg, blend.weight[c] / 255.0f);
-    }
+    Select(f[i], selection);
+    ForEachRead(f[i], selection,
+                [&](const CopyLayout& c, float u, float v, float tg, float weight) {
+                  const int j = jobs.count++;
+                  jobs.u[j] = u, jobs.v[j] = v, jobs.tg[j] = tg;
+                  jobs.width[j] = c.width, jobs.height[j] = c.height, jobs.lambda[j] = c.lambda;
+                  jobs.width_mask[j] = c.width_mask, jobs.height_mask[j] = c.height_mask;
+                  jobs.tilt_v[j] = c.tilt_v ? ~0u : 0u;
+                  jobs.texels[j] = c.texels, jobs.weight[j] = weight, jobs.sample[j] = i;
+                });
   }
   // Whole vectors: the padding repeats the first job (its results are not read).
   const int jobs_count = jobs.count;
@@ -483,19 +557,11 @@ void AnisoSampler::SampleBatch(const FootprintBatch& in, Rgba* out) const {
   SampleGroups([&in](int i) { return in.At(i); }, out, in.count);
 }
 
-Rgba AnisoSampler::Blend(const TextureFootprint& f, const ApertureShape& shape,
-                         const CopyBlend& blend) const {
-  const float u = static_cast<float>(f.u), v = static_cast<float>(f.v);
-  if (blend.magnify)
-    return ToRgba(AddScaled(Zero(), CopySample(layouts_[0], u, v, 0.0f), 1.0f / 255.0f));
-  const float tg = static_cast<float>(shape.tg);
-  V4 sum =
-      blend.probes > 0 ? BaseProbes(layouts_[0], blend, shape, u, v, 1.0f / table_.size()) : Zero();
-  for (int c = 0; c < blend.count; ++c) {
-    if (blend.weight[c] == 0.0f) continue;
-    // The sample's own tangent: the skew interpolates between tilts (seed 000, eq. 6-9).
-    sum = AddScaled(sum, CopySample(layouts_[blend.copy[c]], u, v, tg), blend.weight[c] / 255.0f);
-  }
+Rgba AnisoSampler::Blend(const TextureFootprint& f, const Selection& s) const {
+  V4 sum = Zero();
+  ForEachRead(f, s, [&](const CopyLayout& c, float u, float v, float tg, float weight) {
+    sum = AddScaled(sum, CopySample(c, u, v, tg), weight);
+  });
   return ToRgba(sum);
 }
 

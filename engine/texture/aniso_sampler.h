@@ -20,26 +20,44 @@ struct ApertureShape {
 
 // The table copy for a footprint whose derivatives are in repeats per pixel times the aperture a
 // (the paper's 2 x 2 aperture is a = 2, derivatives of one pixel step): seed 000, eq. 2-4 read as
-// the parallelogram with the pixel's second moments (rotation-invariant; see the definition).
+// the parallelogram with the pixel's second moments (rotation-invariant; see the definition),
+// along the texture axis of the larger moment.
 ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size);
 
-// The copies one sample reads and their weights (seed 000, eq. 5).
+// The readings a sample blends (issue 22, part 3: continuity). A footprint has a parallelogram of
+// its second moments along either texture axis; ApertureFromFootprint takes the axis of the
+// larger moment. Where the two moments are nearly equal (the footprint's long side near a
+// diagonal) the choice would jump, so both readings are blended, their weights going linearly
+// from one to the other across the zone |M_uu - M_vv| < kAxisBlendZone (M_uu + M_vv).
+inline constexpr double kAxisBlendZone = 0.125;
+struct ApertureReadings {
+  int count = 0;  // 0: degenerate derivatives
+  ApertureShape shape[2];
+  float weight[2] = {};
+};
+ApertureReadings ReadingsOfFootprint(const TextureFootprint& f, int texture_size);
+
+// The copies one reading reads and their weights: seed 000, eq. 5 across cells, and between the
+// two tilts of a cell nearest the reading's tangent (a continuous extension: the paper takes the
+// nearest tilt and leaves the rest to the skewed read, eq. 6-9, which jumps where the nearest
+// changes; docs/ENGINE.md).
 struct CopyBlend {
-  bool magnify = false;  // degenerate derivatives: bilinear on the unfiltered base copy
-  // 0 < H < 1: the base (copy 0) and the first copy, weights 1 - H^2 and H^2.
-  int count = 0;
-  uint32_t copy[3] = {};  // directory indices: R1, then R3 or R4, then R2
-  float weight[3] = {};
-  // L < 1, thinner than the table's thinnest copy: also this many bilinear reads of the base
+  static constexpr int kMaxCopies = 6;  // three cells, two tilts each
+  bool magnify = false;       // degenerate derivatives: bilinear on the unfiltered base copy
+  int count = 0;              // the entries below count are set, and every weight is above 0
+  uint32_t copy[kMaxCopies];  // directory indices
+  float weight[kMaxCopies];
+  // L < 1, thinner than the table's thinnest copy: also `probes` bilinear reads of the base
   // along the long side, `probe_step` texels apart along the major axis and centred on the
-  // sample, each of weight `probe_weight` (see SelectCopies).
+  // sample; the outer two weigh `probe_end_weight`, the others `probe_weight` (see
+  // AddBaseProbes).
   int probes = 0;
-  float probe_step = 0, probe_weight = 0;
+  float probe_step = 0, probe_weight = 0, probe_end_weight = 0;
 };
 // seed 000, eq. 5, and below L = 1 the base probes (a deviation: the paper's table ends at
 // L = 1; docs/BENCHMARKS.md, issue 3, measures it).
 CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
-// The paper's selection alone, without the base probes for L < 1.
+// The paper's selection alone (with the tilt blend), without the base probes for L < 1.
 CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape);
 
 class AnisoSampler final : public TextureSampler {
@@ -69,13 +87,22 @@ class AnisoSampler final : public TextureSampler {
     bool tilt_v;
   };
   CopyLayout LayoutOf(const CopyEntry& e) const;
-  // The copy reads of a group of samples (Blend's, in its order), their addresses and weights
-  // computed eight at a time by an AVX2 kernel; the same floats as Blend.
-  void BlendReads(const TextureFootprint* f, const ApertureShape* shapes, const CopyBlend* blends,
-                  int n, Rgba* out) const;
+  // What one sample reads: its readings and each one's copies.
+  struct Selection {
+    ApertureReadings readings;
+    CopyBlend blend[2];
+  };
+  void Select(const TextureFootprint& f, Selection& out) const;
+  // visit(layout, u, v, tg, weight) for each copy read of a sample, in the order they are summed.
+  template <typename Visit>
+  void ForEachRead(const TextureFootprint& f, const Selection& s, Visit visit) const;
+  // A group of samples selected and their copy reads (Blend's, in its order) listed, then the
+  // reads' addresses and weights computed eight at a time by an AVX2 kernel; the same floats as
+  // Blend.
+  void BlendReads(const TextureFootprint* f, int n, Rgba* out) const;
   template <typename FootprintOf>
   void SampleGroups(FootprintOf footprint_of, Rgba* out, int count) const;
-  Rgba Blend(const TextureFootprint& f, const ApertureShape& shape, const CopyBlend& blend) const;
+  Rgba Blend(const TextureFootprint& f, const Selection& s) const;
 
   PrefilteredTable table_;
   std::vector<CopyLayout> layouts_;

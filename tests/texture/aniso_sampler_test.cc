@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <random>
 
 #include "texture/footprint_batch.h"
@@ -118,52 +119,79 @@ class AnisoSamplerTest : public testing::Test {
   std::unique_ptr<PrefilteredTable> table_;
 };
 
+// The weight of each copy a blend reads, by directory index (a copy is listed at most once).
+std::map<uint32_t, float> WeightsByCopy(const CopyBlend& b) {
+  std::map<uint32_t, float> out;
+  for (int c = 0; c < b.count; ++c) {
+    EXPECT_GT(b.weight[c], 0.0f);
+    EXPECT_EQ(out.count(b.copy[c]), 0u);
+    out[b.copy[c]] = b.weight[c];
+  }
+  return out;
+}
+
 TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   Build(Image(kN, kN));
-  // H = 8, L = 1 exactly: R1 alone, cell (j = 0, i = 3), lambda 8, U tilt nearest to 0.3.
+  // The blend's weight by cell (log2 L, log2 H) and by tilt tangent.
+  auto by_cell = [&](const CopyBlend& b) {
+    std::map<std::pair<int, int>, float> out;
+    for (const auto& [copy, weight] : WeightsByCopy(b)) {
+      const CopyEntry& e = table_->copy(copy);
+      out[{e.log2_l, e.log2_l + e.log2_ratio}] += weight;
+    }
+    return out;
+  };
+  auto by_tilt = [&](const CopyBlend& b) {
+    std::map<float, float> out;
+    for (const auto& [copy, weight] : WeightsByCopy(b)) out[table_->copy(copy).tg] += weight;
+    return out;
+  };
+  using Tilts = std::map<float, float>;
+  // H = 8, L = 1 exactly: R1 alone, cell (j = 0, i = 3), lambda 8: U tilts -0.75, -0.25, 0.25,
+  // 0.75. Near a tilt's centre (within a quarter of the spacing) that tilt alone.
   ApertureShape s{TiltAxis::kU, 8, 1, 0.3};
   CopyBlend b = SelectCopies(*table_, s);
   ASSERT_FALSE(b.magnify);
-  EXPECT_FLOAT_EQ(b.weight[0], 1.0f);
-  EXPECT_FLOAT_EQ(b.weight[1], 0.0f);
-  EXPECT_FLOAT_EQ(b.weight[2], 0.0f);
+  ASSERT_EQ(b.count, 1);
   const CopyEntry& r1 = table_->copy(b.copy[0]);
   EXPECT_EQ(r1.log2_l, 0);
   EXPECT_EQ(r1.log2_ratio, 3);
   EXPECT_EQ(r1.axis, TiltAxis::kU);
   EXPECT_FLOAT_EQ(r1.tg, 0.25f);
+  EXPECT_FLOAT_EQ(b.weight[0], 1.0f);
+  // Between two tilts' centres, the two (issue 22, part 3): tg = 0.45 sits 0.4 of the way from
+  // tilt 0.25 to tilt 0.75, and the blend, which runs over the middle half between two centres,
+  // gives the second 2 x 0.4 - 0.5 = 0.3.
+  const Tilts between = by_tilt(SelectCopies(*table_, {TiltAxis::kU, 8, 1, 0.45}));
+  ASSERT_EQ(between.size(), 2u);
+  EXPECT_NEAR(between.at(0.25f), 0.7f, 1e-6);
+  EXPECT_NEAR(between.at(0.75f), 0.3f, 1e-6);
+  // Along the texture axis (tg = 0) both tilts nearest 0, evenly: symmetric about the axis.
+  EXPECT_EQ(by_tilt(SelectCopies(*table_, {TiltAxis::kU, 8, 1, 0.0})),
+            (Tilts{{-0.25f, 0.5f}, {0.25f, 0.5f}}));
   // Mirrored: -0.3 picks -0.25; along V, the V copies.
   s.tg = -0.3;
-  EXPECT_FLOAT_EQ(table_->copy(SelectCopies(*table_, s).copy[0]).tg, -0.25f);
+  EXPECT_EQ(by_tilt(SelectCopies(*table_, s)), (Tilts{{-0.25f, 1.0f}}));
   s.axis = TiltAxis::kV;
-  EXPECT_EQ(table_->copy(SelectCopies(*table_, s).copy[0]).axis, TiltAxis::kV);
-  EXPECT_FLOAT_EQ(table_->copy(SelectCopies(*table_, s).copy[0]).tg, -0.25f);
-  // Extreme tangents stay in range.
+  b = SelectCopies(*table_, s);
+  ASSERT_EQ(b.count, 1);
+  EXPECT_EQ(table_->copy(b.copy[0]).axis, TiltAxis::kV);
+  EXPECT_FLOAT_EQ(table_->copy(b.copy[0]).tg, -0.25f);
+  // Beyond the outer tilts the outer tilt alone.
   s.tg = 1.0;
-  EXPECT_FLOAT_EQ(table_->copy(SelectCopies(*table_, s).copy[0]).tg, 0.75f);
+  EXPECT_EQ(by_tilt(SelectCopies(*table_, s)), (Tilts{{0.75f, 1.0f}}));
   s.tg = -1.0;
-  EXPECT_FLOAT_EQ(table_->copy(SelectCopies(*table_, s).copy[0]).tg, -0.75f);
+  EXPECT_EQ(by_tilt(SelectCopies(*table_, s)), (Tilts{{-0.75f, 1.0f}}));
+  s.tg = 1.1;  // the second reading near a diagonal may pass 1
+  EXPECT_EQ(by_tilt(SelectCopies(*table_, s)), (Tilts{{0.75f, 1.0f}}));
 
   // eq. 5, M_H = 0.5 >= M_L = 0.25: R1 (2^2, 2^1) 0.5, R3 (2^3, 2^1) 0.25, R2 (2^3, 2^2) 0.25.
-  b = SelectCopies(*table_, {TiltAxis::kU, 6, 2.5, 0});
-  EXPECT_FLOAT_EQ(b.weight[0], 0.5f);
-  EXPECT_FLOAT_EQ(b.weight[1], 0.25f);
-  EXPECT_FLOAT_EQ(b.weight[2], 0.25f);
-  auto cell = [&](uint32_t c) {
-    const CopyEntry& e = table_->copy(c);
-    return std::pair<int, int>(e.log2_l, e.log2_l + e.log2_ratio);  // (log2 L, log2 H)
-  };
-  EXPECT_EQ(cell(b.copy[0]), std::pair(1, 2));
-  EXPECT_EQ(cell(b.copy[1]), std::pair(1, 3));
-  EXPECT_EQ(cell(b.copy[2]), std::pair(2, 3));
+  using Cells = std::map<std::pair<int, int>, float>;  // (log2 L, log2 H)
+  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, 6, 2.5, 0})),
+            (Cells{{{1, 2}, 0.5f}, {{1, 3}, 0.25f}, {{2, 3}, 0.25f}}));
   // M_H = 0.25 < M_L = 0.75: R1 0.25, R4 (2^2, 2^1) 0.5, R2 0.25.
-  b = SelectCopies(*table_, {TiltAxis::kU, 5, 1.75, 0});
-  EXPECT_FLOAT_EQ(b.weight[0], 0.25f);
-  EXPECT_FLOAT_EQ(b.weight[1], 0.5f);
-  EXPECT_FLOAT_EQ(b.weight[2], 0.25f);
-  EXPECT_EQ(cell(b.copy[0]), std::pair(0, 2));
-  EXPECT_EQ(cell(b.copy[1]), std::pair(1, 2));
-  EXPECT_EQ(cell(b.copy[2]), std::pair(1, 3));
+  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, 5, 1.75, 0})),
+            (Cells{{{0, 2}, 0.25f}, {{1, 2}, 0.5f}, {{1, 3}, 0.25f}}));
   // Magnification and the frozen region (H / L above 2^(n-1): L raised).
   EXPECT_TRUE(SelectCopies(*table_, {TiltAxis::kNone, 0, 0, 0}).magnify);
   b = SelectTableCopies(*table_, {TiltAxis::kU, 0.75, 0.5, 0.3});  // base to first copy, by H^2
@@ -171,14 +199,66 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   ASSERT_EQ(b.count, 2);
   EXPECT_EQ(b.copy[0], 0u);
   EXPECT_FLOAT_EQ(b.weight[0], 0.4375f);
-  EXPECT_EQ(cell(b.copy[1]), std::pair(0, 0));
-  EXPECT_FLOAT_EQ(b.weight[1], 0.5625f);
-  b = SelectCopies(*table_, {TiltAxis::kU, 256, 1, 0});
-  EXPECT_EQ(cell(b.copy[0]), std::pair(3, 8));
-  EXPECT_FLOAT_EQ(b.weight[0], 1.0f);
+  EXPECT_EQ(by_cell(b)[std::make_pair(0, 0)], 0.5625f);
+  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, 256, 1, 0})), (Cells{{{3, 8}, 1.0f}}));
   // Beyond two periods both ways: the single mean texel.
   b = SelectCopies(*table_, {TiltAxis::kU, 1e9, 1e8, 0});
+  ASSERT_EQ(b.count, 1);
   EXPECT_EQ(table_->copy(b.copy[0]).width * table_->copy(b.copy[0]).height, 1u);
+}
+
+TEST(AnisoAperture, NearADiagonalBothAxesAreReadAcrossANarrowZone) {
+  // A footprint 12 x 1.5 texels turned by `turn`: one reading (the axis of the larger moment)
+  // away from the diagonal; within the zone both, weights summing to 1 and even on it.
+  auto readings = [](double turn) {
+    const double c = std::cos(turn), s = std::sin(turn);
+    return ReadingsOfFootprint(Footprint(12 * c, 12 * s, -1.5 * s, 1.5 * c), kN);
+  };
+  ApertureReadings r = readings(0.3);
+  ASSERT_EQ(r.count, 1);
+  EXPECT_EQ(r.shape[0].axis, TiltAxis::kU);
+  EXPECT_EQ(r.weight[0], 1.0f);
+  r = readings(M_PI / 2 - 0.3);
+  ASSERT_EQ(r.count, 1);
+  EXPECT_EQ(r.shape[0].axis, TiltAxis::kV);
+  r = readings(M_PI / 4);
+  ASSERT_EQ(r.count, 2);
+  EXPECT_NEAR(r.weight[0], 0.5, 1e-6);
+  EXPECT_NEAR(r.weight[1], 0.5, 1e-6);
+  // Both readings have the footprint's moments: equal H and L on the diagonal.
+  EXPECT_NEAR(r.shape[0].H, r.shape[1].H, 1e-5 * r.shape[0].H);
+  EXPECT_NEAR(r.shape[0].L, r.shape[1].L, 1e-5 * r.shape[0].L);
+  r = readings(M_PI / 4 - 0.02);  // U's moment a little larger: U weighs more
+  ASSERT_EQ(r.count, 2);
+  EXPECT_EQ(r.shape[0].axis, TiltAxis::kU);
+  EXPECT_GT(r.weight[0], 0.5f);
+  EXPECT_NEAR(r.weight[0] + r.weight[1], 1.0f, 1e-6);
+  // The dominant reading is ApertureFromFootprint's.
+  const ApertureShape a = ApertureFromFootprint(Footprint(12, 0, 0, 1.5), kN);
+  r = ReadingsOfFootprint(Footprint(12, 0, 0, 1.5), kN);
+  ASSERT_EQ(r.count, 1);
+  EXPECT_EQ(r.shape[0].H, a.H);
+  EXPECT_EQ(r.shape[0].L, a.L);
+  EXPECT_EQ(r.shape[0].tg, a.tg);
+  EXPECT_EQ(ReadingsOfFootprint(Footprint(0, 0, 0, 0), kN).count, 0);
+  EXPECT_EQ(ReadingsOfFootprint(Footprint(NAN, 0, 1, 0), kN).count, 0);
+}
+
+// The probes' total weight and their second moment along the long side, from the blend's
+// layout (positions (k - (P - 1) / 2) step, the outer two at the end weight).
+struct ProbeMoments {
+  double weight = 0, variance = 0;
+};
+ProbeMoments MomentsOfProbes(const CopyBlend& b) {
+  ProbeMoments m;
+  for (int k = 0; k < b.probes; ++k) {
+    const double x = (k - 0.5 * (b.probes - 1)) * b.probe_step;
+    const double w = (k == 0 || k == b.probes - 1) ? b.probe_end_weight : b.probe_weight;
+    m.weight += w;
+    m.variance += w * x * x;
+  }
+  if (m.weight > 0) m.variance /= m.weight;
+  return m;
 }
 
 TEST_F(AnisoSamplerTest, ThinAperturesMixInProbesOfTheBase) {
@@ -186,8 +266,8 @@ TEST_F(AnisoSamplerTest, ThinAperturesMixInProbesOfTheBase) {
   // L >= 1, or H past twice the probes' half-extent (4): the paper's copies alone.
   EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 6, 2.5, 0}).probes, 0);
   EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 8, 0.5, 0}).probes, 0);
-  // H = 3, L = 0.5: the copies of (3, 1) keep L^2 = 1/4; 6 probes share 3/4, spaced so that
-  // their variance is the long side's box's, H^2 / 3.
+  // H = 3, L = 0.5: the copies of (3, 1) keep L^2 = 1/4; the probes share 3/4 and have the
+  // variance of the long side's box, H^2 / 3 (their bilinear tents add the box's 1/6).
   CopyBlend paper = SelectTableCopies(*table_, {TiltAxis::kU, 3, 0.5, 0.2});
   CopyBlend b = SelectCopies(*table_, {TiltAxis::kU, 3, 0.5, 0.2});
   ASSERT_EQ(b.count, paper.count);
@@ -195,13 +275,17 @@ TEST_F(AnisoSamplerTest, ThinAperturesMixInProbesOfTheBase) {
     EXPECT_EQ(b.copy[c], paper.copy[c]);
     EXPECT_FLOAT_EQ(b.weight[c], 0.25f * paper.weight[c]);
   }
-  EXPECT_EQ(b.probes, 6);
-  EXPECT_FLOAT_EQ(b.probe_step * b.probe_step * (6 * 6 - 1) / 12, 3.0f);
-  EXPECT_FLOAT_EQ(b.probe_weight, 0.125f);
+  EXPECT_EQ(b.probes, 8);  // a texel apart: the fewest even count whose spread reaches 3
+  EXPECT_FLOAT_EQ(b.probe_step, 1.0f);
+  ProbeMoments m = MomentsOfProbes(b);
+  EXPECT_NEAR(m.weight, 0.75, 1e-6);
+  EXPECT_NEAR(m.variance, 3.0, 1e-5);
+  EXPECT_LE(b.probe_end_weight, b.probe_weight);
   // H = 6: halfway through the fade, the probes' share is halved.
   b = SelectCopies(*table_, {TiltAxis::kV, 6, 0.5, 0});
-  EXPECT_EQ(b.probes, 12);
-  EXPECT_FLOAT_EQ(b.probe_weight * 12, 0.375f);
+  m = MomentsOfProbes(b);
+  EXPECT_NEAR(m.weight, 0.375, 1e-6);
+  EXPECT_NEAR(m.variance, 12.0, 1e-4);
   // H = 0.75, L = 0.5: the first copy with L^2, two probes at +-d, d^2 = (H^2 - L^2) /
   // (3 (1 - L^2)), which keeps the variance along the long side at H^2 / 3 + 1/6.
   b = SelectCopies(*table_, {TiltAxis::kU, 0.75, 0.5, 0.3});
@@ -209,14 +293,26 @@ TEST_F(AnisoSamplerTest, ThinAperturesMixInProbesOfTheBase) {
   EXPECT_EQ(b.copy[0], table_->cell(0, 0).first);
   EXPECT_FLOAT_EQ(b.weight[0], 0.25f);
   EXPECT_EQ(b.probes, 2);
-  EXPECT_FLOAT_EQ(b.probe_weight, 0.375f);
+  EXPECT_FLOAT_EQ(b.probe_end_weight, 0.375f);
   const double d = 0.5 * b.probe_step;
   EXPECT_NEAR(0.25 * (1.0 / 3 + 1.0 / 6) + 0.75 * (d * d + 1.0 / 6), 0.75 * 0.75 / 3 + 1.0 / 6,
               1e-6);
-  // Nearly isotropic (probes under half a texel apart): the paper's blend.
-  b = SelectCopies(*table_, {TiltAxis::kU, 0.5, 0.45, 0});
-  EXPECT_EQ(b.probes, 0);
-  EXPECT_EQ(b.count, 2);
+  // Isotropic (H = L < 1): the two probes meet at the centre, which is the paper's blend (base
+  // 1 - H^2, first copy H^2) without a step where the probes begin (no cut-off).
+  b = SelectCopies(*table_, {TiltAxis::kU, 0.5, 0.5, 0});
+  EXPECT_EQ(b.probes, 2);
+  EXPECT_EQ(b.probe_step, 0.0f);
+  EXPECT_FLOAT_EQ(b.weight[0], 0.25f);
+  EXPECT_FLOAT_EQ(2 * b.probe_end_weight, 0.75f);
+  // Where the count grows the new outer pair starts at weight 0 (t = (4 J^2 - 1) / 12 for
+  // J = 2: H^2 = 3.75), and the pair before it has the inner weight.
+  const double at = std::sqrt(3.75);
+  b = SelectCopies(*table_, {TiltAxis::kU, at * (1 + 1e-6), 0.5, 0});
+  EXPECT_EQ(b.probes, 6);
+  EXPECT_LT(b.probe_end_weight, 1e-5);
+  CopyBlend before = SelectCopies(*table_, {TiltAxis::kU, at * (1 - 1e-6), 0.5, 0});
+  EXPECT_EQ(before.probes, 4);
+  EXPECT_NEAR(before.probe_end_weight, before.probe_weight, 1e-5);
 }
 
 TEST_F(AnisoSamplerTest, ThinAperturesAreCloserToTheReferenceThanTheTableAlone) {
