@@ -88,41 +88,28 @@ template <typename Layout>
              Mix(at(a + 1, b2), at(a + 1, b2 + 1), m2 - m2f), fM);
 }
 
-// The base probes of a thin aperture (see AddBaseProbes): visit(u', v', weight) for each, in
-// order, where they are read (a bilinear read of the base, untilted); `scale` multiplies every
-// weight.
+// The base probes of reading r of a lane (texture/aniso_selection: AddProbesLane):
+// visit(u', v', weight) for each, in order, where they are read (a bilinear read of the base,
+// untilted); `scale` multiplies every weight.
 template <typename Visit>
-[[gnu::always_inline]] inline void ForEachBaseProbe(const CopyBlend& blend,
-                                                    const ApertureShape& shape, float u, float v,
-                                                    float inv_size, float scale, Visit visit) {
+[[gnu::always_inline]] inline void ForEachBaseProbe(const SelectionLanes& s, int r, int lane,
+                                                    float u, float v, float inv_size, float scale,
+                                                    Visit visit) {
+  const int probes = s.probes[r][lane];
+  // The other probe fields are only set when there are probes (reading them otherwise could
+  // load a stale denormal, which costs a microcode assist a multiplication).
+  if (probes == 0) return;
   // Along the major axis, and tg times that along the minor one; in repeats.
-  const float step = blend.probe_step * inv_size;
-  const float first = -0.5f * static_cast<float>(blend.probes - 1) * step;
-  const float tg = static_cast<float>(shape.tg);
-  const float w = blend.probe_weight * scale, w_end = blend.probe_end_weight * scale;
-  const bool along_u = shape.axis == TiltAxis::kU;
-  for (int k = 0; k < blend.probes; ++k) {
+  const float step = s.probe_step[r][lane] * inv_size;
+  const float first = -0.5f * static_cast<float>(probes - 1) * step;
+  const float tg = s.tg[r][lane];
+  const float w = s.probe_weight[r][lane] * scale, w_end = s.probe_end_weight[r][lane] * scale;
+  const bool along_u = s.along_v[r][lane] == 0;
+  for (int k = 0; k < probes; ++k) {
     const float major = first + static_cast<float>(k) * step, minor = major * tg;
     visit(u + (along_u ? major : minor), v + (along_u ? minor : major),
-          k == 0 || k == blend.probes - 1 ? w_end : w);
+          k == 0 || k == probes - 1 ? w_end : w);
   }
-}
-
-// x = 2^e (1 + m) with 0 <= m < 1, for finite x >= 1 (std::frexp without the library call).
-struct PowerOfTwoSplit {
-  int e;
-  double m;
-};
-inline PowerOfTwoSplit SplitPowerOfTwo(double x) {
-  const uint64_t bits = std::bit_cast<uint64_t>(x);
-  const uint64_t one_exponent = uint64_t{1023} << 52;
-  const double mantissa = std::bit_cast<double>((bits & ((uint64_t{1} << 52) - 1)) | one_exponent);
-  return {static_cast<int>(bits >> 52) - 1023, mantissa - 1.0};
-}
-
-// 2^e for -1022 <= e <= 1023 (std::ldexp(1.0, e) without the library call).
-inline double PowerOfTwo(int e) {
-  return std::bit_cast<double>(static_cast<uint64_t>(1023 + e) << 52);
 }
 
 // The copy reads of BlendReads ("jobs"): one CopySample each, with its weight in the sum.
@@ -201,231 +188,6 @@ bool HaveAvx2() { return false; }
 
 }  // namespace
 
-namespace {
-
-// The pixel parallelogram's second moments in texels^2 and its area (see ApertureFromFootprint).
-struct FootprintMoments {
-  bool finite = false;
-  double uu = 0, vv = 0, uv = 0, area = 0;
-};
-
-FootprintMoments MomentsOf(const TextureFootprint& f, int texture_size) {
-  // seed 000, eq. 2: one pixel step of the paper's 2 x 2 aperture is half the a-scaled
-  // derivative (a = 2); in texel units. The pixel's aperture is then the parallelogram
-  // {s X + t Y : |s|, |t| <= 1} with X = (dUx, dVx), Y = (dUy, dVy).
-  const double s = 0.5 * texture_size;
-  const double dUx = f.dudx * s, dVx = f.dvdx * s, dUy = f.dudy * s, dVy = f.dvdy * s;
-  FootprintMoments m;
-  if (!std::isfinite(dUx) || !std::isfinite(dVx) || !std::isfinite(dUy) || !std::isfinite(dVy))
-    return m;
-  m.finite = true;
-  m.uu = dUx * dUx + dUy * dUy;
-  m.vv = dVx * dVx + dVy * dVy;
-  m.uv = dUx * dVx + dUy * dVy;
-  m.area = std::abs(dUx * dVy - dVx * dUy);  // |X x Y|
-  return m;
-}
-
-// The table's copies are parallelograms with a pair of sides parallel to a texture axis: half
-// extent H along the major axis with slope tg, half thickness L along the minor one, i.e.
-// {s H (1, tg) + t L (0, 1)} (axes named major, minor). Seed 000 reads H, L and tg off the
-// pixel parallelogram's bounding extents (eq. 3-4), which depend on how the footprint is turned
-// against the texture: a square footprint turned 45 degrees gets a copy of twice its area.
-// Our reading (issue 22): take the copy with the pixel parallelogram's second moments,
-//   H^2 (1, tg) (1, tg)^T + L^2 (0, 1) (0, 1)^T = X X^T + Y Y^T,
-// the Cholesky factor of the right side: H^2 = M_major, tg = M_cross / M_major,
-// L = |X x Y| / H. The copy then has the pixel's area and its variance in every direction, so
-// a footprint and the same footprint turned get copies of equal area and shape; along a
-// texture axis (Y parallel to the major axis, or X and Y along the axes) it is the paper's.
-// Along the axis of the larger moment |tg| <= 1, as the table's tilts need; along the other one
-// (only inside the blend zone of ReadingsOfFootprint) |tg| stays under 1.14.
-ApertureShape ShapeAlong(TiltAxis axis, const FootprintMoments& m) {
-  const double major = axis == TiltAxis::kU ? m.uu : m.vv;
-  ApertureShape out;
-  out.axis = axis;
-  out.H = std::sqrt(major);
-  out.tg = m.uv / major;
-  out.L = m.area / out.H;
-  return out;
-}
-
-}  // namespace
-
-ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size) {
-  const FootprintMoments m = MomentsOf(f, texture_size);
-  if (!m.finite || (m.uu == 0 && m.vv == 0)) return {};
-  return ShapeAlong(m.uu >= m.vv ? TiltAxis::kU : TiltAxis::kV, m);
-}
-
-ApertureReadings ReadingsOfFootprint(const TextureFootprint& f, int texture_size) {
-  const FootprintMoments m = MomentsOf(f, texture_size);
-  ApertureReadings out;
-  if (!m.finite || (m.uu == 0 && m.vv == 0)) return out;
-  // r = 1 along U, -1 along V, 0 on a diagonal; U's weight goes 0 -> 1 across |r| < zone.
-  const double r = (m.uu - m.vv) / (m.uu + m.vv);
-  const double along_u = std::clamp(0.5 + r / (2 * kAxisBlendZone), 0.0, 1.0);
-  if (along_u > 0) {
-    out.shape[out.count] = ShapeAlong(TiltAxis::kU, m);
-    out.weight[out.count++] = static_cast<float>(along_u);
-  }
-  if (along_u < 1) {
-    out.shape[out.count] = ShapeAlong(TiltAxis::kV, m);
-    out.weight[out.count++] = static_cast<float>(1.0 - along_u);
-  }
-  return out;
-}
-
-namespace {
-
-// Base probes carry the thin apertures up to this half-extent, fading out to twice it.
-constexpr double kProbeHalfExtent = 4.0;
-// Probes are this many texels apart along the long side once more than two are needed.
-constexpr double kProbeSpacing = 1.0;
-
-// Below L = 1 the table's thinnest copies are up to twice too thick across the long side: the
-// paper's table stops there. This mixes in bilinear probes of the base, spread along the long
-// side, so that the blend's variances are the aperture's own (box of half-sides H and L on the
-// bilinear texture: H^2 / 3 + 1/6 along the long side, L^2 / 3 + 1/6 across it, in texels^2).
-// Across, a probe carries 1/6 (the bilinear tent alone) and the copies of L = 1 carry
-// 1/3 + 1/6, so the copies keep the share L^2 and the probes take 1 - L^2. Along the long side
-// the probes' positions must have the variance T (their own tents add the 1/6):
-//  - H >= 1: the copies are the table's for (H, 1), T = H^2 / 3, the long side's box;
-//  - H < 1: the first copy (2 x 2 box) alone with the share L^2, and T = (H^2 - L^2) /
-//    (3 (1 - L^2)) makes the variance along the long side H^2 / 3 + 1/6 too. At H = 1 both are
-//    1/3; at H = L, T = 0 and the blend is the paper's (base and first copy by H^2).
-// Every change is continuous (issue 22, part 3): under T = s^2 / 4 (s = kProbeSpacing) two
-// probes at +-sqrt(T), which meet at the centre as T -> 0; above it 2J probes s apart, the
-// outer two of weight e growing from 0 (where they appear) to the others' (where the next pair
-// appears), e set so that the variance is T. The probes fade out between kProbeHalfExtent and
-// twice it.
-void AddBaseProbes(const ApertureShape& shape, CopyBlend& blend) {
-  const double H = shape.H, L = std::min(shape.L, shape.H);
-  if (!(L < 1.0) || H >= 2 * kProbeHalfExtent) return;
-  // In float from here: this runs for every thin sample and its divisions showed in profiles.
-  const float share = static_cast<float>(std::min(1.0, 2.0 - H / kProbeHalfExtent) * (1.0 - L * L));
-  const float s2 = static_cast<float>(kProbeSpacing * kProbeSpacing);
-  float T = static_cast<float>(H * H) * (1.0f / 3.0f);
-  if (H < 1.0) {
-    T = static_cast<float>((H * H - L * L) / (3.0 * (1.0 - L * L)));
-    blend.count = 1;
-    blend.copy[0] = blend.copy[1];
-    blend.weight[0] = 1.0f;
-  }
-  if (T <= 0.25f * s2) {
-    blend.probes = 2;
-    blend.probe_step = 2.0f * std::sqrt(T);
-    blend.probe_end_weight = 0.5f * share;
-  } else {
-    const float t = T / s2;  // in units of the spacing^2
-    // The smallest J whose 2J evenly weighted probes reach t: (4 J^2 - 1) / 12 >= t.
-    const int J = std::max(2, static_cast<int>(std::ceil(0.5f * std::sqrt(12.0f * t + 1.0f))));
-    // The 2 (J - 1) inner probes alone have the variance A (e = 0); e solves
-    // A + 2 e ((J - 1/2)^2 - A) = t with inner weights (1 - 2 e) / (2 (J - 1)), and
-    // (J - 1/2)^2 - A = J (2J - 1) / 3.
-    const float Jf = static_cast<float>(J);
-    const float A = (4.0f * (Jf - 1.0f) * (Jf - 1.0f) - 1.0f) * (1.0f / 12.0f);
-    const float e = std::clamp(1.5f * (t - A) / (Jf * (2.0f * Jf - 1.0f)), 0.0f, 0.5f / Jf);
-    blend.probes = 2 * J;
-    blend.probe_step = static_cast<float>(kProbeSpacing);
-    blend.probe_end_weight = e * share;
-    blend.probe_weight = (1.0f - 2.0f * e) / (2.0f * (Jf - 1.0f)) * share;
-  }
-  for (int c = 0; c < blend.count; ++c) blend.weight[c] *= 1.0f - share;
-}
-
-// Between the two tilts nearest the tangent, the next one's weight by the fraction of the way
-// from the lower tilt's centre to the next one's: the nearer tilt alone within a quarter of the
-// spacing of its centre, a linear blend over the middle half. Continuous, and half the samples
-// read one tilt (a blend over the whole spacing cost 2 ms more a demo frame for 0.03 dB).
-inline float NextTiltWeight(float fraction) {
-  return std::clamp(2.0f * fraction - 0.5f, 0.0f, 1.0f);
-}
-
-// seed 000, eq. 5 (SelectTableCopies), with the two nearest tilts of each cell.
-[[gnu::always_inline]] inline CopyBlend TableCopies(const PrefilteredTable& table,
-                                                    const ApertureShape& shape) {
-  CopyBlend blend;
-  if (shape.axis == TiltAxis::kNone || !(shape.H > 0.0)) {
-    blend.magnify = true;  // degenerate derivatives: the base, bilinear
-    return blend;
-  }
-  if (shape.H < 1.0) {
-    // Magnification, between the base (bilinear texels, H = 0) and the first copy (the box of
-    // 2 x 2 texels, H = L = 1). The paper falls back to the base for all H < 1; blending with
-    // weight H^2 gives the blend the variance of a box of 2H texels, so the blur grows
-    // continuously up to the table (docs/BENCHMARKS.md, issue 3, measures both).
-    const float m = static_cast<float>(shape.H * shape.H);
-    blend.count = 2;
-    blend.copy[0] = 0;
-    blend.weight[0] = 1.0f - m;
-    blend.copy[1] = table.cell(0, 0).first;
-    blend.weight[1] = m;
-    return blend;
-  }
-  const int n = table.log2_size();
-  // L between 1 (the thinnest copy) and H; raised to H / 2^(n-1) where lambda is frozen. Powers
-  // of two from their bits and products (exact), not ldexp: this runs once per sample.
-  const double H = std::min(shape.H, PowerOfTwo(3 * n));
-  const double L = std::clamp(shape.L, std::max(1.0, H * PowerOfTwo(1 - n)), H);
-  // seed 000, eq. 5: H = 2^eH (1 + M_H), L = 2^eL (1 + M_L).
-  const auto [eH, mH] = SplitPowerOfTwo(H);
-  const auto [eL, mL0] = SplitPowerOfTwo(L);
-  // Tilt k of a cell of lambda copies, tg_k = (2k + 1) / half - 1 (half = lambda / 2), sits at
-  // k = (tg + 1) half / 2 - 1/2 on the tilt axis.
-  const float tilt_position = static_cast<float>((shape.tg + 1.0) * 0.5);
-  const uint32_t v_offset = shape.axis == TiltAxis::kV ? 1 : 0;
-  const PrefilteredTable::Cell* cells = &table.cell(0, 0);
-  auto add = [&](uint32_t copy, float weight) {
-    if (!(weight > 0.0f)) return;
-    blend.copy[blend.count] = copy;
-    blend.weight[blend.count++] = weight;
-  };
-  auto add_cell = [&](int j, int i, float weight) {
-    const PrefilteredTable::Cell& c = cells[j * n + i];
-    const int half = static_cast<int>(c.lambda / 2);  // 0 for the one untilted copy (lambda 1)
-    if (half <= 1) return add(c.first + v_offset * static_cast<uint32_t>(half), weight);
-    // Beyond the outer tilts' centres the outer tilt alone (the skewed read follows tg).
-    const float k = std::clamp(tilt_position * static_cast<float>(half) - 0.5f, 0.0f,
-                               static_cast<float>(half - 1));
-    const int k0 = std::min(static_cast<int>(k), half - 2);
-    const float next = NextTiltWeight(k - static_cast<float>(k0));
-    const uint32_t first = c.first + v_offset * static_cast<uint32_t>(half) + k0;
-    add(first, weight * (1.0f - next));
-    add(first + 1, weight * next);
-  };
-  if (eL >= n) {  // L >= 2^n: the aperture covers whole periods both ways
-    add_cell(n, std::min(eH - n, n - 1), 1.0f);
-    return blend;
-  }
-  int i = eH - eL;
-  double mL = mL0, mh = mH;
-  if (i >= n - 1) {  // lambda frozen: no cell (eL, eH + 1); L was raised so that M_H = M_L
-    i = n - 1;
-    mh = std::min(mh, mL);
-  }
-  // R1, then R3 = (eH + 1, eL) when M_H >= M_L, else R4 = (eH, eL + 1), then R2 (the
-  // comparison is a coin toss from sample to sample).
-  const bool r3 = mh >= mL;
-  add_cell(eL, i, static_cast<float>(1.0 - std::max(mh, mL)));
-  add_cell(r3 ? eL : eL + 1, r3 ? i + 1 : i - 1, static_cast<float>(std::abs(mh - mL)));
-  add_cell(eL + 1, i, static_cast<float>(std::min(mh, mL)));
-  return blend;
-}
-
-}  // namespace
-
-CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape) {
-  return TableCopies(table, shape);
-}
-
-// Out of line: inlined into SampleMany's loop it measured slower (24 against 18 ns a sample).
-[[gnu::noinline]] CopyBlend SelectCopies(const PrefilteredTable& table,
-                                         const ApertureShape& shape) {
-  CopyBlend blend = TableCopies(table, shape);
-  if (!blend.magnify) AddBaseProbes(shape, blend);
-  return blend;
-}
-
 AnisoSampler::CopyLayout AnisoSampler::LayoutOf(const CopyEntry& e) const {
   return {table_.texels(e),
           static_cast<float>(e.width),
@@ -436,7 +198,7 @@ AnisoSampler::CopyLayout AnisoSampler::LayoutOf(const CopyEntry& e) const {
           e.axis == TiltAxis::kV};
 }
 
-AnisoSampler::AnisoSampler(PrefilteredTable table) : table_(std::move(table)) {
+AnisoSampler::AnisoSampler(PrefilteredTable table) : table_(std::move(table)), selector_(table_) {
   layouts_.reserve(table_.directory().size());
   read_kernel_ = HaveAvx2();
   for (const CopyEntry& e : table_.directory()) {
@@ -452,70 +214,65 @@ Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg)
   return ToRgba(AddScaled(Zero(), r, 1.0f / 255.0f));
 }
 
-void AnisoSampler::Select(const TextureFootprint& f, Selection& out) const {
-  out.readings = ReadingsOfFootprint(f, table_.size());
-  for (int r = 0; r < out.readings.count; ++r)
-    out.blend[r] = SelectCopies(table_, out.readings.shape[r]);
-}
-
 template <typename Visit>
-void AnisoSampler::ForEachRead(const TextureFootprint& f, const Selection& s, Visit visit) const {
-  const float u = static_cast<float>(f.u), v = static_cast<float>(f.v);
-  const float inv_size = 1.0f / table_.size();
-  if (s.readings.count == 0) {
+void AnisoSampler::ForEachRead(const SelectionLanes& s, int lane, float u, float v,
+                               Visit visit) const {
+  if (!(s.reading_weight[0][lane] > 0.0f) && !(s.reading_weight[1][lane] > 0.0f)) {
     visit(layouts_[0], u, v, 0.0f, 1.0f / 255.0f);  // degenerate derivatives: the base, bilinear
     return;
   }
-  for (int r = 0; r < s.readings.count; ++r) {
-    const CopyBlend& blend = s.blend[r];
-    const ApertureShape& shape = s.readings.shape[r];
-    const float scale = s.readings.weight[r] / 255.0f;
-    if (blend.magnify) {
-      visit(layouts_[0], u, v, 0.0f, scale);
-      continue;
-    }
-    ForEachBaseProbe(blend, shape, u, v, inv_size, scale,
+  const float inv_size = 1.0f / table_.size();
+  for (int r = 0; r < 2; ++r) {
+    if (!(s.reading_weight[r][lane] > 0.0f)) continue;
+    const float scale = s.reading_weight[r][lane] / 255.0f;
+    ForEachBaseProbe(s, r, lane, u, v, inv_size, scale,
                      [&](float pu, float pv, float w) { visit(layouts_[0], pu, pv, 0.0f, w); });
     // The sample's own tangent: the skew interpolates between tilts (seed 000, eq. 6-9).
-    const float tg = static_cast<float>(shape.tg);
-    for (int c = 0; c < blend.count; ++c)
-      visit(layouts_[blend.copy[c]], u, v, tg, blend.weight[c] * scale);
+    const float tg = s.tg[r][lane];
+    for (int slot = 0; slot < SelectionLanes::kSlots; ++slot) {
+      const float w = s.weight[r][slot][lane];
+      if (!(w > 0.0f)) continue;
+      visit(layouts_[s.copy[r][slot][lane]], u, v, tg, w * scale);
+    }
   }
+}
+
+Rgba AnisoSampler::Blend(const SelectionLanes& s, int lane, float u, float v) const {
+  V4 sum = Zero();
+  ForEachRead(s, lane, u, v, [&](const CopyLayout& c, float pu, float pv, float tg, float w) {
+    sum = AddScaled(sum, CopySample(c, pu, pv, tg), w);
+  });
+  return ToRgba(sum);
 }
 
 Rgba AnisoSampler::Sample(const TextureFootprint& f) const {
-  Selection s;
-  Select(f, s);
-  return Blend(f, s);
+  SelectionLanes lanes;
+  selector_.SelectPortable(&f.dudx, &f.dvdx, &f.dudy, &f.dvdy, 1, lanes);
+  return Blend(lanes, 0, static_cast<float>(f.u), static_cast<float>(f.v));
 }
 
-template <typename FootprintOf>
-void AnisoSampler::SampleGroups(FootprintOf footprint_of, Rgba* out, int count) const {
-  // Groups of 4 to 32 measured the same on the demo; a third phase (all texel addresses of the
-  // group before any read) gained nothing.
-  constexpr int kGroup = 8;
-  TextureFootprint footprints[kGroup];
-  for (int first = 0; first < count; first += kGroup) {
-    const int n = std::min(kGroup, count - first);
-    for (int i = 0; i < n; ++i) footprints[i] = footprint_of(first + i);
-    if (read_kernel_) {
-      BlendReads(footprints, n, out + first);
-      continue;
-    }
-    for (int i = 0; i < n; ++i) out[first + i] = Sample(footprints[i]);
+void AnisoSampler::SampleLanes(const float* dudx, const float* dvdx, const float* dudy,
+                               const float* dvdy, const double* u, const double* v, int n,
+                               Rgba* out) const {
+  SelectionLanes lanes;
+  selector_.Select(dudx, dvdx, dudy, dvdy, n, lanes);
+  if (read_kernel_) {
+    BlendReads(lanes, u, v, n, out);
+    return;
   }
+  for (int i = 0; i < n; ++i)
+    out[i] = Blend(lanes, i, static_cast<float>(u[i]), static_cast<float>(v[i]));
 }
 
-void AnisoSampler::BlendReads(const TextureFootprint* f, int n, Rgba* out) const {
+void AnisoSampler::BlendReads(const SelectionLanes& s, const double* u, const double* v, int n,
+                              Rgba* out) const {
   ReadJobs jobs;  // uninitialised arrays: each job is written before the kernel reads it
-  // Blend's reads in Blend's order, each sample's selected just before its reads are listed.
-  Selection selection;
+  // Blend's reads in Blend's order.
   for (int i = 0; i < n; ++i) {
-    Select(f[i], selection);
-    ForEachRead(f[i], selection,
-                [&](const CopyLayout& c, float u, float v, float tg, float weight) {
+    ForEachRead(s, i, static_cast<float>(u[i]), static_cast<float>(v[i]),
+                [&](const CopyLayout& c, float pu, float pv, float tg, float weight) {
                   const int j = jobs.count++;
-                  jobs.u[j] = u, jobs.v[j] = v, jobs.tg[j] = tg;
+                  jobs.u[j] = pu, jobs.v[j] = pv, jobs.tg[j] = tg;
                   jobs.width[j] = c.width, jobs.height[j] = c.height, jobs.lambda[j] = c.lambda;
                   jobs.width_mask[j] = c.width_mask, jobs.height_mask[j] = c.height_mask;
                   jobs.tilt_v[j] = c.tilt_v ? ~0u : 0u;
@@ -550,19 +307,26 @@ void AnisoSampler::BlendReads(const TextureFootprint* f, int n, Rgba* out) const
 }
 
 void AnisoSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {
-  SampleGroups([in](int i) { return in[i]; }, out, count);
+  // Groups of eight as arrays (the selection's lanes).
+  constexpr int kGroup = SelectionLanes::kLanes;
+  alignas(32) float dudx[kGroup], dvdx[kGroup], dudy[kGroup], dvdy[kGroup];
+  double u[kGroup], v[kGroup];
+  for (int first = 0; first < count; first += kGroup) {
+    const int n = std::min(kGroup, count - first);
+    for (int i = 0; i < n; ++i) {
+      const TextureFootprint& f = in[first + i];
+      dudx[i] = f.dudx, dvdx[i] = f.dvdx, dudy[i] = f.dudy, dvdy[i] = f.dvdy;
+      u[i] = f.u, v[i] = f.v;
+    }
+    SampleLanes(dudx, dvdx, dudy, dvdy, u, v, n, out + first);
+  }
 }
 
 void AnisoSampler::SampleBatch(const FootprintBatch& in, Rgba* out) const {
-  SampleGroups([&in](int i) { return in.At(i); }, out, in.count);
-}
-
-Rgba AnisoSampler::Blend(const TextureFootprint& f, const Selection& s) const {
-  V4 sum = Zero();
-  ForEachRead(f, s, [&](const CopyLayout& c, float u, float v, float tg, float weight) {
-    sum = AddScaled(sum, CopySample(c, u, v, tg), weight);
-  });
-  return ToRgba(sum);
+  constexpr int kGroup = SelectionLanes::kLanes;
+  for (int first = 0; first < in.count; first += kGroup)
+    SampleLanes(in.dudx + first, in.dvdx + first, in.dudy + first, in.dvdy + first, in.u + first,
+                in.v + first, std::min(kGroup, in.count - first), out + first);
 }
 
 }  // namespace aperture

@@ -1,0 +1,529 @@
+#include "texture/aniso_selection.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+namespace aperture {
+namespace {
+
+// Derivatives are clamped to this many texels: a footprint past 2^(3n) (n <= 13) is capped by
+// the table anyway, and the squares stay finite in float.
+constexpr float kMaxTexels = 0x1p40f;
+// Below this second moment (texels^2) the footprint is a point: the base, bilinear.
+constexpr float kMinMoment = 1e-30f;
+// Base probes carry the thin apertures up to this half-extent, fading out to twice it.
+constexpr float kProbeHalfExtent = 4.0f;
+// Probes are this many texels apart along the long side once more than two are needed (1.125
+// read 0.4-0.6 dB worse on the asphalt photo at pitch 5, a = 1, and saved 2-4 % of a frame).
+constexpr float kProbeSpacing = 1.0f;
+
+// x = 2^e (1 + m) with 0 <= m < 1, for finite x >= 1 (from the bits, exact).
+struct PowerOfTwoSplit {
+  int e;
+  float m;
+};
+inline PowerOfTwoSplit SplitPowerOfTwo(float x) {
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  const float mantissa = std::bit_cast<float>((bits & 0x7fffffu) | 0x3f800000u);
+  return {static_cast<int>(bits >> 23) - 127, mantissa - 1.0f};
+}
+
+// 2^e for -126 <= e <= 127.
+inline float PowerOfTwo(int e) {
+  return std::bit_cast<float>(static_cast<uint32_t>(127 + e) << 23);
+}
+
+// Between the two tilts nearest the tangent, the next one's weight by the fraction of the way
+// from the lower tilt's centre to the next one's: the nearer tilt alone within a quarter of the
+// spacing of its centre, a linear blend over the middle half. Continuous, and half the samples
+// read one tilt (a blend over the whole spacing cost 2 ms more a demo frame for 0.03 dB).
+inline float NextTiltWeight(float fraction) {
+  return std::clamp(2.0f * fraction - 0.5f, 0.0f, 1.0f);
+}
+
+// The readings of one footprint (ReadingsOfFootprint). The table's copies are parallelograms with a
+// pair of sides parallel to a texture axis: half extent H along the major axis with slope tg,
+// half thickness L along the minor one, i.e. {s H (1, tg) + t L (0, 1)} (axes named major,
+// minor). Seed 000 reads H, L and tg off the pixel parallelogram's bounding extents (eq. 3-4),
+// which depend on how the footprint is turned against the texture: a square footprint turned
+// 45 degrees gets a copy of twice its area. Our reading (issue 22): the copy with the pixel
+// parallelogram's second moments,
+//   H^2 (1, tg) (1, tg)^T + L^2 (0, 1) (0, 1)^T = X X^T + Y Y^T,
+// the Cholesky factor of the right side: H^2 = M_major, tg = M_cross / M_major,
+// L = |X x Y| / H. The copy then has the pixel's area and its variance in every direction, so
+// a footprint and the same footprint turned get copies of equal area and shape; along a
+// texture axis (Y parallel to the major axis, or X and Y along the axes) it is the paper's.
+// Along the axis of the larger moment |tg| <= 1, as the table's tilts need; along the other one
+// (only inside the zone) |tg| stays under 1.14.
+struct LaneReadings {
+  bool valid = false;   // finite derivatives and a footprint larger than a point
+  bool u_major = true;  // the first reading is along U
+  float first = 0;      // the first reading's weight; the second's is 1 - first
+  float H[2], L[2], tg[2];
+};
+
+LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half_size) {
+  // seed 000, eq. 2: one pixel step of the paper's 2 x 2 aperture is half the a-scaled
+  // derivative (a = 2); in texel units. The pixel's aperture is then the parallelogram
+  // {s X + t Y : |s|, |t| <= 1} with X = (dUx, dVx), Y = (dUy, dVy).
+  float d[4] = {dudx * half_size, dvdx * half_size, dudy * half_size, dvdy * half_size};
+  LaneReadings out;
+  bool finite = true;
+  for (float& x : d) {
+    finite = finite && std::isfinite(x);
+    x = std::clamp(x, -kMaxTexels, kMaxTexels);
+  }
+  const float dUx = d[0], dVx = d[1], dUy = d[2], dVy = d[3];
+  const float uu = dUx * dUx + dUy * dUy, vv = dVx * dVx + dVy * dVy;
+  const float uv = dUx * dVx + dUy * dVy;
+  const float area = std::abs(dUx * dVy - dVx * dUy);  // |X x Y|
+  const float total = uu + vv;
+  if (!finite || !(total >= kMinMoment)) return out;
+  out.valid = true;
+  // The first reading along the larger moment; its weight 1 outside the zone, else
+  // 1/2 + |M_uu - M_vv| / (2 zone), 1/2 on the diagonal.
+  const float difference = uu - vv, zone = kAxisBlendZone * total;
+  out.u_major = difference >= 0.0f;
+  const float spread = std::abs(difference);
+  out.first = spread >= zone ? 1.0f : 0.5f + 0.5f * (spread / zone);
+  const float major = out.u_major ? uu : vv, minor = out.u_major ? vv : uu;
+  // The second reading along the other axis (only read inside the zone, where minor is close
+  // to major; outside it the first's moment keeps the arithmetic finite).
+  const float majors[2] = {major, out.first < 1.0f ? minor : major};
+  for (int r = 0; r < 2; ++r) {
+    out.H[r] = std::sqrt(majors[r]);
+    const float inv_h = 1.0f / out.H[r];
+    out.tg[r] = uv * inv_h * inv_h;
+    out.L[r] = area * inv_h;
+  }
+  return out;
+}
+
+// Below L = 1 the table's thinnest copies are up to twice too thick across the long side: the
+// paper's table stops there. This mixes in bilinear probes of the base, spread along the long
+// side, so that the blend's variances are the aperture's own (box of half-sides H and L on the
+// bilinear texture: H^2 / 3 + 1/6 along the long side, L^2 / 3 + 1/6 across it, in texels^2).
+// Across, a probe carries 1/6 (the bilinear tent alone) and the copies of L = 1 carry
+// 1/3 + 1/6, so the copies keep the share L^2 and the probes take 1 - L^2. Along the long side
+// the probes' positions must have the variance T (their own tents add the 1/6):
+//  - H >= 1: the copies are the table's for (H, 1), T = H^2 / 3, the long side's box;
+//  - H < 1: the first copy (2 x 2 box) alone with the share L^2, and T = (H^2 - L^2) /
+//    (3 (1 - L^2)) makes the variance along the long side H^2 / 3 + 1/6 too. At H = 1 both are
+//    1/3; at H = L, T = 0 and the blend is the paper's (base and first copy by H^2).
+// Every change is continuous (issue 22, part 3): under T = s^2 / 4 (s = kProbeSpacing) two
+// probes at +-sqrt(T), which meet at the centre as T -> 0; above it 2J probes s apart, the
+// outer two of weight e growing from 0 (where they appear) to the others' (where the next pair
+// appears), e set so that the variance is T. The probes fade out between kProbeHalfExtent and
+// twice it. This sets the probes of reading r of a lane when it is read and thin.
+void AddProbesLane(SelectionLanes& out, int r, int lane) {
+  out.probes[r][lane] = 0;
+  if (!(out.reading_weight[r][lane] > 0.0f)) return;
+  const float H = out.H[r][lane], L = std::min(out.L[r][lane], H);
+  if (!(L < 1.0f) || H >= 2.0f * kProbeHalfExtent) return;
+  const float share = std::min(1.0f, 2.0f - H / kProbeHalfExtent) * (1.0f - L * L);
+  float T = H * H * (1.0f / 3.0f);
+  if (H < 1.0f) {
+    T = (H * H - L * L) / (3.0f * (1.0f - L * L));
+    out.copy[r][0][lane] = out.copy[r][1][lane];  // the first copy alone
+    out.weight[r][0][lane] = 1.0f;
+    out.weight[r][1][lane] = 0.0f;
+  }
+  constexpr float s2 = kProbeSpacing * kProbeSpacing;
+  if (T <= 0.25f * s2) {
+    out.probes[r][lane] = 2;
+    out.probe_step[r][lane] = 2.0f * std::sqrt(T);
+    out.probe_weight[r][lane] = 0.0f;
+    out.probe_end_weight[r][lane] = 0.5f * share;
+  } else {
+    const float t = T / s2;  // in units of the spacing^2
+    // The smallest J whose 2J evenly weighted probes reach t: (4 J^2 - 1) / 12 >= t.
+    const int J = std::max(2, static_cast<int>(std::ceil(0.5f * std::sqrt(12.0f * t + 1.0f))));
+    // The 2 (J - 1) inner probes alone have the variance A (e = 0); e solves
+    // A + 2 e ((J - 1/2)^2 - A) = t with inner weights (1 - 2 e) / (2 (J - 1)), and
+    // (J - 1/2)^2 - A = J (2J - 1) / 3.
+    const float Jf = static_cast<float>(J);
+    const float A = (4.0f * (Jf - 1.0f) * (Jf - 1.0f) - 1.0f) * (1.0f / 12.0f);
+    const float e = std::clamp(1.5f * (t - A) / (Jf * (2.0f * Jf - 1.0f)), 0.0f, 0.5f / Jf);
+    out.probes[r][lane] = 2 * J;
+    out.probe_step[r][lane] = kProbeSpacing;
+    out.probe_end_weight[r][lane] = e * share;
+    out.probe_weight[r][lane] = (1.0f - 2.0f * e) / (2.0f * (Jf - 1.0f)) * share;
+  }
+  for (int s = 0; s < SelectionLanes::kSlots; ++s) out.weight[r][s][lane] *= 1.0f - share;
+}
+
+}  // namespace
+
+CopySelector::CopySelector(const PrefilteredTable& table)
+    : log2_size_(table.log2_size()),
+      half_size_(0.5f * static_cast<float>(table.size())),
+      first_copy_(table.cell(0, 0).first) {
+  const int n = log2_size_;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i < n; ++i) {
+      first_.push_back(table.cell(j, i).first);
+      half_.push_back(static_cast<int32_t>(table.cell(j, i).lambda / 2));
+    }
+#if defined(__x86_64__) && defined(__GNUC__)
+  kernel_ = __builtin_cpu_supports("avx2");
+#endif
+}
+
+// seed 000, eq. 5 with the tilt blend, for one reading of one lane.
+void CopySelector::TableSlots(float H, float L, float tg, bool along_v, SelectionLanes& out,
+                              int reading, int lane) const {
+  auto set = [&](int slot, uint32_t copy, float weight) {
+    out.copy[reading][slot][lane] = copy;
+    out.weight[reading][slot][lane] = weight;
+  };
+  if (H < 1.0f) {
+    // Magnification, between the base (bilinear texels, H = 0) and the first copy (the box of
+    // 2 x 2 texels, H = L = 1). The paper falls back to the base for all H < 1; blending with
+    // weight H^2 gives the blend the variance of a box of 2H texels, so the blur grows
+    // continuously up to the table (docs/BENCHMARKS.md, issue 3, measures both).
+    const float m = H * H;
+    set(0, 0, 1.0f - m);
+    set(1, first_copy_, m);
+    for (int s = 2; s < SelectionLanes::kSlots; ++s) set(s, 0, 0.0f);
+    return;
+  }
+  const int n = log2_size_;
+  // L between 1 (the thinnest copy) and H; raised to H / 2^(n-1) where lambda is frozen.
+  const float Hc = std::min(H, PowerOfTwo(3 * n));
+  const float Lc = std::clamp(L, std::max(1.0f, Hc * PowerOfTwo(1 - n)), Hc);
+  // seed 000, eq. 5: H = 2^eH (1 + M_H), L = 2^eL (1 + M_L).
+  const auto [eH, mH] = SplitPowerOfTwo(Hc);
+  const auto [eL, mL] = SplitPowerOfTwo(Lc);
+  int cells[3];
+  float weights[3];
+  if (eL >= n) {  // L >= 2^n: the aperture covers whole periods both ways
+    cells[0] = cells[1] = cells[2] = n * n + std::min(eH - n, n - 1);
+    weights[0] = 1.0f, weights[1] = weights[2] = 0.0f;
+  } else {
+    int i = eH - eL;
+    float mh = mH;
+    if (i >= n - 1) {  // lambda frozen: no cell (eL, eH + 1); L was raised so that M_H = M_L
+      i = n - 1;
+      mh = std::min(mh, mL);
+    }
+    // R1, then R3 = (eH + 1, eL) when M_H >= M_L, else R4 = (eH, eL + 1), then R2.
+    const bool r3 = mh >= mL;
+    cells[0] = eL * n + i;
+    cells[1] = r3 ? eL * n + i + 1 : (eL + 1) * n + i - 1;
+    cells[2] = (eL + 1) * n + i;
+    weights[0] = 1.0f - std::max(mh, mL);
+    weights[1] = std::abs(mh - mL);
+    weights[2] = std::min(mh, mL);
+  }
+  // Tilt k of a cell of lambda copies, tg_k = (2k + 1) / half - 1 (half = lambda / 2), sits at
+  // k = (tg + 1) half / 2 - 1/2 on the tilt axis; beyond the outer tilts' centres the outer
+  // tilt alone (the skewed read follows tg).
+  const float tilt_position = (tg + 1.0f) * 0.5f;
+  const uint32_t v_offset = along_v ? 1 : 0;
+  for (int c = 0; c < 3; ++c) {
+    const int half = half_[cells[c]];
+    const uint32_t first = first_[cells[c]] + v_offset * static_cast<uint32_t>(half);
+    if (half <= 1) {  // one copy per axis
+      set(2 * c, first, weights[c]);
+      set(2 * c + 1, first, 0.0f);
+      continue;
+    }
+    const float halff = static_cast<float>(half);
+    const float k = std::clamp(tilt_position * halff - 0.5f, 0.0f, halff - 1.0f);
+    const int k0 = std::min(static_cast<int>(k), half - 2);
+    const float next = NextTiltWeight(k - static_cast<float>(k0));
+    set(2 * c, first + static_cast<uint32_t>(k0), weights[c] * (1.0f - next));
+    set(2 * c + 1, first + static_cast<uint32_t>(k0) + 1, weights[c] * next);
+  }
+}
+
+void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const float* dudy,
+                                  const float* dvdy, int n, SelectionLanes& out) const {
+  for (int lane = 0; lane < n; ++lane) {
+    const LaneReadings r = ReadLane(dudx[lane], dvdx[lane], dudy[lane], dvdy[lane], half_size_);
+    out.reading_weight[0][lane] = r.valid ? r.first : 0.0f;
+    out.reading_weight[1][lane] = r.valid ? 1.0f - r.first : 0.0f;
+    out.along_v[0][lane] = r.u_major ? 0 : 1;
+    out.along_v[1][lane] = r.u_major ? 1 : 0;
+    for (int k = 0; k < 2; ++k) {
+      out.H[k][lane] = r.H[k], out.L[k][lane] = r.L[k], out.tg[k][lane] = r.tg[k];
+      if (out.reading_weight[k][lane] > 0.0f)
+        TableSlots(r.H[k], r.L[k], r.tg[k], out.along_v[k][lane] != 0, out, k, lane);
+    }
+  }
+  for (int lane = 0; lane < n; ++lane)
+    for (int k = 0; k < 2; ++k) AddProbesLane(out, k, lane);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+namespace {
+
+__attribute__((target("avx2"))) inline __m256 Abs(__m256 x) {
+  return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x);
+}
+
+// Where mask is set, the slot takes this copy and weight (magnified lanes).
+__attribute__((target("avx2"))) inline void BlendSlot(SelectionLanes& out, int r, int slot,
+                                                      __m256 mask, __m256i copy, __m256 weight) {
+  __m256i* c = reinterpret_cast<__m256i*>(out.copy[r][slot]);
+  _mm256_store_si256(c, _mm256_blendv_epi8(_mm256_load_si256(c), copy, _mm256_castps_si256(mask)));
+  _mm256_store_ps(out.weight[r][slot],
+                  _mm256_blendv_ps(_mm256_load_ps(out.weight[r][slot]), weight, mask));
+}
+
+// The AVX2 lanes of SelectPortable: ReadLane and TableSlots for eight lanes, the same float
+// operations in the same order. Lanes whose readings are not read compute harmless values
+// (clamped cell indices, finite arithmetic) that are never used; the second reading is skipped
+// when no lane is near a diagonal. Returns the readings that need AddProbesLane, bit
+// 8 r + lane (the others' probe counts are set to 0 here).
+__attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const float* dvdx,
+                                                    const float* dudy, const float* dvdy,
+                                                    float half_size, int n_log2,
+                                                    uint32_t first_copy, const uint32_t* cell_first,
+                                                    const int32_t* cell_half, SelectionLanes& out) {
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+  const __m256 max_texels = _mm256_set1_ps(kMaxTexels);
+  const __m256 min_texels = _mm256_set1_ps(-kMaxTexels);
+  const __m256 infinity = _mm256_set1_ps(INFINITY);
+  const __m256 s = _mm256_set1_ps(half_size);
+  __m256 d[4] = {_mm256_mul_ps(_mm256_loadu_ps(dudx), s), _mm256_mul_ps(_mm256_loadu_ps(dvdx), s),
+                 _mm256_mul_ps(_mm256_loadu_ps(dudy), s), _mm256_mul_ps(_mm256_loadu_ps(dvdy), s)};
+  // finite: |x| < inf (false for NaN and infinities); then the clamp (std::clamp's order).
+  __m256 finite = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+  for (__m256& x : d) {
+    finite = _mm256_and_ps(finite, _mm256_cmp_ps(Abs(x), infinity, _CMP_LT_OQ));
+    x = _mm256_min_ps(_mm256_max_ps(x, min_texels), max_texels);
+  }
+  const __m256 dUx = d[0], dVx = d[1], dUy = d[2], dVy = d[3];
+  const __m256 uu = _mm256_add_ps(_mm256_mul_ps(dUx, dUx), _mm256_mul_ps(dUy, dUy));
+  const __m256 vv = _mm256_add_ps(_mm256_mul_ps(dVx, dVx), _mm256_mul_ps(dVy, dVy));
+  const __m256 uv = _mm256_add_ps(_mm256_mul_ps(dUx, dVx), _mm256_mul_ps(dUy, dVy));
+  const __m256 area = Abs(_mm256_sub_ps(_mm256_mul_ps(dUx, dVy), _mm256_mul_ps(dVx, dUy)));
+  const __m256 total = _mm256_add_ps(uu, vv);
+  const __m256 valid =
+      _mm256_and_ps(finite, _mm256_cmp_ps(total, _mm256_set1_ps(kMinMoment), _CMP_GE_OQ));
+  const __m256 difference = _mm256_sub_ps(uu, vv);
+  const __m256 zone = _mm256_mul_ps(_mm256_set1_ps(kAxisBlendZone), total);
+  const __m256 u_major = _mm256_cmp_ps(difference, zero, _CMP_GE_OQ);
+  const __m256 spread = Abs(difference);
+  const __m256 outside = _mm256_cmp_ps(spread, zone, _CMP_GE_OQ);
+  // Invalid lanes may divide 0 by 0 here; their results are masked below.
+  const __m256 inside_weight =
+      _mm256_add_ps(half, _mm256_mul_ps(half, _mm256_div_ps(spread, zone)));
+  __m256 first = _mm256_blendv_ps(inside_weight, one, outside);
+  const __m256 major = _mm256_blendv_ps(vv, uu, u_major);
+  const __m256 minor = _mm256_blendv_ps(uu, vv, u_major);
+  const __m256 second_major = _mm256_blendv_ps(major, minor, _mm256_cmp_ps(first, one, _CMP_LT_OQ));
+  const __m256i v_first = _mm256_andnot_si256(_mm256_castps_si256(u_major), _mm256_set1_epi32(1));
+  const __m256i v_second = _mm256_and_si256(_mm256_castps_si256(u_major), _mm256_set1_epi32(1));
+  // Invalid lanes: both weights 0 (a valid lane's 1 - first is computed as in the lane code).
+  const __m256 second = _mm256_and_ps(valid, _mm256_sub_ps(one, first));
+  first = _mm256_and_ps(valid, first);
+  _mm256_store_ps(out.reading_weight[0], first);
+  _mm256_store_ps(out.reading_weight[1], second);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.along_v[0]), v_first);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.along_v[1]), v_second);
+
+  const int n = n_log2;
+  const __m256 max_h = _mm256_set1_ps(PowerOfTwo(3 * n));
+  const __m256 frozen_ratio = _mm256_set1_ps(PowerOfTwo(1 - n));
+  const __m256i vn = _mm256_set1_epi32(n), vn1 = _mm256_set1_epi32(n - 1);
+  const __m256i ione = _mm256_set1_epi32(1), izero = _mm256_setzero_si256();
+  const __m256i last_cell = _mm256_set1_epi32((n + 1) * n - 1);
+  const __m256i mantissa_bits = _mm256_set1_epi32(0x7fffff),
+                one_bits = _mm256_set1_epi32(0x3f800000);
+  const __m256 majors[2] = {major, second_major};
+  const __m256i along_v[2] = {v_first, v_second};
+  const __m256 read[2] = {_mm256_cmp_ps(first, zero, _CMP_GT_OQ),
+                          _mm256_cmp_ps(second, zero, _CMP_GT_OQ)};
+  uint32_t need_probes = 0;
+  for (int r = 0; r < 2; ++r) {
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out.probes[r]), _mm256_setzero_si256());
+    if (_mm256_movemask_ps(read[r]) == 0) continue;
+    const __m256 H = _mm256_sqrt_ps(majors[r]);
+    const __m256 inv_h = _mm256_div_ps(one, H);
+    const __m256 tg = _mm256_mul_ps(_mm256_mul_ps(uv, inv_h), inv_h);
+    const __m256 L = _mm256_mul_ps(area, inv_h);
+    _mm256_store_ps(out.H[r], H);
+    _mm256_store_ps(out.tg[r], tg);
+    _mm256_store_ps(out.L[r], L);
+    // AddProbesLane's test: read, min(L, H) < 1 and H < 2 kProbeHalfExtent.
+    const __m256 thin =
+        _mm256_and_ps(_mm256_and_ps(read[r], _mm256_cmp_ps(_mm256_min_ps(L, H), one, _CMP_LT_OQ)),
+                      _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ));
+    need_probes |= static_cast<uint32_t>(_mm256_movemask_ps(thin)) << (8 * r);
+    // TableSlots.
+    const __m256 magnify = _mm256_cmp_ps(H, one, _CMP_LT_OQ);
+    const __m256 Hc = _mm256_min_ps(H, max_h);
+    // std::clamp(L, lo, hi): L < lo ? lo : (hi < L ? hi : L).
+    const __m256 lo = _mm256_max_ps(one, _mm256_mul_ps(Hc, frozen_ratio));
+    __m256 Lc = _mm256_blendv_ps(L, Hc, _mm256_cmp_ps(Hc, L, _CMP_LT_OQ));
+    Lc = _mm256_blendv_ps(Lc, lo, _mm256_cmp_ps(L, lo, _CMP_LT_OQ));
+    // Lanes that are not read may hold anything: keep their splits in range.
+    const __m256 Hs = _mm256_blendv_ps(Hc, one, magnify), Ls = _mm256_blendv_ps(Lc, one, magnify);
+    const __m256i hbits = _mm256_castps_si256(Hs), lbits = _mm256_castps_si256(Ls);
+    const __m256i eH = _mm256_sub_epi32(_mm256_srli_epi32(hbits, 23), _mm256_set1_epi32(127));
+    const __m256i eL = _mm256_sub_epi32(_mm256_srli_epi32(lbits, 23), _mm256_set1_epi32(127));
+    const __m256 mH = _mm256_sub_ps(
+        _mm256_castsi256_ps(_mm256_or_si256(_mm256_and_si256(hbits, mantissa_bits), one_bits)),
+        one);
+    const __m256 mL = _mm256_sub_ps(
+        _mm256_castsi256_ps(_mm256_or_si256(_mm256_and_si256(lbits, mantissa_bits), one_bits)),
+        one);
+    const __m256i whole = _mm256_cmpgt_epi32(eL, vn1);  // eL >= n
+    __m256i i = _mm256_sub_epi32(eH, eL);
+    const __m256i frozen = _mm256_cmpgt_epi32(i, _mm256_sub_epi32(vn1, ione));  // i >= n - 1
+    i = _mm256_blendv_epi8(i, vn1, frozen);
+    const __m256 mh = _mm256_blendv_ps(mH, _mm256_min_ps(mH, mL), _mm256_castsi256_ps(frozen));
+    const __m256 r3 = _mm256_cmp_ps(mh, mL, _CMP_GE_OQ);
+    const __m256i row = _mm256_mullo_epi32(eL, vn), next_row = _mm256_add_epi32(row, vn);
+    __m256i cells[3] = {_mm256_add_epi32(row, i),
+                        _mm256_blendv_epi8(_mm256_sub_epi32(_mm256_add_epi32(next_row, i), ione),
+                                           _mm256_add_epi32(_mm256_add_epi32(row, i), ione),
+                                           _mm256_castps_si256(r3)),
+                        _mm256_add_epi32(next_row, i)};
+    __m256 weights[3] = {_mm256_sub_ps(one, _mm256_max_ps(mh, mL)), Abs(_mm256_sub_ps(mh, mL)),
+                         _mm256_min_ps(mh, mL)};
+    // Whole periods: cell (n, min(eH - n, n - 1)) alone.
+    const __m256i whole_cell =
+        _mm256_add_epi32(_mm256_set1_epi32(n * n), _mm256_min_epi32(_mm256_sub_epi32(eH, vn), vn1));
+    for (int c = 0; c < 3; ++c) {
+      cells[c] = _mm256_blendv_epi8(cells[c], whole_cell, whole);
+      cells[c] = _mm256_min_epi32(_mm256_max_epi32(cells[c], izero), last_cell);
+    }
+    weights[0] = _mm256_blendv_ps(weights[0], one, _mm256_castsi256_ps(whole));
+    weights[1] = _mm256_andnot_ps(_mm256_castsi256_ps(whole), weights[1]);
+    weights[2] = _mm256_andnot_ps(_mm256_castsi256_ps(whole), weights[2]);
+    const __m256 tilt_position = _mm256_mul_ps(_mm256_add_ps(tg, one), half);
+    for (int c = 0; c < 3; ++c) {
+      const __m256i halves = _mm256_i32gather_epi32(cell_half, cells[c], 4);
+      const __m256i firsts = _mm256_add_epi32(
+          _mm256_i32gather_epi32(reinterpret_cast<const int*>(cell_first), cells[c], 4),
+          _mm256_mullo_epi32(along_v[r], halves));
+      const __m256 halff = _mm256_cvtepi32_ps(halves);
+      // std::clamp(x, 0, half - 1).
+      const __m256 x = _mm256_sub_ps(_mm256_mul_ps(tilt_position, halff), half);
+      const __m256 top = _mm256_sub_ps(halff, one);
+      __m256 k = _mm256_blendv_ps(x, top, _mm256_cmp_ps(top, x, _CMP_LT_OQ));
+      k = _mm256_blendv_ps(k, zero, _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
+      const __m256i k0 =
+          _mm256_min_epi32(_mm256_cvttps_epi32(k), _mm256_sub_epi32(halves, _mm256_set1_epi32(2)));
+      // NextTiltWeight: std::clamp(2 f - 0.5, 0, 1).
+      const __m256 y = _mm256_sub_ps(
+          _mm256_mul_ps(_mm256_set1_ps(2.0f), _mm256_sub_ps(k, _mm256_cvtepi32_ps(k0))), half);
+      __m256 next = _mm256_blendv_ps(y, one, _mm256_cmp_ps(one, y, _CMP_LT_OQ));
+      next = _mm256_blendv_ps(next, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
+      const __m256i tilted = _mm256_cmpgt_epi32(halves, ione);  // half > 1
+      const __m256i copy0 = _mm256_blendv_epi8(firsts, _mm256_add_epi32(firsts, k0), tilted);
+      const __m256i copy1 =
+          _mm256_blendv_epi8(firsts, _mm256_add_epi32(_mm256_add_epi32(firsts, k0), ione), tilted);
+      const __m256 w0 =
+          _mm256_blendv_ps(weights[c], _mm256_mul_ps(weights[c], _mm256_sub_ps(one, next)),
+                           _mm256_castsi256_ps(tilted));
+      const __m256 w1 = _mm256_and_ps(_mm256_castsi256_ps(tilted), _mm256_mul_ps(weights[c], next));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(out.copy[r][2 * c]), copy0);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(out.copy[r][2 * c + 1]), copy1);
+      _mm256_store_ps(out.weight[r][2 * c], w0);
+      _mm256_store_ps(out.weight[r][2 * c + 1], w1);
+    }
+    // Magnified lanes: the base and the first copy by H^2.
+    const __m256 m = _mm256_mul_ps(H, H);
+    BlendSlot(out, r, 0, magnify, izero, _mm256_sub_ps(one, m));
+    BlendSlot(out, r, 1, magnify, _mm256_set1_epi32(static_cast<int>(first_copy)), m);
+    for (int slot = 2; slot < SelectionLanes::kSlots; ++slot)
+      BlendSlot(out, r, slot, magnify, izero, zero);
+  }
+  return need_probes;
+}
+
+}  // namespace
+#endif
+
+void CopySelector::Select(const float* dudx, const float* dvdx, const float* dudy,
+                          const float* dvdy, int n, SelectionLanes& out) const {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (kernel_ && n == SelectionLanes::kLanes) {
+    for (uint32_t thin = SelectAvx2(dudx, dvdx, dudy, dvdy, half_size_, log2_size_, first_copy_,
+                                    first_.data(), half_.data(), out);
+         thin != 0; thin &= thin - 1) {
+      const int bit = std::countr_zero(thin);
+      AddProbesLane(out, bit / SelectionLanes::kLanes, bit % SelectionLanes::kLanes);
+    }
+    return;
+  }
+#endif
+  SelectPortable(dudx, dvdx, dudy, dvdy, n, out);
+}
+
+// The one-footprint forms (tests, tools): the lane code.
+
+ApertureReadings ReadingsOfFootprint(const TextureFootprint& f, int texture_size) {
+  const LaneReadings r =
+      ReadLane(f.dudx, f.dvdx, f.dudy, f.dvdy, 0.5f * static_cast<float>(texture_size));
+  ApertureReadings out;
+  if (!r.valid) return out;
+  out.count = r.first < 1.0f ? 2 : 1;
+  for (int k = 0; k < out.count; ++k) {
+    out.shape[k].axis = (k == 0) == r.u_major ? TiltAxis::kU : TiltAxis::kV;
+    out.shape[k].H = r.H[k];
+    out.shape[k].L = r.L[k];
+    out.shape[k].tg = r.tg[k];
+  }
+  out.weight[0] = r.first;
+  out.weight[1] = 1.0f - r.first;
+  return out;
+}
+
+ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size) {
+  const ApertureReadings r = ReadingsOfFootprint(f, texture_size);
+  return r.count > 0 ? r.shape[0] : ApertureShape{};
+}
+
+namespace {
+
+CopyBlend BlendOf(const PrefilteredTable& table, const ApertureShape& shape, bool probes) {
+  CopyBlend blend;
+  if (shape.axis == TiltAxis::kNone || !(shape.H > 0.0)) {
+    blend.magnify = true;  // degenerate derivatives: the base, bilinear
+    return blend;
+  }
+  SelectionLanes lanes;
+  lanes.reading_weight[0][0] = 1.0f;
+  lanes.H[0][0] = static_cast<float>(shape.H);
+  lanes.L[0][0] = static_cast<float>(shape.L);
+  lanes.tg[0][0] = static_cast<float>(shape.tg);
+  CopySelector(table).TableSlots(lanes.H[0][0], lanes.L[0][0], lanes.tg[0][0],
+                                 shape.axis == TiltAxis::kV, lanes, 0, 0);
+  lanes.probes[0][0] = 0;
+  if (probes) AddProbesLane(lanes, 0, 0);
+  for (int s = 0; s < SelectionLanes::kSlots; ++s) {
+    if (!(lanes.weight[0][s][0] > 0.0f)) continue;
+    blend.copy[blend.count] = lanes.copy[0][s][0];
+    blend.weight[blend.count++] = lanes.weight[0][s][0];
+  }
+  blend.probes = lanes.probes[0][0];
+  if (blend.probes > 0) {
+    blend.probe_step = lanes.probe_step[0][0];
+    blend.probe_weight = lanes.probe_weight[0][0];
+    blend.probe_end_weight = lanes.probe_end_weight[0][0];
+  }
+  return blend;
+}
+
+}  // namespace
+
+CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape) {
+  return BlendOf(table, shape, true);
+}
+
+CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape) {
+  return BlendOf(table, shape, false);
+}
+
+}  // namespace aperture

@@ -1,0 +1,110 @@
+// seed 000's copy selection: from a footprint's derivatives to the table copies a sample reads
+// and their weights (the aperture parallelogram, eq. 2-4, and the three-point interpolation,
+// eq. 5), continuous in the footprint (issue 22, part 3). Eight samples at a time as lanes: a
+// portable lane loop, and an AVX2 kernel chosen at run time that gives the same floats (the
+// same operations in the same order, no fused multiply-add; tests/texture/
+// aniso_selection_test.cc checks it bit for bit).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "texture/prefiltered_table.h"
+#include "texture/texture_sampler.h"
+
+namespace aperture {
+
+// The aperture parallelogram in texel units: half-extent H along the major axis (the tilt axis),
+// half-thickness L along the minor one, tg the slope of the long side to the major axis.
+struct ApertureShape {
+  TiltAxis axis = TiltAxis::kNone;  // kNone: degenerate (all derivatives zero or not finite)
+  double H = 0, L = 0, tg = 0;
+};
+
+// The readings a sample blends. A footprint has a parallelogram of its second moments along
+// either texture axis (see ShapeAlong in the .cc); the first reading is along the axis of the
+// larger moment. Where the two moments are nearly equal (the footprint's long side near a
+// diagonal) that choice would jump, so both are read, their weights going linearly from one to
+// the other across the zone |M_uu - M_vv| < kAxisBlendZone (M_uu + M_vv).
+inline constexpr float kAxisBlendZone = 0.125f;
+struct ApertureReadings {
+  int count = 0;  // 0: degenerate derivatives
+  ApertureShape shape[2];
+  float weight[2] = {};
+};
+ApertureReadings ReadingsOfFootprint(const TextureFootprint& f, int texture_size);
+
+// The first reading: seed 000, eq. 2-4 read as the parallelogram with the pixel's second
+// moments (rotation-invariant), along the axis of the larger moment.
+ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size);
+
+// The copies one reading reads and their weights: seed 000, eq. 5 across cells, and between the
+// two tilts of a cell nearest the reading's tangent (a continuous extension: the paper takes the
+// nearest tilt and leaves the rest to the skewed read, eq. 6-9, which jumps where the nearest
+// changes; docs/ENGINE.md).
+struct CopyBlend {
+  static constexpr int kMaxCopies = 6;  // three cells, two tilts each
+  bool magnify = false;                 // degenerate derivatives: bilinear on the unfiltered base
+  int count = 0;                        // entries below count, every weight above 0
+  uint32_t copy[kMaxCopies] = {};       // directory indices
+  float weight[kMaxCopies] = {};
+  // L < 1, thinner than the table's thinnest copy: also `probes` bilinear reads of the base
+  // along the long side, `probe_step` texels apart along the major axis and centred on the
+  // sample; the outer two weigh `probe_end_weight`, the others `probe_weight`.
+  int probes = 0;
+  float probe_step = 0, probe_weight = 0, probe_end_weight = 0;
+};
+// seed 000, eq. 5, and below L = 1 the base probes (a deviation: the paper's table ends at
+// L = 1; docs/BENCHMARKS.md, issue 3, measures it).
+CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
+// The paper's selection alone (with the tilt blend), without the base probes for L < 1.
+CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape);
+
+// The selections of up to eight samples, lane by lane. Per lane two readings; per reading six
+// slots (three cells of eq. 5, two tilts each) whose zero weights are not read, and the base
+// probes.
+struct SelectionLanes {
+  static constexpr int kLanes = 8;
+  static constexpr int kSlots = CopyBlend::kMaxCopies;
+  alignas(32) float reading_weight[2][kLanes];  // 0: not read (both 0: degenerate derivatives)
+  alignas(32) float H[2][kLanes];
+  alignas(32) float L[2][kLanes];
+  alignas(32) float tg[2][kLanes];
+  alignas(32) int32_t along_v[2][kLanes];  // 1: the reading's major axis is V
+  alignas(32) uint32_t copy[2][kSlots][kLanes];
+  alignas(32) float weight[2][kSlots][kLanes];
+  // At most this many base probes a reading (H < 8 texels, a texel apart).
+  static constexpr int kMaxProbes = 18;
+  alignas(32) int32_t probes[2][kLanes];  // the base probes: count, spacing (texels) and weights
+  float probe_step[2][kLanes];
+  float probe_weight[2][kLanes];
+  float probe_end_weight[2][kLanes];
+};
+
+class CopySelector {
+ public:
+  explicit CopySelector(const PrefilteredTable& table);
+
+  // Lanes [0, n) of `out` (n <= 8) for the footprints with these derivatives, by the AVX2
+  // kernel when the processor has it; the base probes included.
+  void Select(const float* dudx, const float* dvdx, const float* dudy, const float* dvdy, int n,
+              SelectionLanes& out) const;
+  // The same by the portable lane code alone (what the kernel must equal).
+  void SelectPortable(const float* dudx, const float* dvdx, const float* dudy, const float* dvdy,
+                      int n, SelectionLanes& out) const;
+  bool has_kernel() const { return kernel_; }
+
+  // One reading's six slots (seed 000, eq. 5 with the tilt blend), lane `lane`.
+  void TableSlots(float H, float L, float tg, bool along_v, SelectionLanes& out, int reading,
+                  int lane) const;
+
+ private:
+  int log2_size_ = 0;
+  float half_size_ = 0;  // 2^n / 2: one step of the paper's 2 x 2 aperture, in texels per repeat
+  uint32_t first_copy_ = 0;      // cell (0, 0)'s copy, the 2 x 2 box
+  std::vector<uint32_t> first_;  // per cell j * n + i: its first directory index
+  std::vector<int32_t> half_;    // per cell: lambda / 2, the tilts per axis (0: untilted)
+  bool kernel_ = false;
+};
+
+}  // namespace aperture

@@ -1,0 +1,120 @@
+// The seed 000 copy selection's AVX2 kernel against its portable lane code: the same readings,
+// copies, weights and probes, bit for bit, on footprints of every class.
+#include "texture/aniso_selection.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "testing/random_image.h"
+#include "texture/prefiltered_table_builder.h"
+
+namespace aperture {
+namespace {
+
+constexpr int kN = 64;
+
+// Derivatives (repeats per pixel) of every class: magnified, thin (the base probes), three
+// copies on both axes, near a diagonal (both readings), the frozen region, whole periods,
+// zero, tiny, huge, infinite and NaN.
+std::vector<std::array<float, 4>> Footprints(int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> turn(0, 2 * M_PI), log_len(-4, 24), log_ratio(0, 14),
+      unit(0, 1);
+  std::vector<std::array<float, 4>> out;
+  for (int k = 0; k < count; ++k) {
+    double angle = turn(rng);
+    if (k % 4 == 0) angle = M_PI / 4 + (unit(rng) - 0.5) * 0.2;  // near the diagonal
+    const double len = std::exp2(log_len(rng)), thick = len / std::exp2(log_ratio(rng));
+    const double c = std::cos(angle), s = std::sin(angle);
+    std::array<float, 4> d = {float(len * c / kN), float(len * s / kN), float(-thick * s / kN),
+                              float(thick * c / kN)};
+    switch (k % 23) {
+      case 5:
+        d = {0, 0, 0, 0};
+        break;
+      case 7:
+        d[1] = NAN;
+        break;
+      case 11:
+        d[2] = INFINITY;
+        break;
+      case 13:
+        d = {1e-25f, 0, 0, 1e-25f};
+        break;
+      case 17:
+        d = {3e30f, 1e-3f, -2e-3f, 5e25f};
+        break;
+      default:
+        break;
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
+TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
+  auto block = BuildPrefilteredTable(RandomImage(kN, kN, 31));
+  ASSERT_TRUE(block.ok()) << block.status();
+  auto table = block->View();
+  ASSERT_TRUE(table.ok());
+  const CopySelector selector(*table);
+  if (!selector.has_kernel()) GTEST_SKIP() << "no AVX2 on this processor: one code path only";
+  const auto footprints = Footprints(8000, 5);
+  int compared = 0, second_readings = 0, probed = 0, magnified = 0, degenerate = 0;
+  for (size_t first = 0; first + 8 <= footprints.size(); first += 8) {
+    float d[4][8];
+    for (int lane = 0; lane < 8; ++lane)
+      for (int c = 0; c < 4; ++c) d[c][lane] = footprints[first + lane][c];
+    SelectionLanes portable, kernel;
+    selector.SelectPortable(d[0], d[1], d[2], d[3], 8, portable);
+    selector.Select(d[0], d[1], d[2], d[3], 8, kernel);
+    for (int lane = 0; lane < 8; ++lane) {
+      SCOPED_TRACE(testing::Message() << "footprint " << first + lane);
+      bool any = false;
+      for (int r = 0; r < 2; ++r) {
+        auto bits = [](float x) {
+          uint32_t b;
+          std::memcpy(&b, &x, 4);
+          return b;
+        };
+        ASSERT_EQ(bits(portable.reading_weight[r][lane]), bits(kernel.reading_weight[r][lane]));
+        if (!(portable.reading_weight[r][lane] > 0.0f)) continue;
+        any = true;
+        second_readings += r == 1;
+        EXPECT_EQ(bits(portable.H[r][lane]), bits(kernel.H[r][lane]));
+        EXPECT_EQ(bits(portable.L[r][lane]), bits(kernel.L[r][lane]));
+        EXPECT_EQ(bits(portable.tg[r][lane]), bits(kernel.tg[r][lane]));
+        EXPECT_EQ(portable.along_v[r][lane], kernel.along_v[r][lane]);
+        magnified += portable.H[r][lane] < 1.0f;
+        for (int s = 0; s < SelectionLanes::kSlots; ++s) {
+          EXPECT_EQ(bits(portable.weight[r][s][lane]), bits(kernel.weight[r][s][lane])) << s;
+          if (portable.weight[r][s][lane] > 0.0f) {
+            EXPECT_EQ(portable.copy[r][s][lane], kernel.copy[r][s][lane]) << s;
+          }
+        }
+        ASSERT_EQ(portable.probes[r][lane], kernel.probes[r][lane]);
+        if (portable.probes[r][lane] > 0) {
+          ++probed;
+          EXPECT_EQ(bits(portable.probe_step[r][lane]), bits(kernel.probe_step[r][lane]));
+          EXPECT_EQ(bits(portable.probe_weight[r][lane]), bits(kernel.probe_weight[r][lane]));
+          EXPECT_EQ(bits(portable.probe_end_weight[r][lane]),
+                    bits(kernel.probe_end_weight[r][lane]));
+        }
+      }
+      degenerate += !any;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 8000);
+  // Every class was among them.
+  EXPECT_GT(second_readings, 300);
+  EXPECT_GT(probed, 300);
+  EXPECT_GT(magnified, 100);
+  EXPECT_GT(degenerate, 300);
+}
+
+}  // namespace
+}  // namespace aperture
