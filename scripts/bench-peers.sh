@@ -7,6 +7,8 @@
 #   ROUNDS=7 TRIS=10000,100000,1000000 scripts/bench-peers.sh
 #   PLANES=5 TRIS=10000 scripts/bench-peers.sh
 #   FILTER_YAWS=0,15,30,45,60,90 PLANES= TRIS= scripts/bench-peers.sh   # filter quality only (issue 22)
+#   FILTER_YAWS=0,45 FILTER_TEXTURES=checker,asphalt_torcs_1024 FILTER_PITCH=5 PLANES= TRIS= \
+#     scripts/bench-peers.sh                       # ... on the photos of ../shared/data/raster too
 #   FLICKER_FRAMES=120 PLANES= TRIS= scripts/bench-peers.sh              # flicker with llvmpipe (issue 22)
 #
 # OSMesa (Debian's libosmesa6-dev) is a benchmark dependency, not a product one: installed here
@@ -26,4 +28,6 @@ cmake build >/dev/null   # picks up OSMesa if it was just installed
 cmake --build build -j "$(nproc)" --target peer_bench >/dev/null
 LP_NUM_THREADS=2 build/tests/peer_bench --rounds "${ROUNDS:-5}" --tris "${TRIS-10000,100000}" \
   --planes "${PLANES-5,20,60}" --psnr_pixels "${PSNR_PIXELS:-3000}" \
-  --filter_yaws "${FILTER_YAWS:-}" --flicker_frames "${FLICKER_FRAMES:-0}" 2>&1 | grep -v '\[info\]'
+  --filter_yaws "${FILTER_YAWS:-}" --filter_pitch "${FILTER_PITCH:-5}" \
+  --filter_textures "${FILTER_TEXTURES:-checker}" --data "${DATA:-../shared/data/raster}" \
+  --flicker_frames "${FLICKER_FRAMES:-0}" 2>&1 | grep -v '\[info\]'

@@ -15,7 +15,7 @@ namespace aperture {
 struct OiioSampler::State {
   OIIO::TextureSystem* system = nullptr;
   OIIO::TextureSystem::TextureHandle* handle = nullptr;
-  OIIO::TextureOpt options;  // OpenImageIO's defaults but periodic wrap
+  OIIO::TextureOpt options;  // OpenImageIO's defaults but periodic wrap, and OiioOptions
   std::string tx_path;
   bool remove_file = false;
 
@@ -32,7 +32,10 @@ OiioSampler::OiioSampler(std::unique_ptr<State> state) : state_(std::move(state)
 OiioSampler::~OiioSampler() = default;
 
 absl::StatusOr<std::unique_ptr<OiioSampler>> OiioSampler::Create(const Image& image,
-                                                                 std::string tx_path) {
+                                                                 std::string tx_path,
+                                                                 const OiioOptions& options) {
+  if (options.anisotropic < 1)
+    return absl::InvalidArgumentError("oiio sampler: anisotropic must be at least 1");
   if (image.empty()) return absl::InvalidArgumentError("oiio sampler: empty image");
   auto state = std::make_unique<State>();
   if (tx_path.empty()) {
@@ -59,6 +62,8 @@ absl::StatusOr<std::unique_ptr<OiioSampler>> OiioSampler::Create(const Image& im
     return absl::InternalError(absl::StrCat("oiio sampler: cannot open ", tx_path));
   state->options.swrap = OIIO::TextureOpt::WrapPeriodic;
   state->options.twrap = OIIO::TextureOpt::WrapPeriodic;
+  state->options.anisotropic = options.anisotropic;
+  if (options.bilinear) state->options.interpmode = OIIO::TextureOpt::InterpBilinear;
   return std::unique_ptr<OiioSampler>(new OiioSampler(std::move(state)));
 }
 

@@ -6,12 +6,17 @@
 //   plane-T  DESIGN.md's grazing plane pitched down T degrees, 1024^2 checkerboard of 8 x 8
 //            cells repeated every 4 m: llvmpipe trilinear against Aperture trilinear and aniso.
 //
-//   filter   with --filter_yaws: bench-filter's plane turned by each yaw, llvmpipe trilinear and
-//            anisotropic 16 against Aperture's filters and OpenImageIO, PSNR against the box.
-//   flicker  with --flicker_frames N: bench-flicker's turning fly-over with llvmpipe in the run.
+//   filter   with --filter_yaws: bench-filter's plane turned by each yaw, on each of
+//            --filter_textures (the checkerboard, or images by name in --data, as bench-filter
+//            loads them), llvmpipe trilinear and anisotropic 16 against Aperture's filters and
+//            OpenImageIO (its defaults, and anisotropic 16 with bilinear texels), PSNR against
+//            the box.
+//   flicker  with --flicker_frames N: bench-flicker's turning fly-over with llvmpipe in the run
+//            (the first of --filter_textures).
 //
 // Usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] [--psnr_pixels P]
 //                   [--filter_yaws Y,Y,... [--filter_pitch T]] [--flicker_frames N]
+//                   [--filter_textures checker,NAME,...] [--data DIR]
 // (scripts/bench-peers.sh builds and runs it with LP_NUM_THREADS=2; docs/BENCHMARKS.md.)
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -42,6 +47,7 @@
 #include "texture/mip_pyramid.h"
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table_builder.h"
+#include "tools/tex_bench_args.h"
 
 namespace aperture {
 namespace {
@@ -173,6 +179,8 @@ struct Options {
   std::vector<double> filter_yaws;  // empty: no filter-quality table
   double filter_pitch = 5;
   int flicker_frames = 0;  // 0: no flicker table
+  std::string filter_textures = "checker";
+  std::string data_dir = "../shared/data/raster";
 };
 
 double AperturePlaneOrTrisMs(const Scene& scene, const Camera& camera, RenderSettings settings,
@@ -392,15 +400,16 @@ void RunPlane(Peer& peer, double pitch_deg, const Options& o) {
   std::fflush(stdout);
 }
 
-// The checkerboard of the filter benchmarks (1024^2, 8 x 8 cells) as llvmpipe's texture with its
-// mip-maps and as Aperture's and OpenImageIO's samplers; and the grazing plane drawn through
-// llvmpipe exactly as a GrazingPlaneView sees it (u = x / 4, v = z / 4 turned by the yaw, plus the
-// view's texture origin).
+// A texture of the filter benchmarks (bench-filter's: the checkerboard, 1024^2 of 8 x 8 cells, or
+// a photo) as llvmpipe's texture with its mip-maps and as Aperture's and OpenImageIO's samplers;
+// and the grazing plane drawn through llvmpipe exactly as a GrazingPlaneView sees it (u = x / 4,
+// v = z / 4 turned by the yaw, plus the view's texture origin).
 class FilterPeers {
  public:
-  explicit FilterPeers(Peer& peer)
+  FilterPeers(Peer& peer, const BenchTexture& texture)
       : peer_(peer),
-        checker_(MakeCheckerboard(1024, 8, {1, 1, 1, 1}, {0, 0, 0, 1})),
+        name_(texture.name),
+        checker_(texture.image),
         pyramid_(checker_),
         trilinear_(pyramid_) {
     const int n = checker_.width();
@@ -420,9 +429,11 @@ class FilterPeers {
     block_ = *std::move(block);
     auto table = block_.View();
     auto oiio = OiioSampler::Create(checker_);
-    if (!table.ok() || !oiio.ok()) std::exit(1);
+    auto oiio16 = OiioSampler::Create(checker_, "", {.anisotropic = 16, .bilinear = true});
+    if (!table.ok() || !oiio.ok() || !oiio16.ok()) std::exit(1);
     aniso_ = std::make_unique<AnisoSampler>(*table);
     oiio_ = *std::move(oiio);
+    oiio16_ = *std::move(oiio16);
     // The plane in tiles growing away from the camera, each with its texture coordinates moved
     // by whole repeats to near zero: one quad 20 km wide would carry coordinates of +-5000
     // repeats, and llvmpipe's float interpolation of them is off by a third of a texel near the
@@ -433,10 +444,12 @@ class FilterPeers {
   }
   ~FilterPeers() { glDeleteTextures(1, &texture_); }
 
+  const std::string& name() const { return name_; }
   const Image& checker() const { return checker_; }
   const TextureSampler& trilinear() const { return trilinear_; }
   const TextureSampler& aniso() const { return *aniso_; }
   const TextureSampler& oiio() const { return *oiio_; }
+  const TextureSampler& oiio16() const { return *oiio16_; }
 
   // The view through llvmpipe: trilinear (max_anisotropy 1) or anisotropic.
   Image Llvmpipe(const GrazingPlaneView& view, float max_anisotropy) {
@@ -476,26 +489,29 @@ class FilterPeers {
 
  private:
   Peer& peer_;
-  Image checker_;
+  std::string name_;
+  Image checker_;  // the texture (the checkerboard unless --filter_textures names others)
   MipPyramid pyramid_;
   TrilinearSampler trilinear_;
   TableBlock block_;
   std::unique_ptr<AnisoSampler> aniso_;
-  std::unique_ptr<OiioSampler> oiio_;
+  std::unique_ptr<OiioSampler> oiio_, oiio16_;
   GLuint texture_ = 0;
   std::vector<double> edges_;
 };
 
-// bench-filter's plane (1024 x 768, a = 1, the checkerboard) from each of --filter_yaws:
-// llvmpipe's trilinear and anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO,
-// every image scored against the same supersampled pixel box (at least 16 x 16 strata a pixel,
-// 4 per texel of extent per side) over the rows bench-filter measures (issue 22, part 1).
+// bench-filter's plane (1024 x 768, a = 1) from each of --filter_yaws: llvmpipe's trilinear and
+// anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO (defaults, and
+// anisotropic 16 bilinear), every image scored against the same supersampled pixel box (at
+// least 16 x 16 strata a pixel, 4 per texel of extent per side) over the rows bench-filter
+// measures (issue 22, part 1).
 void RunFilterQuality(FilterPeers& f, const Options& o) {
   std::printf(
-      "\nfilter quality: checkerboard, 1024x768, pitch %g, a = 1, PSNR against the pixel box\n\n"
+      "\nfilter quality: %s, 1024x768, pitch %g, a = 1, PSNR against the pixel box\n\n"
       "| yaw | llvmpipe trilinear | llvmpipe aniso 16 | Aperture trilinear | Aperture aniso | "
-      "OpenImageIO | aniso - best peer |\n|---|---:|---:|---:|---:|---:|---:|\n",
-      o.filter_pitch);
+      "OpenImageIO | OpenImageIO aniso 16 bilinear | aniso - best peer |\n"
+      "|---|---:|---:|---:|---:|---:|---:|---:|\n",
+      f.name().c_str(), o.filter_pitch);
   for (double yaw : o.filter_yaws) {
     GrazingPlaneView view;
     view.pitch_deg = o.filter_pitch;
@@ -508,8 +524,9 @@ void RunFilterQuality(FilterPeers& f, const Options& o) {
     const double tri = Psnr(RenderGroundImage(view, f.trilinear()), reference, first);
     const double ani = Psnr(RenderGroundImage(view, f.aniso()), reference, first);
     const double oi = Psnr(RenderGroundImage(view, f.oiio()), reference, first);
-    std::printf("| %g | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f |\n", yaw, gl, gl16, tri, ani, oi,
-                ani - std::max({gl, gl16, oi}));
+    const double oi16 = Psnr(RenderGroundImage(view, f.oiio16()), reference, first);
+    std::printf("| %g | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f |\n", yaw, gl, gl16, tri,
+                ani, oi, oi16, ani - std::max({gl, gl16, oi, oi16}));
     std::fflush(stdout);
   }
 }
@@ -567,11 +584,11 @@ void RunFlicker(FilterPeers& f, const Options& o) {
   }
   const double n = frames - 1;
   std::printf(
-      "\nflicker: checkerboard, 320x240, pitch 3, turning 30 degrees over %d frames, 0.05 world "
+      "\nflicker: %s, 320x240, pitch 3, turning 30 degrees over %d frames, 0.05 world "
       "units a frame, a = 1; reference 8..64 strata a side, 4 per texel\n\n"
       "| mode | mean PSNR | frame-to-frame change | / reference's | excess flicker |\n"
       "|---|---:|---:|---:|---:|\n| reference | - | %.5f | 1.00 | - |\n",
-      frames, reference_change / n);
+      f.name().c_str(), frames, reference_change / n);
   for (const Track& track : tracks)
     std::printf("| %s | %.2f | %.5f | %.2f | %.5f |\n", track.name, track.psnr / n,
                 track.change / n, reference_change > 0 ? track.change / reference_change : 0.0,
@@ -612,11 +629,15 @@ int main(int argc, char** argv) {
       o.filter_pitch = std::atof(argv[i + 1]);
     } else if (flag == "--flicker_frames") {
       o.flicker_frames = std::atoi(argv[i + 1]);
+    } else if (flag == "--filter_textures") {
+      o.filter_textures = argv[i + 1];
+    } else if (flag == "--data") {
+      o.data_dir = argv[i + 1];
     } else {
       std::fprintf(stderr,
                    "usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] "
                    "[--psnr_pixels P] [--filter_yaws Y,Y,... [--filter_pitch T]] "
-                   "[--flicker_frames N]\n");
+                   "[--flicker_frames N] [--filter_textures checker,NAME,...] [--data DIR]\n");
       return 2;
     }
   }
@@ -632,9 +653,16 @@ int main(int argc, char** argv) {
   for (int n : o.tris) aperture::RunTris(peer, n, o);
   for (double t : o.planes) aperture::RunPlane(peer, t, o);
   if (!o.filter_yaws.empty() || o.flicker_frames > 1) {
-    aperture::FilterPeers filters(peer);
-    if (!o.filter_yaws.empty()) aperture::RunFilterQuality(filters, o);
-    if (o.flicker_frames > 1) aperture::RunFlicker(filters, o);
+    auto textures = aperture::LoadBenchTextures(o.filter_textures, o.data_dir);
+    if (!textures.ok()) {
+      std::fprintf(stderr, "peer_bench: %s\n", std::string(textures.status().message()).c_str());
+      return 1;
+    }
+    for (size_t t = 0; t < textures->size(); ++t) {
+      aperture::FilterPeers filters(peer, (*textures)[t]);
+      if (!o.filter_yaws.empty()) aperture::RunFilterQuality(filters, o);
+      if (o.flicker_frames > 1 && t == 0) aperture::RunFlicker(filters, o);
+    }
   }
   return 0;
 }
