@@ -65,7 +65,7 @@ struct LaneReadings {
   bool valid = false;   // finite derivatives and a footprint larger than a point
   bool u_major = true;  // the first reading is along U
   float first = 0;      // the first reading's weight; the second's is 1 - first
-  float H[2], L[2], tg[2];
+  float H[2] = {}, L[2] = {}, tg[2] = {};
 };
 
 LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half_size) {
