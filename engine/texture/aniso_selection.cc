@@ -87,8 +87,12 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
   if (!finite || !(total >= kMinMoment)) return out;
   out.valid = true;
   // The first reading along the larger moment; its weight 1 outside the zone, else
-  // 1/2 + |M_uu - M_vv| / (2 zone), 1/2 on the diagonal.
-  const float difference = uu - vv, zone = kAxisBlendZone * total;
+  // 1/2 + |M_uu - M_vv| / (2 zone), 1/2 on the diagonal. The zone is a band of the long axis's
+  // angle phi to U: |M_uu - M_vv| = |cos 2 phi| D with D = sqrt((M_uu - M_vv)^2 + 4 M_uv^2),
+  // the difference of the moments along the principal axes, so nearly round footprints (D
+  // small, whose two readings nearly agree) are not all in it.
+  const float difference = uu - vv, cross = 2.0f * uv;
+  const float zone = kAxisBlendZone * std::sqrt(difference * difference + cross * cross);
   out.u_major = difference >= 0.0f;
   const float spread = std::abs(difference);
   out.first = spread >= zone ? 1.0f : 0.5f + 0.5f * (spread / zone);
@@ -115,12 +119,13 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
 //  - H >= 1: the copies are the table's for (H, 1), T = H^2 / 3, the long side's box;
 //  - H < 1: the first copy (2 x 2 box) alone with the share L^2, and T = (H^2 - L^2) /
 //    (3 (1 - L^2)) makes the variance along the long side H^2 / 3 + 1/6 too. At H = 1 both are
-//    1/3; at H = L, T = 0 and the blend is the paper's (base and first copy by H^2).
+//    1/3. Under sqrt(T) = 1/8 (nearly round) the magnification blend takes over (see below).
 // Every change is continuous (issue 22, part 3): under T = s^2 / 4 (s = kProbeSpacing) two
-// probes at +-sqrt(T), which meet at the centre as T -> 0; above it 2J probes s apart, the
-// outer two of weight e growing from 0 (where they appear) to the others' (where the next pair
-// appears), e set so that the variance is T. The probes fade out between kProbeHalfExtent and
-// twice it. This sets the probes of reading r of a lane when it is read and thin.
+// probes at +-sqrt(T), faded into the magnification blend under 1/8 texel; above it 2J
+// probes s apart, the outer two of weight e growing from 0 (where they appear) to the others'
+// (where the next pair appears), e set so that the variance is T. The probes fade out between
+// kProbeHalfExtent and twice it. This sets the probes of reading r of a lane when it is read and
+// thin.
 void AddProbesLane(SelectionLanes& out, int r, int lane) {
   out.probes[r][lane] = 0;
   if (!(out.reading_weight[r][lane] > 0.0f)) return;
@@ -130,6 +135,24 @@ void AddProbesLane(SelectionLanes& out, int r, int lane) {
   float T = H * H * (1.0f / 3.0f);
   if (H < 1.0f) {
     T = (H * H - L * L) / (3.0f * (1.0f - L * L));
+    // Nearly round (the probes under 1/8 texel from the centre): the magnification blend that
+    // TableSlots left (base 1 - H^2, first copy H^2: two reads, where the probes take three),
+    // faded into the probes' layout as d = sqrt(T) goes from 1/16 to 1/8 texel. Both have the
+    // variance H^2 / 3 + 1/6 along the long side; across, the blend has up to d^2 more. (Fading
+    // over [1/8, 1/4] instead lost 3.7 dB on the checkerboard at pitch 60, a = 1: the blend is
+    // too round there.)
+    const float d = std::sqrt(T);
+    const float probes = std::clamp(16.0f * d - 1.0f, 0.0f, 1.0f);
+    if (probes == 0.0f) return;
+    if (probes < 1.0f) {
+      out.weight[r][0][lane] = (1.0f - probes) * (1.0f - H * H);  // the base at the centre
+      out.weight[r][1][lane] = probes * (L * L) + (1.0f - probes) * (H * H);  // the first copy
+      out.probes[r][lane] = 2;
+      out.probe_step[r][lane] = 2.0f * d;
+      out.probe_weight[r][lane] = 0.0f;
+      out.probe_end_weight[r][lane] = probes * 0.5f * share;
+      return;
+    }
     out.copy[r][0][lane] = out.copy[r][1][lane];  // the first copy alone
     out.weight[r][0][lane] = 1.0f;
     out.weight[r][1][lane] = 0.0f;
@@ -309,11 +332,16 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
   const __m256 valid =
       _mm256_and_ps(finite, _mm256_cmp_ps(total, _mm256_set1_ps(kMinMoment), _CMP_GE_OQ));
   const __m256 difference = _mm256_sub_ps(uu, vv);
-  const __m256 zone = _mm256_mul_ps(_mm256_set1_ps(kAxisBlendZone), total);
+  const __m256 cross = _mm256_mul_ps(_mm256_set1_ps(2.0f), uv);
+  const __m256 zone =
+      _mm256_mul_ps(_mm256_set1_ps(kAxisBlendZone),
+                    _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(difference, difference),
+                                                 _mm256_mul_ps(cross, cross))));
   const __m256 u_major = _mm256_cmp_ps(difference, zero, _CMP_GE_OQ);
   const __m256 spread = Abs(difference);
   const __m256 outside = _mm256_cmp_ps(spread, zone, _CMP_GE_OQ);
-  // Invalid lanes may divide 0 by 0 here; their results are masked below.
+  // Lanes with D = 0 (round footprints, where spread = 0 >= zone) and invalid ones may divide 0
+  // by 0 here; the first are outside the zone, the others masked below.
   const __m256 inside_weight =
       _mm256_add_ps(half, _mm256_mul_ps(half, _mm256_div_ps(spread, zone)));
   __m256 first = _mm256_blendv_ps(inside_weight, one, outside);
@@ -353,13 +381,36 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
     _mm256_store_ps(out.H[r], H);
     _mm256_store_ps(out.tg[r], tg);
     _mm256_store_ps(out.L[r], L);
-    // AddProbesLane's test: read, min(L, H) < 1 and H < 2 kProbeHalfExtent.
-    const __m256 thin =
-        _mm256_and_ps(_mm256_and_ps(read[r], _mm256_cmp_ps(_mm256_min_ps(L, H), one, _CMP_LT_OQ)),
-                      _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ));
-    need_probes |= static_cast<uint32_t>(_mm256_movemask_ps(thin)) << (8 * r);
-    // TableSlots.
+    // AddProbesLane's tests: read, min(L, H) < 1 and H < 2 kProbeHalfExtent; and not magnified
+    // and nearly round (16 sqrt(T) - 1 <= 0), the same operations.
     const __m256 magnify = _mm256_cmp_ps(H, one, _CMP_LT_OQ);
+    const __m256 Lmin = _mm256_min_ps(L, H);
+    const __m256 Lmin2 = _mm256_mul_ps(Lmin, Lmin);
+    const __m256 T = _mm256_div_ps(_mm256_sub_ps(_mm256_mul_ps(H, H), Lmin2),
+                                   _mm256_mul_ps(_mm256_set1_ps(3.0f), _mm256_sub_ps(one, Lmin2)));
+    const __m256 round = _mm256_and_ps(
+        magnify,
+        _mm256_cmp_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(16.0f), _mm256_sqrt_ps(T)), one),
+                      zero, _CMP_LE_OQ));
+    const __m256 thin = _mm256_andnot_ps(
+        round,
+        _mm256_and_ps(_mm256_and_ps(read[r], _mm256_cmp_ps(Lmin, one, _CMP_LT_OQ)),
+                      _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ)));
+    need_probes |= static_cast<uint32_t>(_mm256_movemask_ps(thin)) << (8 * r);
+    // TableSlots: magnified lanes the base and the first copy by H^2; the others seed 000's.
+    const __m256 m = _mm256_mul_ps(H, H);
+    if ((_mm256_movemask_ps(_mm256_andnot_ps(magnify, read[r])) & 0xff) == 0) {
+      _mm256_store_si256(reinterpret_cast<__m256i*>(out.copy[r][0]), izero);
+      _mm256_store_ps(out.weight[r][0], _mm256_sub_ps(one, m));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(out.copy[r][1]),
+                         _mm256_set1_epi32(static_cast<int>(first_copy)));
+      _mm256_store_ps(out.weight[r][1], m);
+      for (int slot = 2; slot < SelectionLanes::kSlots; ++slot) {
+        _mm256_store_si256(reinterpret_cast<__m256i*>(out.copy[r][slot]), izero);
+        _mm256_store_ps(out.weight[r][slot], zero);
+      }
+      continue;
+    }
     const __m256 Hc = _mm256_min_ps(H, max_h);
     // std::clamp(L, lo, hi): L < lo ? lo : (hi < L ? hi : L).
     const __m256 lo = _mm256_max_ps(one, _mm256_mul_ps(Hc, frozen_ratio));
@@ -433,7 +484,6 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
       _mm256_store_ps(out.weight[r][2 * c + 1], w1);
     }
     // Magnified lanes: the base and the first copy by H^2.
-    const __m256 m = _mm256_mul_ps(H, H);
     BlendSlot(out, r, 0, magnify, izero, _mm256_sub_ps(one, m));
     BlendSlot(out, r, 1, magnify, _mm256_set1_epi32(static_cast<int>(first_copy)), m);
     for (int slot = 2; slot < SelectionLanes::kSlots; ++slot)

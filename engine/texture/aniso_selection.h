@@ -22,10 +22,12 @@ struct ApertureShape {
 };
 
 // The readings a sample blends. A footprint has a parallelogram of its second moments along
-// either texture axis (see ShapeAlong in the .cc); the first reading is along the axis of the
+// either texture axis (see ReadLane in the .cc); the first reading is along the axis of the
 // larger moment. Where the two moments are nearly equal (the footprint's long side near a
 // diagonal) that choice would jump, so both are read, their weights going linearly from one to
-// the other across the zone |M_uu - M_vv| < kAxisBlendZone (M_uu + M_vv).
+// the other across the zone |M_uu - M_vv| < kAxisBlendZone D, D = sqrt((M_uu - M_vv)^2 +
+// 4 M_uv^2): |cos 2 phi| < 0.125 for the long axis at angle phi to U, within 3.6 degrees of a
+// diagonal whatever the footprint's elongation (a round footprint's readings agree).
 inline constexpr float kAxisBlendZone = 0.125f;
 struct ApertureReadings {
   int count = 0;  // 0: degenerate derivatives

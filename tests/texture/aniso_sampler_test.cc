@@ -297,13 +297,26 @@ TEST_F(AnisoSamplerTest, ThinAperturesMixInProbesOfTheBase) {
   const double d = 0.5 * b.probe_step;
   EXPECT_NEAR(0.25 * (1.0 / 3 + 1.0 / 6) + 0.75 * (d * d + 1.0 / 6), 0.75 * 0.75 / 3 + 1.0 / 6,
               1e-6);
-  // Isotropic (H = L < 1): the two probes meet at the centre, which is the paper's blend (base
-  // 1 - H^2, first copy H^2) without a step where the probes begin (no cut-off).
-  b = SelectCopies(*table_, {TiltAxis::kU, 0.5, 0.5, 0});
+  // Nearly round (the probes under 1/16 texel from the centre): the magnification blend alone,
+  // base 1 - H^2 and first copy H^2, two reads where the probes would take three; between 1/16
+  // and 1/8 texel the blend fades into the probes. H = 0.5, L = 0.47: d^2 = 0.0291 / 2.3373, so
+  // the probes' share is 16 d - 1.
+  b = SelectCopies(*table_, {TiltAxis::kU, 0.5, 0.495, 0});  // d = 0.047
+  EXPECT_EQ(b.probes, 0);
+  ASSERT_EQ(b.count, 2);
+  EXPECT_EQ(b.copy[0], 0u);
+  EXPECT_FLOAT_EQ(b.weight[0], 0.75f);
+  EXPECT_FLOAT_EQ(b.weight[1], 0.25f);
+  b = SelectCopies(*table_, {TiltAxis::kU, 0.5, 0.47, 0});
+  const float alpha = 16.0f * std::sqrt(0.0291f / 2.3373f) - 1.0f;
+  ASSERT_GT(alpha, 0.0f);
+  ASSERT_LT(alpha, 1.0f);
+  ASSERT_EQ(b.count, 2);
+  EXPECT_EQ(b.copy[0], 0u);
+  EXPECT_NEAR(b.weight[0], (1 - alpha) * 0.75f, 1e-4);
+  EXPECT_NEAR(b.weight[1], alpha * 0.2209f + (1 - alpha) * 0.25f, 1e-4);
   EXPECT_EQ(b.probes, 2);
-  EXPECT_EQ(b.probe_step, 0.0f);
-  EXPECT_FLOAT_EQ(b.weight[0], 0.25f);
-  EXPECT_FLOAT_EQ(2 * b.probe_end_weight, 0.75f);
+  EXPECT_NEAR(2 * b.probe_end_weight, alpha * (1 - 0.2209f), 1e-4);
   // Where the count grows the new outer pair starts at weight 0 (t = (4 J^2 - 1) / 12 for
   // J = 2: H^2 = 3.75), and the pair before it has the inner weight.
   const double at = std::sqrt(3.75);
