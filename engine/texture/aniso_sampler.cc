@@ -114,8 +114,9 @@ template <typename Visit>
 
 // The copy reads of BlendReads ("jobs"): one CopySample each, with its weight in the sum.
 struct ReadJobs {
-  // A group of 8 samples reads at most two readings of 16 probes and 6 copies each.
-  static constexpr int kMax = 8 * 2 * (16 + CopyBlend::kMaxCopies);
+  // A group of 8 samples reads at most two readings of kMaxProbes probes and 6 copies each.
+  static constexpr int kMax =
+      SelectionLanes::kLanes * 2 * (SelectionLanes::kMaxProbes + SelectionLanes::kSlots);
   int count = 0;
   alignas(32) float u[kMax], v[kMax], tg[kMax];
   alignas(32) float width[kMax], height[kMax], lambda[kMax];

@@ -166,7 +166,9 @@ void AddProbesLane(SelectionLanes& out, int r, int lane) {
   } else {
     const float t = T / s2;  // in units of the spacing^2
     // The smallest J whose 2J evenly weighted probes reach t: (4 J^2 - 1) / 12 >= t.
-    const int J = std::max(2, static_cast<int>(std::ceil(0.5f * std::sqrt(12.0f * t + 1.0f))));
+    // H < 2 kProbeHalfExtent = 8 keeps J <= 9 (t < 64 / 3); the bound is the read lists' size.
+    const int J = std::clamp(static_cast<int>(std::ceil(0.5f * std::sqrt(12.0f * t + 1.0f))), 2,
+                             SelectionLanes::kMaxProbes / 2);
     // The 2 (J - 1) inner probes alone have the variance A (e = 0); e solves
     // A + 2 e ((J - 1/2)^2 - A) = t with inner weights (1 - 2 e) / (2 (J - 1)), and
     // (J - 1/2)^2 - A = J (2J - 1) / 3.

@@ -503,6 +503,12 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
     const float wide = float(std::exp2(logd_wide(rng)) / kN);
     in[10 * i].dudx = wide, in[10 * i].dvdy = wide * float(std::exp2(-logd(rng) / 4));
   }
+  // And two groups of the most reads a sample can take: on a diagonal (both readings), half
+  // extent H = 7.99 texels and 0.04 thick (18 base probes each, and the copies).
+  for (int i = 0; i < 16; ++i) {
+    const float p = 7.99f * 2 / kN, q = 0.02f * 2 / kN;  // half-steps (p, p), (-q, q); a = 2
+    in.push_back({pos(rng), pos(rng), p, p, -q, q});
+  }
   std::vector<Rgba> out(in.size());
   sampler.SampleMany(in.data(), out.data(), static_cast<int>(in.size()));
   // And through the renderer's batches (footprint arrays of up to 64).
@@ -523,6 +529,10 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
   EXPECT_EQ(differing, 0);
   EXPECT_EQ(differing_batched, 0);
   EXPECT_GT(probed, 50);  // the base probes of thin apertures are among the reads compared
+  const ApertureReadings most = ReadingsOfFootprint(in.back(), kN);
+  ASSERT_EQ(most.count, 2);
+  EXPECT_EQ(SelectCopies(*table_, most.shape[0]).probes, 18);
+  EXPECT_EQ(SelectCopies(*table_, most.shape[1]).probes, 18);
 }
 
 }  // namespace
