@@ -1,7 +1,6 @@
 #include "texture/aniso_sampler.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -180,11 +179,8 @@ __attribute__((target("avx2"))) void ComputeReadsAvx2(ReadJobs& jobs) {
     _mm256_store_ps(jobs.wM + j, fM);
   }
 }
-
-bool HaveAvx2() { return __builtin_cpu_supports("avx2"); }
 #else
 void ComputeReadsAvx2(ReadJobs&) {}
-bool HaveAvx2() { return false; }
 #endif
 
 }  // namespace
@@ -201,7 +197,7 @@ AnisoSampler::CopyLayout AnisoSampler::LayoutOf(const CopyEntry& e) const {
 
 AnisoSampler::AnisoSampler(PrefilteredTable table) : table_(std::move(table)), selector_(table_) {
   layouts_.reserve(table_.directory().size());
-  read_kernel_ = HaveAvx2();
+  read_kernel_ = selector_.has_kernel();  // the same processor test (AVX2)
   for (const CopyEntry& e : table_.directory()) {
     layouts_.push_back(LayoutOf(e));
     // The kernel's texel indices are 32-bit.

@@ -409,14 +409,14 @@ class FilterPeers {
   FilterPeers(Peer& peer, const BenchTexture& texture)
       : peer_(peer),
         name_(texture.name),
-        checker_(texture.image),
-        pyramid_(checker_),
+        image_(texture.image),
+        pyramid_(image_),
         trilinear_(pyramid_) {
-    const int n = checker_.width();
+    const int n = image_.width();
     std::vector<uint8_t> texels(static_cast<size_t>(n) * n * 4);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const Rgba& c = checker_.at(i, j);
+        const Rgba& c = image_.at(i, j);
         uint8_t* t = &texels[(static_cast<size_t>(j) * n + i) * 4];
         t[0] = static_cast<uint8_t>(std::lround(c.r * 255));
         t[1] = static_cast<uint8_t>(std::lround(c.g * 255));
@@ -424,12 +424,12 @@ class FilterPeers {
         t[3] = 255;
       }
     texture_ = UploadRepeatingTexture(texels, n);
-    auto block = BuildPrefilteredTable(checker_);
+    auto block = BuildPrefilteredTable(image_);
     if (!block.ok()) std::exit(1);
     block_ = *std::move(block);
     auto table = block_.View();
-    auto oiio = OiioSampler::Create(checker_);
-    auto oiio16 = OiioSampler::Create(checker_, "", {.anisotropic = 16, .bilinear = true});
+    auto oiio = OiioSampler::Create(image_);
+    auto oiio16 = OiioSampler::Create(image_, "", {.anisotropic = 16, .bilinear = true});
     if (!table.ok() || !oiio.ok() || !oiio16.ok()) std::exit(1);
     aniso_ = std::make_unique<AnisoSampler>(*table);
     oiio_ = *std::move(oiio);
@@ -445,7 +445,7 @@ class FilterPeers {
   ~FilterPeers() { glDeleteTextures(1, &texture_); }
 
   const std::string& name() const { return name_; }
-  const Image& checker() const { return checker_; }
+  const Image& image() const { return image_; }
   const TextureSampler& trilinear() const { return trilinear_; }
   const TextureSampler& aniso() const { return *aniso_; }
   const TextureSampler& oiio() const { return *oiio_; }
@@ -490,7 +490,7 @@ class FilterPeers {
  private:
   Peer& peer_;
   std::string name_;
-  Image checker_;  // the texture (the checkerboard unless --filter_textures names others)
+  Image image_;  // the texture (the checkerboard unless --filter_textures names others)
   MipPyramid pyramid_;
   TrilinearSampler trilinear_;
   TableBlock block_;
@@ -518,7 +518,7 @@ void RunFilterQuality(FilterPeers& f, const Options& o) {
     view.yaw_deg = yaw;
     view.aperture = 1;
     const int first = FirstMeasuredRow(view);
-    const Image reference = RenderGroundReference(view, f.checker(), 4, 128, 16);
+    const Image reference = RenderGroundReference(view, f.image(), 4, 128, 16);
     const double gl = Psnr(f.Llvmpipe(view, 1), reference, first);
     const double gl16 = Psnr(f.Llvmpipe(view, 16), reference, first);
     const double tri = Psnr(RenderGroundImage(view, f.trilinear()), reference, first);
@@ -532,7 +532,7 @@ void RunFilterQuality(FilterPeers& f, const Options& o) {
 }
 
 // aperture-tex bench-flicker's fly-over (320 x 240, pitch 3, turning 30 degrees over
-// --flicker_frames frames, 0.05 world units a frame, a = 1, the checkerboard) with llvmpipe in
+// --flicker_frames frames, 0.05 world units a frame, a = 1, the first texture) with llvmpipe in
 // the same run (issue 22, part 5): each filter's mean frame-to-frame change against the
 // reference's, and the excess flicker, the mean of |its change - the reference's|.
 void RunFlicker(FilterPeers& f, const Options& o) {
@@ -565,7 +565,7 @@ void RunFlicker(FilterPeers& f, const Options& o) {
   double reference_change = 0;
   for (int t = 0; t < frames; ++t) {
     view.yaw_deg = 30.0 * t / (frames - 1);
-    const Image reference = RenderGroundReference(view, f.checker(), 4, 64, 8);
+    const Image reference = RenderGroundReference(view, f.image(), 4, 64, 8);
     for (Track& track : tracks) {
       Image image = track.render(view);
       if (t > 0) {
