@@ -80,14 +80,32 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     piece.depth = r.depth;
     piece.full = r.edges_begin == r.edges_end;
     piece.begin = verts_.size();
-    clip_.assign({{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
-    for (size_t k = r.edges_begin; k < r.edges_end; ++k) {
-      const ScreenLinear& e = crossing_[k];
-      ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
-      if (clip_.empty()) break;
+    // The cell's square cut by each crossing edge, in two fixed buffers (each cut adds at most
+    // one vertex); a polygon of very many crossing edges takes the vector's way.
+    const size_t edges = r.edges_end - r.edges_begin;
+    if (edges + 4 <= kClipBuffer) {
+      Vec2* from = clip_buffers_[0];
+      Vec2* to = clip_buffers_[1];
+      from[0] = {-kHalf, -kHalf}, from[1] = {kHalf, -kHalf}, from[2] = {kHalf, kHalf};
+      from[3] = {-kHalf, kHalf};
+      size_t n = 4;
+      for (size_t k = r.edges_begin; k < r.edges_end && n >= 3; ++k) {
+        const ScreenLinear& e = crossing_[k];
+        n = ClipByHalfPlane(from, n, e.a, e.b, e.c, to);
+        std::swap(from, to);
+      }
+      if (n < 3) continue;
+      verts_.insert(verts_.end(), from, from + n);
+    } else {
+      clip_.assign({{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
+      for (size_t k = r.edges_begin; k < r.edges_end; ++k) {
+        const ScreenLinear& e = crossing_[k];
+        ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
+        if (clip_.empty()) break;
+      }
+      if (clip_.empty()) continue;
+      verts_.insert(verts_.end(), clip_.begin(), clip_.end());
     }
-    if (clip_.empty()) continue;
-    verts_.insert(verts_.end(), clip_.begin(), clip_.end());
     piece.end = verts_.size();
     pieces_.push_back(piece);
   }

@@ -123,6 +123,8 @@ class CellCoverage {
   std::vector<size_t> by_left_;
   std::vector<Piece> pieces_;
   std::vector<Vec2> verts_, clip_, scratch_;
+  static constexpr size_t kClipBuffer = 32;
+  Vec2 clip_buffers_[2][kClipBuffer];  // a piece being cut to the cell
   std::vector<ScreenLinear> crossing_;
   std::vector<uint8_t> in_front_;
   std::vector<size_t> blockers_;

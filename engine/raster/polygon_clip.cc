@@ -21,25 +21,13 @@ void ClipGeneric(std::vector<Point>& poly, Distance dist, std::vector<Point>& ou
   if (poly.size() < 3) poly.clear();
 }
 
-struct V2 {  // Vec2 with the arithmetic ClipGeneric needs
-  static Vec2 Lerp(const Vec2& p, const Vec2& q, double t) {
-    return {p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t};
-  }
-};
-
 }  // namespace
 
 void ClipByHalfPlane(std::vector<Vec2>& poly, double a, double b, double c,
                      std::vector<Vec2>& scratch) {
-  scratch.clear();
-  const size_t n = poly.size();
-  for (size_t i = 0; i < n; ++i) {
-    const Vec2& p = poly[i];
-    const Vec2& q = poly[(i + 1) % n];
-    const double dp = a * p.x + b * p.y + c, dq = a * q.x + b * q.y + c;
-    if (dp >= 0) scratch.push_back(p);
-    if ((dp >= 0) != (dq >= 0)) scratch.push_back(V2::Lerp(p, q, dp / (dp - dq)));
-  }
+  if (scratch.size() < poly.size() + 1) scratch.resize(poly.size() + 1);
+  const size_t count = ClipByHalfPlane(poly.data(), poly.size(), a, b, c, scratch.data());
+  scratch.resize(count);
   poly.swap(scratch);
   if (poly.size() < 3) poly.clear();
 }

@@ -7,7 +7,28 @@
 
 namespace aperture {
 
-// Keeps the part where a x + b y + c >= 0.
+// Keeps the part of in[0, n) where a x + b y + c >= 0, written to `out` (room for n + 1
+// vertices); returns its vertex count, which may be below 3 (nothing left). Inline and free of
+// allocation: the exact coverage of a cell clips a few small polygons many times (issue 19).
+inline size_t ClipByHalfPlane(const Vec2* in, size_t n, double a, double b, double c, Vec2* out) {
+  if (n == 0) return 0;
+  size_t count = 0;
+  double dp = a * in[0].x + b * in[0].y + c;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2& p = in[i];
+    const Vec2& q = in[i + 1 == n ? 0 : i + 1];
+    const double dq = a * q.x + b * q.y + c;
+    if (dp >= 0) out[count++] = p;
+    if ((dp >= 0) != (dq >= 0)) {
+      const double t = dp / (dp - dq);
+      out[count++] = {p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t};
+    }
+    dp = dq;
+  }
+  return count;
+}
+
+// Keeps the part where a x + b y + c >= 0 (emptied when fewer than 3 vertices are left).
 void ClipByHalfPlane(std::vector<Vec2>& polygon, double a, double b, double c,
                      std::vector<Vec2>& scratch);
 // Keeps the part inside [x0, x1] x [y0, y1].

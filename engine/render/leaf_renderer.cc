@@ -49,12 +49,13 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   const int nx = r.width() + span, ny = r.height() + span;
   pieces_.clear();
   cell_begin_.assign(static_cast<size_t>(nx) * ny + 1, 0);
+  bins_.Build(geo_.polygons, leaf.polygons, r.x0, r.y0, shape_.cell_offset, nx, ny);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       cell_begin_[static_cast<size_t>(j) * nx + i] = pieces_.size();
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;
       const double cy = r.y0 + j + shape_.cell_offset + 0.5;
-      coverage_.Compute(geo_.polygons, leaf.polygons, cx, cy, shape_.needs_moments, pieces_);
+      coverage_.Compute(geo_.polygons, bins_.Cell(i, j), cx, cy, shape_.needs_moments, pieces_);
       if (coverage_.Stopped()) return false;
     }
   }

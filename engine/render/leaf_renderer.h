@@ -7,6 +7,7 @@
 #include "absl/container/flat_hash_map.h"
 #include "base/image.h"
 #include "raster/aa_filter.h"
+#include "raster/cell_bins.h"
 #include "raster/cell_coverage.h"
 #include "raster/warnock.h"
 #include "render/polygon_shader.h"
@@ -57,6 +58,7 @@ class LeafRenderer {
   Rgba sky_;
   PixelRect region_;
   CellCoverage coverage_;
+  CellBins bins_;  // the leaf's polygons by cell
   std::vector<CellPiece> pieces_;
   std::vector<size_t> cell_begin_;
   struct Weighted {

@@ -51,7 +51,7 @@ ABSL_FLAG(int, exact_steps, aperture::FragmentOptions{}.exact_steps,
           "summed-area table) when that takes at most this many row or column steps, else by seed "
           "003's fragments within --delta (where their work cap misses it, by a coarser mip "
           "level's exact integral); 0: fragments for every pixel, as the paper does");
-ABSL_FLAG(int, leaf, 8, "largest Warnock leaf window, pixels");
+ABSL_FLAG(int, leaf, aperture::WarnockOptions{}.leaf_size, "largest Warnock leaf window, pixels");
 ABSL_FLAG(std::string, scheduling, "cost",
           "task planning: cost (seed 002 cost-driven windows, most expensive first) or uniform "
           "(fixed tiles)");
