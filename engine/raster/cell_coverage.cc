@@ -424,19 +424,45 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
         keep(region);
         continue;
       }
-      clip_.assign(region.begin(), region.end());
-      for (size_t i = 0; i < n && !clip_.empty(); ++i) {
+      // The region cut by each of the piece's edges: the part outside an edge is kept, the part
+      // inside goes on to the next edge, and what is inside all of them is the piece's visible
+      // part. In the fixed buffers when they hold every cut (each adds at most one vertex).
+      auto edge_line = [&](size_t i, double& a, double& b, double& c) {
         const Vec2& p = verts_[piece.begin + i];
         const Vec2& q = verts_[piece.begin + (i + 1) % n];
         if ((p.x == q.x && (p.x == square_.x0 || p.x == square_.x1)) ||
             (p.y == q.y && (p.y == square_.y0 || p.y == square_.y1)))
-          continue;  // on the square's border: cuts nothing inside
-        const double a = -(q.y - p.y), b = q.x - p.x;
-        if (a == 0 && b == 0) continue;
-        const double c = -(a * p.x + b * p.y);
+          return false;  // on the square's border: cuts nothing inside
+        a = -(q.y - p.y), b = q.x - p.x;
+        if (a == 0 && b == 0) return false;
+        c = -(a * p.x + b * p.y);
+        return true;
+      };
+      if (region.size() + n + 1 <= kClipBuffer) {
+        Vec2* inside = clip_buffers_[0];
+        Vec2* next = clip_buffers_[1];
+        Vec2* outside = clip_buffers_[2];
+        std::copy(region.begin(), region.end(), inside);
+        size_t count = region.size();
+        for (size_t i = 0; i < n && count >= 3; ++i) {
+          double a, b, c;
+          if (!edge_line(i, a, b, c)) continue;
+          const size_t out_count = ClipByHalfPlane(inside, count, -a, -b, -c, outside);
+          // A sliver of no area (a vertex on the line) is nothing left to paint.
+          const std::span<const Vec2> outside_part(outside, out_count);
+          if (out_count >= 3 && PolygonMoments(outside_part, false).area > 0) keep(outside_part);
+          count = ClipByHalfPlane(inside, count, a, b, c, next);
+          std::swap(inside, next);
+        }
+        if (count >= 3) Accumulate(visible, PolygonMoments({inside, count}, with_moments));
+        continue;
+      }
+      clip_.assign(region.begin(), region.end());
+      for (size_t i = 0; i < n && !clip_.empty(); ++i) {
+        double a, b, c;
+        if (!edge_line(i, a, b, c)) continue;
         outside_.assign(clip_.begin(), clip_.end());
         ClipByHalfPlane(outside_, -a, -b, -c, scratch_);
-        // A sliver of no area (a vertex on the line) is nothing left to paint.
         if (outside_.size() >= 3 && PolygonMoments(outside_, false).area > 0) keep(outside_);
         ClipByHalfPlane(clip_, a, b, c, scratch_);
       }
@@ -449,8 +475,9 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
   }
 }
 
-// Only pairs whose bounding boxes overlap are tested (a sweep along x over the boxes sorted by
-// their left side), so a mesh's pieces cost about k log k, not k^2.
+// Only pairs whose bounding boxes overlap are tested, so a mesh's pieces cost about k log k, not
+// k^2: a sweep along x over the boxes sorted by their left side, or for a few pieces every pair's
+// boxes compared (the same pairs, without the sort).
 bool CellCoverage::PairwiseDisjoint(size_t skip) {
   const size_t n = pieces_.size();
   boxes_.resize(n);
@@ -464,6 +491,21 @@ bool CellCoverage::PairwiseDisjoint(size_t skip) {
     }
     boxes_[i] = b;
     if (i != skip) by_left_.push_back(i);
+  }
+  // Boxes a (left side first) and b overlap when b's left side is within a's x range and their
+  // y ranges meet; touching counts.
+  auto boxes_meet = [](const Box& a, const Box& b) {
+    return b.x0 <= a.x1 && !(b.y1 < a.y0 || b.y0 > a.y1);
+  };
+  if (by_left_.size() <= kFewPieces) {
+    for (size_t u = 0; u < by_left_.size(); ++u) {
+      for (size_t v = u + 1; v < by_left_.size(); ++v) {
+        const Box &a = boxes_[by_left_[u]], &b = boxes_[by_left_[v]];
+        const bool meet = a.x0 <= b.x0 ? boxes_meet(a, b) : boxes_meet(b, a);
+        if (meet && !Separated(pieces_[by_left_[u]], pieces_[by_left_[v]])) return false;
+      }
+    }
+    return true;
   }
   std::sort(by_left_.begin(), by_left_.end(),
             [&](size_t a, size_t b) { return boxes_[a].x0 < boxes_[b].x0; });

@@ -119,12 +119,13 @@ class CellCoverage {
   struct Box {
     double x0, y0, x1, y1;
   };
-  std::vector<Box> boxes_;  // PairwiseDisjoint's sweep
+  std::vector<Box> boxes_;                 // PairwiseDisjoint's sweep
+  static constexpr size_t kFewPieces = 8;  // PairwiseDisjoint compares every pair's boxes
   std::vector<size_t> by_left_;
   std::vector<Piece> pieces_;
   std::vector<Vec2> verts_, clip_, scratch_;
   static constexpr size_t kClipBuffer = 32;
-  Vec2 clip_buffers_[2][kClipBuffer];  // a piece being cut to the cell
+  Vec2 clip_buffers_[3][kClipBuffer];  // a piece being cut to the cell, a region being painted
   std::vector<ScreenLinear> crossing_;
   std::vector<uint8_t> in_front_;
   std::vector<size_t> blockers_;

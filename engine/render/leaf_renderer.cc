@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace aperture {
 
@@ -23,21 +24,38 @@ bool LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
 }
 
 void LeafRenderer::ShadeEntries() {
+  // The entries grouped by polygon (a counting sort, stable: each polygon's points keep their
+  // order), the groups in the order their polygons first appear.
+  if (slot_of_.size() < geo_.polygons.size()) slot_of_.assign(geo_.polygons.size(), -1);
+  group_begin_.clear();
+  slots_.resize(entries_.size());
+  for (size_t e = 0; e < entries_.size(); ++e) {
+    int& slot = slot_of_[entries_[e].polygon];
+    if (slot < 0) {
+      slot = static_cast<int>(group_begin_.size());
+      group_begin_.push_back(0);
+    }
+    slots_[e] = slot;
+    ++group_begin_[slot];
+  }
+  size_t sum = 0;
+  for (size_t& g : group_begin_) sum += std::exchange(g, sum);
+  group_begin_.push_back(sum);
   order_.resize(entries_.size());
-  for (size_t i = 0; i < order_.size(); ++i) order_[i] = i;
-  std::stable_sort(order_.begin(), order_.end(),
-                   [&](size_t a, size_t b) { return entries_[a].polygon < entries_[b].polygon; });
+  for (size_t e = 0; e < entries_.size(); ++e) order_[group_begin_[slots_[e]]++] = e;
+  for (size_t g = group_begin_.size() - 1; g > 0; --g) group_begin_[g] = group_begin_[g - 1];
+  group_begin_[0] = 0;
+
   colours_.resize(entries_.size());
-  for (size_t begin = 0; begin < order_.size();) {
+  for (size_t g = 0; g + 1 < group_begin_.size(); ++g) {
+    const size_t begin = group_begin_[g], end = group_begin_[g + 1];
     const int polygon = entries_[order_[begin]].polygon;
-    size_t end = begin;
+    slot_of_[polygon] = -1;  // ready for the next leaf
     points_.clear();
-    for (; end < order_.size() && entries_[order_[end]].polygon == polygon; ++end)
-      points_.push_back(entries_[order_[end]].point);
+    for (size_t i = begin; i < end; ++i) points_.push_back(entries_[order_[i]].point);
     batch_.resize(points_.size());
     shader_.ShadeMany(polygon, points_.data(), static_cast<int>(points_.size()), batch_.data());
     for (size_t i = begin; i < end; ++i) colours_[order_[i]] = batch_[i - begin];
-    begin = end;
   }
 }
 

@@ -70,6 +70,9 @@ class LeafRenderer {
   std::vector<Weighted> entries_;                 // of every pixel of the leaf, row by row
   std::vector<size_t> pixel_begin_;  // pixel i's entries: [pixel_begin_[i], pixel_begin_[i + 1])
   std::vector<size_t> order_;        // entries by polygon
+  std::vector<size_t> group_begin_;  // polygon group g of order_: [group_begin_[g], ...[g + 1])
+  std::vector<int> slots_;           // each entry's group
+  std::vector<int> slot_of_;         // per polygon of the frame: its group in this leaf, or -1
   std::vector<Vec2> points_;
   std::vector<Rgba> batch_, colours_;
   // The transparent path's passes: a cell's passes are passes_[cell_begin_[c], cell_begin_[c + 1])
