@@ -81,11 +81,22 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
 
   // Each pixel's polygons and weights, in the order the colours are summed.
   entries_.clear();
-  pixel_begin_.clear();
+  pixel_begin_.resize(static_cast<size_t>(r.width()) * r.height() + 1);
+  // A box filter's weight is the area times a constant (CellWeight's, the same product).
+  const bool box = !shape_.needs_moments;
+  const double box_scale = CellWeight(aa_, {1, 0, 0, 0}, 0, 0);
   for (int py = 0; py < r.height(); ++py) {
     for (int px = 0; px < r.width(); ++px) {
-      pixel_begin_.push_back(entries_.size());
       const size_t first = entries_.size();
+      pixel_begin_[static_cast<size_t>(py) * r.width() + px] = first;
+      if (span == 0 && box) {  // box1: the pixel's one cell, whose pieces are distinct polygons
+        const size_t cell = static_cast<size_t>(py) * nx + px;
+        for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k)
+          entries_.push_back({pieces_[k].polygon,
+                              box_scale * pieces_[k].moments.area,
+                              {r.x0 + px + 0.5, r.y0 + py + 0.5}});
+        continue;
+      }
       // A pixel's pieces are few but for crowded cells (a whole scene in one pixel), whose
       // polygons are found through a map rather than by a scan of the pixel's entries.
       size_t pieces = 0;
@@ -99,7 +110,8 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
         for (int cx = 0; cx <= span; ++cx) {
           const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
           for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
-            const double w = CellWeight(aa_, pieces_[k].moments, cx, cy);
+            const double w = box ? box_scale * pieces_[k].moments.area
+                                 : CellWeight(aa_, pieces_[k].moments, cx, cy);
             const int polygon = pieces_[k].polygon;
             size_t e = first;
             if (crowded) {
@@ -116,7 +128,7 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
       }
     }
   }
-  pixel_begin_.push_back(entries_.size());
+  pixel_begin_.back() = entries_.size();
 
   ShadeEntries();
 
