@@ -2,9 +2,11 @@
 // rather than by testing every polygon at every cell: a mixed Warnock leaf of box2 cells holds
 // 81 cells and some 30 polygons, of which a cell's box meets about 5 (issue 19).
 //
-// A cell's list keeps the order of `candidates` and holds exactly the polygons that
-// CellCoverage::Compute's own box test would keep there, so the coverage it computes from the list
-// is the same, bit for bit, as from all the candidates.
+// A cell's list keeps the order of `candidates` and holds every polygon that CellCoverage::Compute
+// would find reaching the cell (and maybe a few that only come near it, which Compute drops), so
+// the coverage it computes from the list is the same, bit for bit, as from all the candidates.
+// Each polygon is listed in the cells its part in each row's strip reaches, not in all of its
+// bounding box: a triangle's box holds about twice its cells.
 #pragma once
 
 #include <span>
@@ -22,7 +24,7 @@ class CellBins {
   void Build(std::span<const ScreenPolygon> polygons, std::span<const int> candidates, int x0,
              int y0, double offset, int nx, int ny);
 
-  // The polygons whose bounding box overlaps cell (i, j)'s interior, in the candidates' order.
+  // The polygons that may reach cell (i, j), in the candidates' order.
   std::span<const int> Cell(int i, int j) const {
     const size_t c = static_cast<size_t>(j) * nx_ + i;
     return std::span<const int>(items_).subspan(begin_[c], begin_[c + 1] - begin_[c]);
@@ -32,10 +34,11 @@ class CellBins {
   int nx_ = 0;
   std::vector<size_t> begin_;  // cell c's items: [begin_[c], begin_[c + 1])
   std::vector<int> items_;
-  struct Range {
-    int i0, i1, j0, j1;  // cells [i0, i1) x [j0, j1)
+  struct RowCells {
+    int j, i0, i1;  // cells [i0, i1) of row j
   };
-  std::vector<Range> ranges_;  // each candidate's
+  std::vector<RowCells> rows_;  // candidate k's: [row_begin_[k], row_begin_[k + 1])
+  std::vector<size_t> row_begin_;
 };
 
 }  // namespace aperture

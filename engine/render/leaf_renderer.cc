@@ -132,9 +132,15 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
 
   ShadeEntries();
 
+  const Rgba open_sky{sky_.r, sky_.g, sky_.b, PixelAlpha(0, 1)};  // a pixel nothing reaches
   for (int py = 0; py < r.height(); ++py) {
+    Rgba* row = &Pixel(image, r.x0, r.y0 + py);
     for (int px = 0; px < r.width(); ++px) {
       const size_t pixel = static_cast<size_t>(py) * r.width() + px;
+      if (pixel_begin_[pixel] == pixel_begin_[pixel + 1]) {
+        row[px] = open_sky;
+        continue;
+      }
       float r_sum = 0, g_sum = 0, b_sum = 0;
       double total = 0;
       for (size_t e = pixel_begin_[pixel]; e < pixel_begin_[pixel + 1]; ++e) {
@@ -144,8 +150,8 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
         total += entries_[e].weight;
       }
       const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
-      Pixel(image, r.x0 + px, r.y0 + py) = {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w,
-                                            b_sum + sky_.b * sky_w, PixelAlpha(total, sky_w)};
+      row[px] = {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w, b_sum + sky_.b * sky_w,
+                 PixelAlpha(total, sky_w)};
     }
   }
   return true;
