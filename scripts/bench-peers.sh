@@ -10,6 +10,7 @@
 #   FILTER_YAWS=0,45 FILTER_TEXTURES=checker,asphalt_torcs_1024 FILTER_PITCH=5 PLANES= TRIS= \
 #     scripts/bench-peers.sh                       # ... on the photos of ../shared/data/raster too
 #   FLICKER_FRAMES=120 PLANES= TRIS= scripts/bench-peers.sh              # flicker with llvmpipe (issue 22)
+#   MEMORY=100000,1000000 PLANES= TRIS= scripts/bench-peers.sh          # peak memory of a frame
 #
 # OSMesa (Debian's libosmesa6-dev) is a benchmark dependency, not a product one: installed here
 # when missing, then the build is reconfigured so that the peer_bench target exists.
@@ -30,4 +31,4 @@ LP_NUM_THREADS=2 build/tests/peer_bench --rounds "${ROUNDS:-5}" --tris "${TRIS-1
   --planes "${PLANES-5,20,60}" --psnr_pixels "${PSNR_PIXELS:-3000}" \
   --filter_yaws "${FILTER_YAWS:-}" --filter_pitch "${FILTER_PITCH:-5}" \
   --filter_textures "${FILTER_TEXTURES:-checker}" --data "${DATA:-../shared/data/raster}" \
-  --flicker_frames "${FLICKER_FRAMES:-0}" 2>&1 | grep -v '\[info\]'
+  --flicker_frames "${FLICKER_FRAMES:-0}" --memory "${MEMORY:-}" 2>&1 | grep -v '\[info\]'

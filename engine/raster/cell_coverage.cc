@@ -167,6 +167,7 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
   // Layers: a full piece behind all others over the whole square (ground under runway paint,
   // under a building's edge), the others disjoint: each front piece keeps its own moments and
   // the background gets the rest of the square.
+  bool overlapping = false;
   for (size_t b = 0; b < pieces_.size(); ++b) {
     const Piece& back = pieces_[b];
     if (!back.full) continue;
@@ -181,7 +182,11 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
         behind = front >= rear - 1e-9 * std::abs(rear);
       }
     }
-    if (!behind || !PairwiseDisjoint(b)) break;
+    if (!behind) break;
+    if (!PairwiseDisjoint(b)) {
+      overlapping = true;  // two pieces besides the background overlap
+      break;
+    }
     CellMoments rest = SquareMoments();
     for (size_t q = 0; q < pieces_.size(); ++q) {
       if (q == b) continue;
@@ -194,7 +199,7 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
   }
 
   // Pieces whose interiors are disjoint (neighbours in a mesh) need no visibility at all.
-  if (PairwiseDisjoint(pieces_.size())) {
+  if (!overlapping && PairwiseDisjoint(pieces_.size())) {
     for (const Piece& p : pieces_) {
       const CellMoments m = MomentsOf(p, with_moments);
       if (m.area > 0) out.push_back({p.polygon, m});

@@ -13,15 +13,21 @@
 //            the box.
 //   flicker  with --flicker_frames N: bench-flicker's turning fly-over with llvmpipe in the run
 //            (the first of --filter_textures).
+//   memory   with --memory N,N,...: the peak resident memory of a tris-N frame, llvmpipe 4x MSAA
+//            and Aperture box2, each in a child process of its own holding its input as it
+//            draws it (OpenGL's vertex arrays; Aperture's scene).
 //
 // Usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] [--psnr_pixels P]
 //                   [--filter_yaws Y,Y,... [--filter_pitch T]] [--flicker_frames N]
-//                   [--filter_textures checker,NAME,...] [--data DIR]
+//                   [--filter_textures checker,NAME,...] [--data DIR] [--memory N,N,...]
 // (scripts/bench-peers.sh builds and runs it with LP_NUM_THREADS=2; docs/BENCHMARKS.md.)
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <GL/osmesa.h>
+#include <malloc.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -29,8 +35,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <thread>
@@ -69,7 +77,7 @@ double Median(std::vector<double> v) {
 // The OSMesa context (llvmpipe), with a 4x multisampled framebuffer object for MSAA.
 class Peer {
  public:
-  bool Init() {
+  bool Init(bool quiet = false) {
     const int attributes[] = {OSMESA_FORMAT,
                               OSMESA_RGBA,
                               OSMESA_DEPTH_BITS,
@@ -86,8 +94,9 @@ class Peer {
     pixels_.resize(static_cast<size_t>(kWidth) * kHeight);
     if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, kWidth, kHeight))
       return false;
-    std::printf("peer: %s, %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
-                reinterpret_cast<const char*>(glGetString(GL_VERSION)));
+    if (!quiet)
+      std::printf("peer: %s, %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                  reinterpret_cast<const char*>(glGetString(GL_VERSION)));
     glGenFramebuffers(1, &msaa_fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
     GLuint buffers[2];
@@ -181,6 +190,7 @@ struct Options {
   int flicker_frames = 0;  // 0: no flicker table
   std::string filter_textures = "checker";
   std::string data_dir = "../shared/data/raster";
+  std::vector<int> memory;  // tris-N counts for the memory table
 };
 
 double AperturePlaneOrTrisMs(const Scene& scene, const Camera& camera, RenderSettings settings,
@@ -301,6 +311,96 @@ void RunTris(Peer& peer, int count, const Options& o) {
       count, Median(gl4), Psnr(gl4_image, pixels, ref1), Median(ap2), Psnr(ap2_image, pixels, ref2),
       Median(ap2) / Median(gl4));
   std::fflush(stdout);
+}
+
+// Resident memory now and its peak since the last ResetPeakMemory, in MB (/proc/self/status).
+std::pair<double, double> ResidentMemoryMb() {
+  std::ifstream status("/proc/self/status");
+  double rss = 0, peak = 0;
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmRSS:", 0) == 0) rss = std::atof(line.c_str() + 6) / 1024;
+    if (line.rfind("VmHWM:", 0) == 0) peak = std::atof(line.c_str() + 6) / 1024;
+  }
+  return {rss, peak};
+}
+
+// Makes the peak the present resident size (Linux: "5" to /proc/self/clear_refs), so that the
+// peak measured after it is the frame's, not the input's construction.
+void ResetPeakMemory() {
+  malloc_trim(0);
+  std::ofstream("/proc/self/clear_refs") << "5";
+}
+
+// The peak memory of one tris-N frame of each renderer, each in a child process (forked before
+// any OpenGL context or thread exists) that builds its input, lets go of what built it, and draws
+// two frames (the first compiles llvmpipe's shaders). Prints the input's and the peak's size.
+void RunMemory(int count) {
+  // Each child writes its peak to a pipe for the ratio.
+  auto child = [&](bool gl, int write_end) {
+    std::fflush(stdout);
+    const pid_t pid = fork();
+    if (pid != 0) return pid;
+    std::vector<float> xyz, rgb;
+    std::optional<Scene> scene;
+    {
+      auto built = BuildScene(MakeTrisScene(count));  // the proto is gone after this statement
+      if (!built.ok()) std::_Exit(1);
+      if (gl) {
+        for (const ScenePolygon& p : built->polygons) {
+          const Rgba c = built->materials[p.material].base_color;
+          for (const Vec3& v : p.vertices) {
+            xyz.insert(xyz.end(), {float(v.x), float(v.y), float(v.z)});
+            rgb.insert(rgb.end(), {c.r, c.g, c.b});
+          }
+        }
+      } else {
+        scene = *std::move(built);
+      }
+    }
+    ResetPeakMemory();
+    const double input = ResidentMemoryMb().first;
+    if (gl) {
+      Peer peer;
+      if (!peer.Init(/*quiet=*/true)) std::_Exit(1);
+      for (int i = 0; i < 2; ++i)
+        peer.Frame(true, [&] {
+          LoadProjection(1, 1000);
+          glDisable(GL_DEPTH_TEST);
+          glEnableClientState(GL_VERTEX_ARRAY);
+          glEnableClientState(GL_COLOR_ARRAY);
+          glVertexPointer(3, GL_FLOAT, 0, xyz.data());
+          glColorPointer(3, GL_FLOAT, 0, rgb.data());
+          glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(xyz.size() / 3));
+        });
+    } else {
+      RenderSettings box2;
+      box2.aa = AntiAliasing::kBox2;
+      box2.threads = 2;
+      for (int i = 0; i < 2; ++i) AperturePlaneOrTrisMs(*scene, Camera{}, box2, nullptr);
+    }
+    const double peak = ResidentMemoryMb().second;
+    std::printf("tris-%-8d memory %-11s input %7.1f MB, peak %7.1f MB\n", count,
+                gl ? "llvmpipe 4x" : "box2", input, peak);
+    std::fflush(stdout);
+    const bool written = write(write_end, &peak, sizeof peak) == sizeof peak;
+    std::_Exit(written ? 0 : 1);
+  };
+  double peaks[2] = {0, 0};
+  for (const bool gl : {true, false}) {
+    int ends[2], status = 0;
+    if (pipe(ends) != 0) std::exit(1);
+    const pid_t pid = child(gl, ends[1]);
+    close(ends[1]);
+    const bool read_ok = read(ends[0], &peaks[gl ? 0 : 1], sizeof(double)) == sizeof(double);
+    close(ends[0]);
+    if (pid < 0 || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0 ||
+        !read_ok) {
+      std::fprintf(stderr, "peer_bench: the memory run of tris-%d failed\n", count);
+      std::exit(1);
+    }
+  }
+  std::printf("tris-%-8d memory ratio box2 / llvmpipe 4x %.2fx (peaks)\n", count,
+              peaks[1] / peaks[0]);
 }
 
 // An n x n RGBA8 texture for llvmpipe with its mip-maps (glGenerateMipmap: box averages, as
@@ -633,14 +733,19 @@ int main(int argc, char** argv) {
       o.filter_textures = argv[i + 1];
     } else if (flag == "--data") {
       o.data_dir = argv[i + 1];
+    } else if (flag == "--memory") {
+      o.memory = aperture::ParseList<int>(argv[i + 1]);
     } else {
       std::fprintf(stderr,
                    "usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] "
                    "[--psnr_pixels P] [--filter_yaws Y,Y,... [--filter_pitch T]] "
-                   "[--flicker_frames N] [--filter_textures checker,NAME,...] [--data DIR]\n");
+                   "[--flicker_frames N] [--filter_textures checker,NAME,...] [--data DIR] "
+                   "[--memory N,N,...]\n");
       return 2;
     }
   }
+  // Before this process has an OpenGL context or threads: the memory runs fork.
+  for (int n : o.memory) aperture::RunMemory(n);
   aperture::Peer peer;
   if (!peer.Init()) {
     std::fprintf(stderr, "peer_bench: no OSMesa context with a 4x MSAA framebuffer\n");
