@@ -21,6 +21,13 @@ bool Overlaps(const ScreenPolygon& p, const Rect& r) {
 bool PolygonOverlapsRect(const ScreenPolygon& p, double x0, double y0, double x1, double y1) {
   const Rect r{x0, y0, x1, y1};
   if (p.max_x <= r.x0 || p.min_x >= r.x1 || p.max_y <= r.y0 || p.min_y >= r.y1) return false;
+  // A box inside the rectangle (by a margin far above rounding) overlaps it: every edge then has
+  // a corner strictly on its inner side, as the test below would find. The small polygons of a
+  // crowded window are mostly such.
+  constexpr double kMargin = 1e-6;
+  if (p.min_x > r.x0 + kMargin && p.max_x < r.x1 - kMargin && p.min_y > r.y0 + kMargin &&
+      p.max_y < r.y1 - kMargin)
+    return true;
   const size_t n = p.vertices.size();
   for (size_t i = 0; i < n; ++i) {
     const Vec2& a = p.vertices[i];
