@@ -71,6 +71,7 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       cell_begin_[static_cast<size_t>(j) * nx + i] = pieces_.size();
+      if (bins_.Cell(i, j).empty()) continue;  // nothing reaches it (most of a sparse frame)
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;
       const double cy = r.y0 + j + shape_.cell_offset + 0.5;
       coverage_.Compute(geo_.polygons, bins_.Cell(i, j), cx, cy, shape_.needs_moments, pieces_);
@@ -104,6 +105,7 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
         const size_t row = static_cast<size_t>(py + cy) * nx + px;
         pieces += cell_begin_[row + span + 1] - cell_begin_[row];
       }
+      if (pieces == 0) continue;  // the sky
       const bool crowded = pieces > kCrowdedPixelPieces;
       if (crowded) pixel_entry_.clear();
       for (int cy = 0; cy <= span; ++cy) {
