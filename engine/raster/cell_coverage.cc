@@ -72,6 +72,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     out.push_back({reach_[front].polygon, SquareMoments()});
     return;
   }
+  DropHiddenByAFullPolygon();
   pieces_.clear();
   verts_.clear();
   for (const Reach& r : reach_) {
@@ -126,6 +127,29 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     else
       Accumulate(out[it->second].moments, piece.moments);
   }
+}
+
+// The polygon nearest at the centre among those covering the whole cell hides every polygon it is
+// in front of at the four corners (depth differences are linear): those have no visible part and
+// are dropped before any clipping. Under a few near pieces a crowded cell mostly holds such.
+void CellCoverage::DropHiddenByAFullPolygon() {
+  const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
+  int hider = -1;
+  for (size_t i = 0; i < reach_.size(); ++i)
+    if (reach_[i].edges_begin == reach_[i].edges_end &&
+        (hider < 0 || reach_[i].depth.At(xc, yc) > reach_[hider].depth.At(xc, yc)))
+      hider = static_cast<int>(i);
+  if (hider < 0) return;
+  const ScreenLinear front = reach_[hider].depth;  // a copy: reach_ is compacted below
+  size_t kept = 0;
+  for (size_t i = 0; i < reach_.size(); ++i) {
+    bool hidden = static_cast<int>(i) != hider;
+    for (double y : {square_.y0, square_.y1})
+      for (double x : {square_.x0, square_.x1})
+        hidden = hidden && front.At(x, y) > reach_[i].depth.At(x, y);
+    if (!hidden) reach_[kept++] = reach_[i];
+  }
+  reach_.resize(kept);
 }
 
 CellMoments CellCoverage::SquareMoments() const {

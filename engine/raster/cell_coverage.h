@@ -96,6 +96,7 @@ class CellCoverage {
     }
     return static_cast<int>(front);
   }
+  void DropHiddenByAFullPolygon();  // from reach_
   CellMoments MomentsOf(const Piece& p, bool with_moments) const;
   bool Separated(const Piece& a, const Piece& b) const;
   // Every pair of pieces (but piece `skip`) has disjoint interiors.

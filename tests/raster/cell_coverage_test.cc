@@ -69,8 +69,10 @@ TEST(CellCoverage, HalfPlaneMomentsAreAnalytic) {
 // through its corners (clipping then repeats vertices: a regression of the separating-axis test).
 // `max_triangles` and `depth_spread` (depths in [1, 1 + spread]) make crowded cells of pieces at
 // many depths, most of whose depth ranges do not meet (a far city block).
+// `covers`: that many more triangles covering the whole cell at random depths among the others
+// (what they hide is dropped before clipping: CellCoverage::DropHiddenByAFullPolygon).
 void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false, int max_triangles = 5,
-                          double depth_spread = 1) {
+                          double depth_spread = 1, int covers = 0) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pos(-1.5, 1.5), slope(-0.3, 0.3),
       depth(1, 1 + depth_spread);
@@ -91,6 +93,18 @@ void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false, int 
                                      : ScreenLinear{slope(rng), slope(rng), depth(rng)};
       polys.push_back(Triangle(a, b, c, w));
     }
+    for (int k = 0; k < covers; ++k) {
+      const double turn = 2.0943951023931953 * pos(rng);
+      auto corner = [&](int i) {
+        return Vec2{3 * std::cos(turn + 2.0943951023931953 * i),
+                    3 * std::sin(turn + 2.0943951023931953 * i)};
+      };
+      const ScreenLinear w = layered ? ScreenLinear{0, 0, depth(rng)}
+                                     : ScreenLinear{slope(rng), slope(rng), depth(rng)};
+      // Inserted among the others, so that a cover is not always first or last.
+      const auto at = polys.begin() + static_cast<long>(rng() % (polys.size() + 1));
+      polys.insert(at, Triangle(corner(0), corner(1), corner(2), w));
+    }
     std::vector<int> candidates(polys.size());
     for (size_t k = 0; k < polys.size(); ++k) candidates[k] = static_cast<int>(k);
     std::vector<CellPiece> out;
@@ -110,6 +124,12 @@ TEST(CellCoverage, LayeredTrianglesMatchSampling) { CheckRandomTriangles(77, 0, 
 TEST(CellCoverage, CrowdedCellsOfTrianglesAtManyDepthsMatchSampling) {
   CheckRandomTriangles(4321, 0, false, 30, 6);
   CheckRandomTriangles(4322, 0, true, 30, 6);
+}
+
+TEST(CellCoverage, PiecesBehindWholeCellCoversMatchSampling) {
+  CheckRandomTriangles(555, 0, true, 8, 2, 2);
+  CheckRandomTriangles(556, 0, false, 8, 2, 3);
+  CheckRandomTriangles(557, 0, true, 30, 6, 4);
 }
 
 TEST(CellCoverage, TrianglesOnCellSidesAndCornersMatchSampling) {
