@@ -6,49 +6,23 @@
 namespace aperture {
 namespace {
 
-// The cells [lo, hi) of one axis whose interval (centre +- 0.5, centre = origin + k + offset + 0.5)
-// overlaps the open interval (min, max), with the same comparisons as CellCoverage::Compute.
-// The estimate from floor/ceil is widened by one and then settled by those comparisons, so the
-// rounding of the estimate cannot change the answer.
+// Rounding allowance of the ranges below, relative to the coordinates' size: ranges are widened by
+// it, so that they can only gain a cell (which CellCoverage::Compute then finds unreached), never
+// lose one.
+constexpr double kSlack = 1e-7;
+
+// The cells [lo, hi) of one axis (cell k spans [origin + k + offset, origin + k + offset + 1])
+// that may overlap the open interval (min, max), within [0, n).
 void AxisRange(double min, double max, int origin, double offset, int n, int& lo, int& hi) {
-  auto centre = [&](int k) { return static_cast<double>(origin + k) + offset + 0.5; };
-  auto reaches = [&](int k) {
-    const double c = centre(k);
-    return !(max <= c - 0.5 || min >= c + 0.5);
-  };
-  if (!(min <= max)) {  // (never for a finalized polygon; keeps the casts below defined)
+  const double slack = kSlack * (1 + std::abs(min) + std::abs(max));
+  const double from = std::floor(min - slack - origin - offset);
+  const double to = std::ceil(max + slack - origin - offset);
+  if (!(from <= to)) {  // NaN: never for a finalized polygon, and keeps the casts defined
     lo = hi = 0;
     return;
   }
-  const double first = std::floor(min - origin - offset - 1) - 1;
-  const double last = std::ceil(max - origin - offset) + 1;
-  lo = static_cast<int>(std::clamp(first, 0.0, static_cast<double>(n)));
-  hi = static_cast<int>(std::clamp(last + 1, 0.0, static_cast<double>(n)));
-  while (lo < hi && !reaches(lo)) ++lo;
-  while (hi > lo && !reaches(hi - 1)) --hi;
-}
-
-// The x extent of convex `p` within the strip ya <= y <= yb (its edges clipped to the strip), or
-// false when it does not reach the strip.
-bool StripExtent(const ScreenPolygon& p, double ya, double yb, double& x_min, double& x_max) {
-  x_min = INFINITY, x_max = -INFINITY;
-  const size_t n = p.vertices.size();
-  for (size_t k = 0; k < n; ++k) {
-    const Vec2& a = p.vertices[k];
-    const Vec2& b = p.vertices[k + 1 == n ? 0 : k + 1];
-    const double lo = std::max(std::min(a.y, b.y), ya), hi = std::min(std::max(a.y, b.y), yb);
-    if (lo > hi) continue;
-    if (a.y == b.y) {
-      x_min = std::min({x_min, a.x, b.x}), x_max = std::max({x_max, a.x, b.x});
-      continue;
-    }
-    const double slope = (b.x - a.x) / (b.y - a.y);
-    for (double y : {lo, hi}) {
-      const double x = a.x + slope * (y - a.y);
-      x_min = std::min(x_min, x), x_max = std::max(x_max, x);
-    }
-  }
-  return x_min <= x_max;
+  lo = static_cast<int>(std::clamp(from, 0.0, static_cast<double>(n)));
+  hi = static_cast<int>(std::clamp(to, 0.0, static_cast<double>(n)));
 }
 
 }  // namespace
@@ -58,9 +32,8 @@ void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const in
   nx_ = nx;
   const size_t cells = static_cast<size_t>(nx) * ny;
   begin_.assign(cells + 1, 0);
-  // Each candidate's cells, row by row: within its bounding box's cells, those its part in the
-  // row's strip reaches in x. That part's extent is widened by a relative 1e-9 so that rounding
-  // can only add cells, never drop one CellCoverage::Compute would keep (it tests each exactly).
+  // Each candidate's cells, row by row: the x extent of its part in each row's strip, from its
+  // edges, each edge walked over the rows it crosses.
   rows_.clear();
   row_begin_.resize(candidates.size() + 1);
   for (size_t k = 0; k < candidates.size(); ++k) {
@@ -69,14 +42,41 @@ void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const in
     int i0, i1, j0, j1;
     AxisRange(p.min_x, p.max_x, x0, offset, nx, i0, i1);
     AxisRange(p.min_y, p.max_y, y0, offset, ny, j0, j1);
-    if (i0 >= i1) continue;
+    if (i0 >= i1 || j0 >= j1) continue;
+    extent_min_.assign(j1 - j0, INFINITY);
+    extent_max_.assign(j1 - j0, -INFINITY);
+    const size_t n = p.vertices.size();
+    for (size_t e = 0; e < n; ++e) {
+      const Vec2& a = p.vertices[e];
+      const Vec2& b = p.vertices[e + 1 == n ? 0 : e + 1];
+      const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
+      const double slope = (b.x - a.x) / (b.y - a.y);  // used where b.y - a.y is not tiny
+      int r0, r1;  // the rows whose strips the edge's y range may meet
+      AxisRange(lo, hi, y0, offset, ny, r0, r1);
+      r0 = std::max(r0, j0), r1 = std::min(r1, j1);
+      for (int j = r0; j < r1; ++j) {
+        const double top = static_cast<double>(y0 + j) + offset;
+        const double ya = std::max(lo, top), yb = std::min(hi, top + 1);
+        double& x_min = extent_min_[j - j0];
+        double& x_max = extent_max_[j - j0];
+        // A horizontal edge, or one so nearly so that its slope would magnify rounding: its
+        // whole x range (the part in the strip lies within it).
+        if (std::abs(b.y - a.y) <= 1e-6 * std::abs(b.x - a.x)) {
+          x_min = std::min({x_min, a.x, b.x}), x_max = std::max({x_max, a.x, b.x});
+          continue;
+        }
+        if (ya > yb) continue;
+        for (double y : {ya, yb}) {
+          const double x = a.x + slope * (y - a.y);
+          x_min = std::min(x_min, x), x_max = std::max(x_max, x);
+        }
+      }
+    }
     for (int j = j0; j < j1; ++j) {
-      const double cy = static_cast<double>(y0 + j) + offset + 0.5;
-      double x_min, x_max;
-      if (!StripExtent(p, cy - 0.5, cy + 0.5, x_min, x_max)) continue;
-      const double margin = 1e-9 * (1 + std::abs(x_min) + std::abs(x_max));
+      const double x_min = extent_min_[j - j0], x_max = extent_max_[j - j0];
+      if (!(x_min <= x_max)) continue;  // no part in this row's strip
       int a, b;
-      AxisRange(x_min - margin, x_max + margin, x0, offset, nx, a, b);
+      AxisRange(x_min, x_max, x0, offset, nx, a, b);
       a = std::max(a, i0), b = std::min(b, i1);
       if (a >= b) continue;
       rows_.push_back({j, a, b});

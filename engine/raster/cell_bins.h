@@ -1,12 +1,13 @@
-// Which polygons' bounding boxes reach each cell of a grid of unit cells, found once per grid
-// rather than by testing every polygon at every cell: a mixed Warnock leaf of box2 cells holds
-// 81 cells and some 30 polygons, of which a cell's box meets about 5 (issue 19).
+// Which polygons may reach each cell of a grid of unit cells, found once per grid rather than by
+// testing every polygon at every cell: a mixed Warnock leaf of 17 x 17 box2 cells holds some 60
+// polygons at 100,000 small triangles a frame, of which a cell meets about 3 (issue 19).
 //
 // A cell's list keeps the order of `candidates` and holds every polygon that CellCoverage::Compute
-// would find reaching the cell (and maybe a few that only come near it, which Compute drops), so
-// the coverage it computes from the list is the same, bit for bit, as from all the candidates.
-// Each polygon is listed in the cells its part in each row's strip reaches, not in all of its
-// bounding box: a triangle's box holds about twice its cells.
+// would find reaching the cell (and maybe a few that only come within rounding of it, which
+// Compute drops), so the coverage it computes from the list is the same, bit for bit, as from all
+// the candidates. Each polygon is listed in the cells its part in each row's strip reaches (its
+// edges walked over the rows they cross), not in all of its bounding box: a triangle's box holds
+// about twice its cells.
 #pragma once
 
 #include <span>
@@ -39,6 +40,7 @@ class CellBins {
   };
   std::vector<RowCells> rows_;  // candidate k's: [row_begin_[k], row_begin_[k + 1])
   std::vector<size_t> row_begin_;
+  std::vector<double> extent_min_, extent_max_;  // a candidate's x extent in each row's strip
 };
 
 }  // namespace aperture
