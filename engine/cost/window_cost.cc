@@ -28,22 +28,27 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
       f.area += f.pixels;
       continue;
     }
-    poly = p.vertices;
     // A polygon strictly inside the window (most of a dense part of a frame) needs no clipping.
-    if (p.min_x <= x0 || p.max_x >= x1 || p.min_y <= y0 || p.max_y >= y1)
+    const bool inside = !(p.min_x <= x0 || p.max_x >= x1 || p.min_y <= y0 || p.max_y >= y1);
+    if (!inside) {
+      poly = p.vertices;
       ClipToRect(poly, x0, y0, x1, y1, scratch);
-    if (poly.empty()) continue;
+      if (poly.empty()) continue;
+    }
+    const std::vector<Vec2>& part = inside ? p.vertices : poly;
     ++f.polygons;
-    f.area += std::abs(SignedArea(poly));
+    f.area += std::abs(SignedArea(part));
     // seed 002, eq. 6: the edges widen the polygon by at most a / sqrt(2) on each side, each
     // vertex adds at most a^2. Edges on the window's border are the clip's, not the polygon's.
     double edge_length = 0;
-    for (size_t k = 0; k < poly.size(); ++k) {
-      const Vec2& s = poly[k];
-      const Vec2& e = poly[(k + 1) % poly.size()];
+    for (size_t k = 0; k < part.size(); ++k) {
+      const Vec2& s = part[k];
+      const Vec2& e = part[k + 1 == part.size() ? 0 : k + 1];
       const bool on_border =
           (s.x == e.x && (s.x == x0 || s.x == x1)) || (s.y == e.y && (s.y == y0 || s.y == y1));
-      if (!on_border) edge_length += std::hypot(e.x - s.x, e.y - s.y);
+      // (sqrt, not hypot: screen coordinates never come near overflow, and hypot is slow.)
+      if (!on_border)
+        edge_length += std::sqrt((e.x - s.x) * (e.x - s.x) + (e.y - s.y) * (e.y - s.y));
     }
     int vertices = 0;
     for (const Vec2& v : p.vertices) vertices += v.x > x0 && v.x < x1 && v.y > y0 && v.y < y1;
