@@ -24,6 +24,7 @@
 #include "gltf_import.h"
 #include "io/exr_writer.h"
 #include "io/frame_job.h"
+#include "large_buffers.h"
 #include "render/frame_renderer.h"
 #include "render/trace_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -303,5 +304,6 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_mt("aperture-render"));
   spdlog::cfg::load_env_levels();  // --zip-level as --zip_level
   absl::ParseCommandLine(args.argc(), args.argv());
+  aperture::KeepLargeBuffersWarm();  // --repeat's frames reuse warm buffers, as the server's do
   return aperture::Run();
 }

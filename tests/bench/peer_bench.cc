@@ -44,6 +44,7 @@
 #include <thread>
 #include <vector>
 
+#include "large_buffers.h"
 #include "raster/projection.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -712,6 +713,9 @@ std::vector<T> ParseList(const char* s) {
 }  // namespace aperture
 
 int main(int argc, char** argv) {
+  // Aperture's frames as the server renders them: their buffers reused warm, not page-faulted
+  // afresh each frame (llvmpipe keeps its framebuffer too).
+  aperture::KeepLargeBuffersWarm();
   aperture::Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];

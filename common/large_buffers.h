@@ -3,7 +3,8 @@
 // returns them on free, so each frame's first touch of its buffers page-faults thousands of times
 // (about 10 ms a frame on the 2-core machine, as much as the encode itself). Raising malloc's
 // mmap and trim thresholds keeps freed frame buffers in the heap, warm, for the next frame.
-// Shared by the server and the client; a no-op outside glibc.
+// Called at the start of the server, the client, aperture-render and the peer benchmark (which
+// measures the engine as the server runs it); a no-op outside glibc.
 #pragma once
 
 namespace aperture {
