@@ -77,6 +77,7 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
       coverage_.Compute(geo_.polygons, bins_.Cell(i, j), cx, cy, shape_.needs_moments, pieces_);
       if (coverage_.Stopped()) return false;
     }
+    if (stop_ && stop_()) return false;
   }
   cell_begin_.back() = pieces_.size();
 

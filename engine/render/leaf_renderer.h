@@ -17,12 +17,14 @@ namespace aperture {
 class LeafRenderer {
  public:
   // `image` holds the pixels of `region` of the frame (row 0 = the region's top row).
-  // `stop` (may be empty) is asked inside crowded cells; see CellCoverage::SetStop.
+  // `stop` (may be empty) is asked after each row of a mixed leaf's cells and inside crowded
+  // cells (CellCoverage::SetStop): a leaf of many busy cells stops within a row.
   // `sky` with alpha below 1 (a transparent sky): pixels get the alpha of what covers them.
   LeafRenderer(const FrameGeometry& geometry, const PolygonShader& shader, AntiAliasing aa,
                Rgba sky, const PixelRect& region, std::function<bool()> stop = {})
       : geo_(geometry), shader_(shader), aa_(aa), shape_(ShapeOf(aa)), sky_(sky), region_(region) {
-    coverage_.SetStop(std::move(stop));
+    coverage_.SetStop(stop);
+    stop_ = std::move(stop);
   }
 
   // Not thread-safe (scratch buffers): one LeafRenderer per worker. False when the stop test
@@ -58,6 +60,7 @@ class LeafRenderer {
   Rgba sky_;
   PixelRect region_;
   CellCoverage coverage_;
+  std::function<bool()> stop_;
   CellBins bins_;  // the leaf's polygons by cell
   std::vector<CellPiece> pieces_;
   std::vector<size_t> cell_begin_;

@@ -29,11 +29,12 @@ ScreenPolygon Flat(std::vector<Vec2> vertices, double depth, int id) {
 }
 
 std::vector<LeafWindow> Subdivide(const FrameGeometry& geometry, AntiAliasing aa,
-                                  const PixelRect& window) {
+                                  const PixelRect& window,
+                                  const WarnockOptions& options = WarnockOptions{}) {
   std::vector<int> candidates;
   for (int i = 0; i < static_cast<int>(geometry.polygons.size()); ++i) candidates.push_back(i);
   std::vector<LeafWindow> leaves;
-  SubdivideWindow(geometry, ShapeOf(aa), WarnockOptions{}, window, candidates, leaves);
+  SubdivideWindow(geometry, ShapeOf(aa), options, window, candidates, leaves);
   return leaves;
 }
 
@@ -81,14 +82,16 @@ TEST(Warnock, EdgesEndInSmallMixedLeavesThatListWhatReachesThem) {
   geometry.polygons.push_back(
       Flat({{20.5, 20.5}, {20.5, 50.25}, {50.75, 50.25}, {50.75, 20.5}}, 3, 1));
   const PixelRect window{0, 0, 64, 64};
-  const auto leaves = Subdivide(geometry, AntiAliasing::kBox1, window);
+  WarnockOptions options;
+  options.leaf_size = 8;  // below the window's size, so that it is subdivided
+  const auto leaves = Subdivide(geometry, AntiAliasing::kBox1, window, options);
   ExpectTiling(leaves, window);
   int mixed = 0;
   for (const LeafWindow& leaf : leaves) {
     if (leaf.kind != LeafWindow::Kind::kMixed) continue;
     ++mixed;
-    EXPECT_LE(leaf.rect.width(), WarnockOptions{}.leaf_size);
-    EXPECT_LE(leaf.rect.height(), WarnockOptions{}.leaf_size);
+    EXPECT_LE(leaf.rect.width(), options.leaf_size);
+    EXPECT_LE(leaf.rect.height(), options.leaf_size);
     // Each polygon reaching the leaf's area is listed (box1: the aperture is the pixel square).
     for (int p = 0; p < 2; ++p) {
       const bool reaches = PolygonOverlapsRect(geometry.polygons[p], leaf.rect.x0, leaf.rect.y0,

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <utility>
 
+#include "scene/benchmark_scenes.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "support/test_scenes.h"
@@ -122,6 +123,27 @@ TEST(FrameRenderer, StopRequestReachesInsideATask) {
   std::atomic<int> asked{0};
   auto frame =
       RenderFrame(*scene, DemoCamera(), TrilinearSettings(1, 1, 1), [&] { return ++asked > 1; });
+  ASSERT_FALSE(frame.ok());
+  EXPECT_EQ(frame.status().code(), absl::StatusCode::kCancelled);
+}
+
+// ... and inside a mixed leaf, after each row of its cells: the top-left 64 x 64 pixels of a
+// tris-100000 frame, as one uniform task, are one mixed leaf of uncrowded cells (about three
+// pieces each), which asks at least once a row; asked only between tasks and leaves, it would
+// ask twice and finish.
+TEST(FrameRenderer, AMixedLeafAsksTheStopTestRowByRow) {
+  auto scene = BuildScene(MakeTrisScene(100000));
+  ASSERT_TRUE(scene.ok());
+  RenderSettings settings = TrilinearSettings(1920, 1080, 1);
+  settings.region = {0, 0, 64, 64};
+  settings.scheduling.mode = Scheduling::kUniform;
+  settings.scheduling.uniform_tile = 64;
+  int asked_when_free = 0;
+  auto free_frame = RenderFrame(*scene, Camera{}, settings, [&] { return ++asked_when_free < 0; });
+  ASSERT_TRUE(free_frame.ok()) << free_frame.status();
+  EXPECT_GE(asked_when_free, 64);
+  std::atomic<int> asked{0};
+  auto frame = RenderFrame(*scene, Camera{}, settings, [&] { return ++asked > 3; });
   ASSERT_FALSE(frame.ok());
   EXPECT_EQ(frame.status().code(), absl::StatusCode::kCancelled);
 }
