@@ -67,8 +67,11 @@ class Subdivider {
       leaves.push_back(std::move(leaf));
       return;
     }
-    const bool split_x = rect.width() > options_.leaf_size;
-    const bool split_y = rect.height() > options_.leaf_size;
+    const int leaf_size = static_cast<int>(inside.size()) > options_.crowded_polygons
+                              ? std::max(options_.leaf_size, options_.crowded_leaf_size)
+                              : options_.leaf_size;
+    const bool split_x = rect.width() > leaf_size;
+    const bool split_y = rect.height() > leaf_size;
     if (!split_x && !split_y) {
       leaf.kind = LeafWindow::Kind::kMixed;
       leaf.polygons = std::move(inside);

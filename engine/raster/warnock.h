@@ -19,13 +19,18 @@ struct LeafWindow {
 };
 
 struct WarnockOptions {
-  // A mixed window at most this wide and high is not split further. 64: a leaf of box2 cells also
-  // computes the cells on its borders, which its neighbours compute again (289 cells for 256
-  // pixels at 16, 4,225 for 4,096 at 64), and each leaf bins its polygons once; crowded frames
-  // take 15-20 % less than at 16 and 25 % less than at 8, frames of large polygons the same, and
-  // pixels are the same at any size (issue 19). The renderer asks the stop test after each row
-  // of a leaf's cells.
-  int leaf_size = 64;
+  // A mixed window at most this wide and high is not split further: its quadrants might still be
+  // covered or empty (a horizon, a building's edge), but below this their shared border cells
+  // and the splitting cost more than the fast interiors save.
+  int leaf_size = 16;
+  // A crowded mixed window (more than crowded_polygons polygons reach it) stops at this size
+  // already: its quadrants would be mixed too, and a leaf of box2 cells computes the cells on its
+  // borders that its neighbours compute again (289 cells for 256 pixels at 16, 4,225 for 4,096
+  // at 64) and bins its polygons once. Crowded frames take 15-20 % less than with 16 alone,
+  // frames of large polygons the same; pixels are the same at any size (issue 19). The renderer
+  // asks the stop test after each row of a leaf's cells.
+  int crowded_leaf_size = 64;
+  int crowded_polygons = 8;
 };
 
 // Subdivides one window whose candidate polygons are known, appending its leaves.

@@ -27,6 +27,8 @@ absl::Status ValidateRenderSettings(const RenderSettings& s) {
                                                    ", ", r.y1, ") is not inside the ", s.width, "x",
                                                    s.height, " frame"));
   if (s.warnock.leaf_size < 1) return absl::InvalidArgumentError("Warnock leaf size must be >= 1");
+  if (s.warnock.crowded_leaf_size < 1)
+    return absl::InvalidArgumentError("Warnock crowded leaf size must be >= 1");
   if (s.scheduling.uniform_tile < 8 || s.scheduling.tasks_per_thread < 1)
     return absl::InvalidArgumentError("uniform tiles must be >= 8 pixels, tasks per thread >= 1");
   if (s.scheduling.plan_workers < 0 || s.scheduling.plan_workers > kMaxPlanWorkers)

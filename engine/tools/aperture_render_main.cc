@@ -52,7 +52,10 @@ ABSL_FLAG(int, exact_steps, aperture::FragmentOptions{}.exact_steps,
           "summed-area table) when that takes at most this many row or column steps, else by seed "
           "003's fragments within --delta (where their work cap misses it, by a coarser mip "
           "level's exact integral); 0: fragments for every pixel, as the paper does");
-ABSL_FLAG(int, leaf, aperture::WarnockOptions{}.leaf_size, "largest Warnock leaf window, pixels");
+ABSL_FLAG(int, leaf, aperture::WarnockOptions{}.leaf_size,
+          "largest Warnock leaf window, pixels (of a window few polygons reach)");
+ABSL_FLAG(int, crowded_leaf, aperture::WarnockOptions{}.crowded_leaf_size,
+          "largest Warnock leaf window that more than 8 polygons reach, pixels");
 ABSL_FLAG(std::string, scheduling, "cost",
           "task planning: cost (seed 002 cost-driven windows, most expensive first) or uniform "
           "(fixed tiles)");
@@ -142,6 +145,7 @@ int Run() {
   RenderSettings& settings = job->settings;
   settings.threads = absl::GetFlag(FLAGS_threads);
   settings.warnock.leaf_size = absl::GetFlag(FLAGS_leaf);
+  settings.warnock.crowded_leaf_size = absl::GetFlag(FLAGS_crowded_leaf);
   if (const std::string mode = absl::GetFlag(FLAGS_scheduling); mode == "uniform") {
     settings.scheduling.mode = Scheduling::kUniform;
   } else if (mode != "cost") {
