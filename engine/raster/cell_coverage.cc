@@ -81,31 +81,31 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     piece.depth = r.depth;
     piece.full = r.edges_begin == r.edges_end;
     piece.begin = verts_.size();
-    // The cell's square cut by each crossing edge, in two fixed buffers (each cut adds at most
-    // one vertex); a polygon of very many crossing edges takes the vector's way.
-    const size_t edges = r.edges_end - r.edges_begin;
-    if (edges + 4 <= kClipBuffer) {
-      Vec2* from = clip_buffers_[0];
-      Vec2* to = clip_buffers_[1];
-      from[0] = {-kHalf, -kHalf}, from[1] = {kHalf, -kHalf}, from[2] = {kHalf, kHalf};
-      from[3] = {-kHalf, kHalf};
-      size_t n = 4;
-      for (size_t k = r.edges_begin; k < r.edges_end && n >= 3; ++k) {
-        const ScreenLinear& e = crossing_[k];
-        n = ClipByHalfPlane(from, n, e.a, e.b, e.c, to);
-        std::swap(from, to);
-      }
-      if (n < 3) continue;
-      verts_.insert(verts_.end(), from, from + n);
-    } else {
-      clip_.assign({{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}});
-      for (size_t k = r.edges_begin; k < r.edges_end; ++k) {
+    // The cell's square cut by each crossing edge, in two fixed buffers; should a cut not fit
+    // (kClipOverflow), the rest is done in vectors.
+    Vec2* from = clip_buffers_[0];
+    Vec2* to = clip_buffers_[1];
+    from[0] = {-kHalf, -kHalf}, from[1] = {kHalf, -kHalf}, from[2] = {kHalf, kHalf};
+    from[3] = {-kHalf, kHalf};
+    size_t n = 4, k = r.edges_begin;
+    for (; k < r.edges_end && n >= 3; ++k) {
+      const ScreenLinear& e = crossing_[k];
+      const size_t cut = ClipByHalfPlane(from, n, e.a, e.b, e.c, to, kClipBuffer);
+      if (cut == kClipOverflow) break;
+      n = cut;
+      std::swap(from, to);
+    }
+    if (k < r.edges_end && n >= 3) {
+      clip_.assign(from, from + n);
+      for (; k < r.edges_end && !clip_.empty(); ++k) {
         const ScreenLinear& e = crossing_[k];
         ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
-        if (clip_.empty()) break;
       }
       if (clip_.empty()) continue;
       verts_.insert(verts_.end(), clip_.begin(), clip_.end());
+    } else {
+      if (n < 3) continue;
+      verts_.insert(verts_.end(), from, from + n);
     }
     piece.end = verts_.size();
     pieces_.push_back(piece);
@@ -481,27 +481,38 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
         c = -(a * p.x + b * p.y);
         return true;
       };
-      if (region.size() + n + 1 <= kClipBuffer) {
+      // In the fixed buffers while the cuts fit; from the edge where one would not
+      // (kClipOverflow), in vectors.
+      size_t i = 0;
+      if (region.size() + 2 <= kClipBuffer) {
         Vec2* inside = clip_buffers_[0];
         Vec2* next = clip_buffers_[1];
         Vec2* outside = clip_buffers_[2];
         std::copy(region.begin(), region.end(), inside);
         size_t count = region.size();
-        for (size_t i = 0; i < n && count >= 3; ++i) {
+        for (; i < n && count >= 3; ++i) {
           double a, b, c;
           if (!edge_line(i, a, b, c)) continue;
-          const size_t out_count = ClipByHalfPlane(inside, count, -a, -b, -c, outside);
+          const size_t out_count = ClipByHalfPlane(inside, count, -a, -b, -c, outside, kClipBuffer);
+          const size_t in_count = out_count == kClipOverflow
+                                      ? kClipOverflow
+                                      : ClipByHalfPlane(inside, count, a, b, c, next, kClipBuffer);
+          if (in_count == kClipOverflow) break;
           // A sliver of no area (a vertex on the line) is nothing left to paint.
           const std::span<const Vec2> outside_part(outside, out_count);
           if (out_count >= 3 && PolygonMoments(outside_part, false).area > 0) keep(outside_part);
-          count = ClipByHalfPlane(inside, count, a, b, c, next);
+          count = in_count;
           std::swap(inside, next);
         }
-        if (count >= 3) Accumulate(visible, PolygonMoments({inside, count}, with_moments));
-        continue;
+        if (i == n || count < 3) {
+          if (count >= 3) Accumulate(visible, PolygonMoments({inside, count}, with_moments));
+          continue;
+        }
+        clip_.assign(inside, inside + count);
+      } else {
+        clip_.assign(region.begin(), region.end());
       }
-      clip_.assign(region.begin(), region.end());
-      for (size_t i = 0; i < n && !clip_.empty(); ++i) {
+      for (; i < n && !clip_.empty(); ++i) {
         double a, b, c;
         if (!edge_line(i, a, b, c)) continue;
         outside_.assign(clip_.begin(), clip_.end());

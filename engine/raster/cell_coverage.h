@@ -125,7 +125,7 @@ class CellCoverage {
   std::vector<size_t> by_left_;
   std::vector<Piece> pieces_;
   std::vector<Vec2> verts_, clip_, scratch_;
-  static constexpr size_t kClipBuffer = 32;
+  static constexpr size_t kClipBuffer = 64;
   Vec2 clip_buffers_[3][kClipBuffer];  // a piece being cut to the cell, a region being painted
   std::vector<ScreenLinear> crossing_;
   std::vector<uint8_t> in_front_;

@@ -25,8 +25,10 @@ void ClipGeneric(std::vector<Point>& poly, Distance dist, std::vector<Point>& ou
 
 void ClipByHalfPlane(std::vector<Vec2>& poly, double a, double b, double c,
                      std::vector<Vec2>& scratch) {
-  if (scratch.size() < poly.size() + 1) scratch.resize(poly.size() + 1);
-  const size_t count = ClipByHalfPlane(poly.data(), poly.size(), a, b, c, scratch.data());
+  // Room for every vertex kept and every crossing: the clip never overflows it.
+  if (scratch.size() < 2 * poly.size() + 2) scratch.resize(2 * poly.size() + 2);
+  const size_t count =
+      ClipByHalfPlane(poly.data(), poly.size(), a, b, c, scratch.data(), scratch.size());
   scratch.resize(count);
   poly.swap(scratch);
   if (poly.size() < 3) poly.clear();

@@ -7,22 +7,32 @@
 
 namespace aperture {
 
-// Keeps the part of in[0, n) where a x + b y + c >= 0, written to `out` (room for n + 1
-// vertices); returns its vertex count, which may be below 3 (nothing left). Inline and free of
-// allocation: the exact coverage of a cell clips a few small polygons many times (issue 19).
-inline size_t ClipByHalfPlane(const Vec2* in, size_t n, double a, double b, double c, Vec2* out) {
+// What the clip below returns when `out` might not hold the result.
+inline constexpr size_t kClipOverflow = static_cast<size_t>(-1);
+
+// Keeps the part of in[0, n) where a x + b y + c >= 0, written to `out`, which has room for
+// `capacity` vertices; returns its vertex count, which may be below 3 (nothing left), or
+// kClipOverflow. A clip of a convex polygon adds at most one vertex, but rounding can make a
+// nearly degenerate one cross the line more than twice, so the room is checked as it goes.
+// Inline and free of allocation: the exact coverage of a cell clips a few small polygons many
+// times (issue 19). Branch-free: every vertex and every crossing is written, and the count
+// advances only past those kept (which side a vertex falls on varies from cell to cell, so
+// branches mispredict); the kept values are computed exactly as a branching clip computes them.
+inline size_t ClipByHalfPlane(const Vec2* in, size_t n, double a, double b, double c, Vec2* out,
+                              size_t capacity) {
   if (n == 0) return 0;
   size_t count = 0;
   double dp = a * in[0].x + b * in[0].y + c;
   for (size_t i = 0; i < n; ++i) {
+    if (count + 2 > capacity) return kClipOverflow;  // (never taken in practice: predictable)
     const Vec2& p = in[i];
     const Vec2& q = in[i + 1 == n ? 0 : i + 1];
     const double dq = a * q.x + b * q.y + c;
-    if (dp >= 0) out[count++] = p;
-    if ((dp >= 0) != (dq >= 0)) {
-      const double t = dp / (dp - dq);
-      out[count++] = {p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t};
-    }
+    out[count] = p;
+    count += dp >= 0;
+    const double t = dp / (dp - dq);  // unused (maybe not finite) unless the edge crosses
+    out[count] = {p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t};
+    count += (dp >= 0) != (dq >= 0);
     dp = dq;
   }
   return count;

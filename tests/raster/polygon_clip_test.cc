@@ -34,6 +34,24 @@ TEST(PolygonClip, AHalfPlaneCutsASquareIntoTheExpectedPiece) {
   EXPECT_TRUE(inside.empty() || Area(inside) == 0);
 }
 
+// A polygon that crosses the line many times (what rounding can make of a nearly degenerate one)
+// gives more than one vertex over its own count: the fixed-buffer clip reports kClipOverflow
+// rather than write past its room, and the vector clip keeps every vertex and crossing.
+TEST(PolygonClip, ManyCrossingsOverflowTheFixedClipSafelyAndTheVectorOneKeepsThem) {
+  std::vector<Vec2> zigzag;
+  for (int i = 0; i < 10; ++i) zigzag.push_back({static_cast<double>(i), i % 2 ? 1e-17 : -1e-17});
+  zigzag.push_back({9, 1}), zigzag.push_back({0, 1});
+  // y >= 0 keeps the 5 raised points, the 2 top corners and 10 crossings: 17 > 12 + 1.
+  Vec2 out[14];
+  EXPECT_EQ(ClipByHalfPlane(zigzag.data(), zigzag.size(), 0, 1, 0, out, 14), kClipOverflow);
+  Vec2 room[40];
+  EXPECT_EQ(ClipByHalfPlane(zigzag.data(), zigzag.size(), 0, 1, 0, room, 40), 17u);
+  std::vector<Vec2> scratch;
+  ClipByHalfPlane(zigzag, 0, 1, 0, scratch);
+  EXPECT_EQ(zigzag.size(), 17u);
+  for (const Vec2& v : zigzag) EXPECT_GE(v.y, 0);
+}
+
 TEST(PolygonClip, ARectangleKeepsTheOverlapOfATriangle) {
   std::vector<Vec2> scratch;
   // The triangle (0,0), (4,0), (0,4) inside [1, 3] x [0, 1]: the trapezoid of x + y <= 4 there,
