@@ -207,28 +207,41 @@ double AperturePlaneOrTrisMs(const Scene& scene, const Camera& camera, RenderSet
   return ms;
 }
 
+// A tris-N scene as OpenGL draws it: vertex and colour arrays, in order.
+struct TrisArrays {
+  std::vector<float> xyz, rgb;
+};
+
+TrisArrays TrisArraysOf(const Scene& scene) {
+  TrisArrays arrays;
+  for (const ScenePolygon& p : scene.polygons) {
+    const Rgba c = scene.materials[p.material].base_color;
+    for (const Vec3& v : p.vertices) {
+      arrays.xyz.insert(arrays.xyz.end(), {float(v.x), float(v.y), float(v.z)});
+      arrays.rgb.insert(arrays.rgb.end(), {c.r, c.g, c.b});
+    }
+  }
+  return arrays;
+}
+
+// No depth test: each later triangle is in front.
+void DrawTris(const TrisArrays& arrays) {
+  LoadProjection(1, 1000);
+  glDisable(GL_DEPTH_TEST);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, arrays.xyz.data());
+  glColorPointer(3, GL_FLOAT, 0, arrays.rgb.data());
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(arrays.xyz.size() / 3));
+}
+
 void RunTris(Peer& peer, int count, const Options& o) {
   auto scene = BuildScene(MakeTrisScene(count));
   if (!scene.ok()) std::exit(1);
   const Camera camera;  // at the origin looking along -z, 60 degrees
   // The same triangles for OpenGL, in order; no depth test: each later one is in front.
-  std::vector<float> xyz, rgb;
-  for (const ScenePolygon& p : scene->polygons) {
-    const Rgba c = scene->materials[p.material].base_color;
-    for (const Vec3& v : p.vertices) {
-      xyz.insert(xyz.end(), {float(v.x), float(v.y), float(v.z)});
-      rgb.insert(rgb.end(), {c.r, c.g, c.b});
-    }
-  }
-  auto draw = [&] {
-    LoadProjection(1, 1000);
-    glDisable(GL_DEPTH_TEST);
-    glEnableClientState(GL_VERTEX_ARRAY);
-    glEnableClientState(GL_COLOR_ARRAY);
-    glVertexPointer(3, GL_FLOAT, 0, xyz.data());
-    glColorPointer(3, GL_FLOAT, 0, rgb.data());
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(xyz.size() / 3));
-  };
+  const TrisArrays arrays = TrisArraysOf(*scene);
+  auto draw = [&] { DrawTris(arrays); };
   RenderSettings box1, box2;
   box1.aa = AntiAliasing::kBox1;
   box2.aa = AntiAliasing::kBox2;
@@ -341,38 +354,22 @@ void RunMemory(int count) {
     std::fflush(stdout);
     const pid_t pid = fork();
     if (pid != 0) return pid;
-    std::vector<float> xyz, rgb;
+    TrisArrays arrays;
     std::optional<Scene> scene;
     {
       auto built = BuildScene(MakeTrisScene(count));  // the proto is gone after this statement
       if (!built.ok()) std::_Exit(1);
-      if (gl) {
-        for (const ScenePolygon& p : built->polygons) {
-          const Rgba c = built->materials[p.material].base_color;
-          for (const Vec3& v : p.vertices) {
-            xyz.insert(xyz.end(), {float(v.x), float(v.y), float(v.z)});
-            rgb.insert(rgb.end(), {c.r, c.g, c.b});
-          }
-        }
-      } else {
+      if (gl)
+        arrays = TrisArraysOf(*built);
+      else
         scene = *std::move(built);
-      }
     }
     ResetPeakMemory();
     const double input = ResidentMemoryMb().first;
     if (gl) {
       Peer peer;
       if (!peer.Init(/*quiet=*/true)) std::_Exit(1);
-      for (int i = 0; i < 2; ++i)
-        peer.Frame(true, [&] {
-          LoadProjection(1, 1000);
-          glDisable(GL_DEPTH_TEST);
-          glEnableClientState(GL_VERTEX_ARRAY);
-          glEnableClientState(GL_COLOR_ARRAY);
-          glVertexPointer(3, GL_FLOAT, 0, xyz.data());
-          glColorPointer(3, GL_FLOAT, 0, rgb.data());
-          glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(xyz.size() / 3));
-        });
+      for (int i = 0; i < 2; ++i) peer.Frame(true, [&] { DrawTris(arrays); });
     } else {
       RenderSettings box2;
       box2.aa = AntiAliasing::kBox2;
