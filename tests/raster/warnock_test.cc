@@ -119,5 +119,36 @@ TEST(Warnock, EdgesEndInSmallMixedLeavesThatListWhatReachesThem) {
   }
 }
 
+// A window more than crowded_polygons polygons reach stops at crowded_leaf_size; one that few
+// reach is split down to leaf_size (where its quadrants may still be covered or empty).
+TEST(Warnock, CrowdedWindowsStopAtTheCrowdedLeafSize) {
+  FrameGeometry geometry;
+  geometry.width = geometry.height = 128;
+  // Twenty small triangles in the top-left 64 x 64, one long edge through the bottom half.
+  for (int k = 0; k < 20; ++k) {
+    const double x = 3 + 3 * k, y = 5 + 2.5 * k;
+    geometry.polygons.push_back(Flat({{x, y}, {x + 4, y}, {x, y + 4}}, 2 + k, k));
+  }
+  geometry.polygons.push_back(Flat({{-10, 70}, {140, 100}, {-10, 140}}, 50, 20));
+  const PixelRect window{0, 0, 128, 128};
+  WarnockOptions options;
+  options.leaf_size = 8;
+  options.crowded_leaf_size = 64;
+  const auto leaves = Subdivide(geometry, AntiAliasing::kBox1, window, options);
+  ExpectTiling(leaves, window);
+  bool crowded_leaf = false;
+  for (const LeafWindow& leaf : leaves) {
+    if (leaf.kind != LeafWindow::Kind::kMixed) continue;
+    const int size = std::max(leaf.rect.width(), leaf.rect.height());
+    if (static_cast<int>(leaf.polygons.size()) > options.crowded_polygons) {
+      EXPECT_LE(size, options.crowded_leaf_size);
+      crowded_leaf = crowded_leaf || size == 64;
+    } else {
+      EXPECT_LE(size, options.leaf_size) << leaf.rect.x0 << "," << leaf.rect.y0;
+    }
+  }
+  EXPECT_TRUE(crowded_leaf);  // the crowded corner is one 64 x 64 leaf, not split further
+}
+
 }  // namespace
 }  // namespace aperture

@@ -148,6 +148,22 @@ TEST(FrameRenderer, AMixedLeafAsksTheStopTestRowByRow) {
   EXPECT_EQ(frame.status().code(), absl::StatusCode::kCancelled);
 }
 
+TEST(FrameRenderer, LeafSizesBelowOneAreRefusedByName) {
+  auto scene = BuildScene(MakeTrisScene(10));
+  ASSERT_TRUE(scene.ok());
+  RenderSettings settings = TrilinearSettings(64, 64, 1);
+  settings.warnock.leaf_size = 0;
+  auto frame = RenderFrame(*scene, Camera{}, settings);
+  ASSERT_EQ(frame.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(frame.status().message().find("leaf size"), std::string::npos) << frame.status();
+  settings.warnock.leaf_size = 16;
+  settings.warnock.crowded_leaf_size = -3;
+  frame = RenderFrame(*scene, Camera{}, settings);
+  ASSERT_EQ(frame.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(frame.status().message().find("crowded leaf size"), std::string::npos)
+      << frame.status();
+}
+
 TEST(FrameRenderer, PrecisionFarFromTheOrigin) {
   // DESIGN.md's grazing plane as one 100 km polygon; moving the camera by 2,500 texture periods
   // (10 km along x) must leave the frame unchanged.
