@@ -64,6 +64,13 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
   }
   if (reach_.empty()) return;
   square_ = {-kHalf, -kHalf, kHalf, kHalf};
+  if (reach_.size() == 1) {  // one polygon (most cells of a sparse frame): as Resolve would do
+    const Reach& r = reach_[0];
+    const CellMoments m =
+        r.edges_begin == r.edges_end ? SquareMoments() : PolygonMoments(CutSquare(r), with_moments);
+    if (m.area > 0) out.push_back({r.polygon, m});
+    return;
+  }
   // The test Resolve makes first, on every polygon that reaches the cell: when it holds here it
   // holds for the clipped pieces too, which are these less the empty ones.
   if (const int front =
@@ -81,32 +88,9 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     piece.depth = r.depth;
     piece.full = r.edges_begin == r.edges_end;
     piece.begin = verts_.size();
-    // The cell's square cut by each crossing edge, in two fixed buffers; should a cut not fit
-    // (kClipOverflow), the rest is done in vectors.
-    Vec2* from = clip_buffers_[0];
-    Vec2* to = clip_buffers_[1];
-    from[0] = {-kHalf, -kHalf}, from[1] = {kHalf, -kHalf}, from[2] = {kHalf, kHalf};
-    from[3] = {-kHalf, kHalf};
-    size_t n = 4, k = r.edges_begin;
-    for (; k < r.edges_end && n >= 3; ++k) {
-      const ScreenLinear& e = crossing_[k];
-      const size_t cut = ClipByHalfPlane(from, n, e.a, e.b, e.c, to, kClipBuffer);
-      if (cut == kClipOverflow) break;
-      n = cut;
-      std::swap(from, to);
-    }
-    if (k < r.edges_end && n >= 3) {
-      clip_.assign(from, from + n);
-      for (; k < r.edges_end && !clip_.empty(); ++k) {
-        const ScreenLinear& e = crossing_[k];
-        ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
-      }
-      if (clip_.empty()) continue;
-      verts_.insert(verts_.end(), clip_.begin(), clip_.end());
-    } else {
-      if (n < 3) continue;
-      verts_.insert(verts_.end(), from, from + n);
-    }
+    const std::span<const Vec2> cut = CutSquare(r);
+    if (cut.empty()) continue;
+    verts_.insert(verts_.end(), cut.begin(), cut.end());
     piece.end = verts_.size();
     pieces_.push_back(piece);
   }
@@ -150,6 +134,31 @@ void CellCoverage::DropHiddenByAFullPolygon() {
     if (!hidden) reach_[kept++] = reach_[i];
   }
   reach_.resize(kept);
+}
+
+// The cell's square cut by each of the polygon's crossing edges, in two fixed buffers; should a
+// cut not fit (kClipOverflow), the rest is done in vectors. Empty when under 3 vertices are left.
+std::span<const Vec2> CellCoverage::CutSquare(const Reach& r) {
+  Vec2* from = clip_buffers_[0];
+  Vec2* to = clip_buffers_[1];
+  from[0] = {-kHalf, -kHalf}, from[1] = {kHalf, -kHalf}, from[2] = {kHalf, kHalf};
+  from[3] = {-kHalf, kHalf};
+  size_t n = 4, k = r.edges_begin;
+  for (; k < r.edges_end && n >= 3; ++k) {
+    const ScreenLinear& e = crossing_[k];
+    const size_t cut = ClipByHalfPlane(from, n, e.a, e.b, e.c, to, kClipBuffer);
+    if (cut == kClipOverflow) break;
+    n = cut;
+    std::swap(from, to);
+  }
+  if (n < 3) return {};
+  if (k == r.edges_end) return {from, n};
+  clip_.assign(from, from + n);
+  for (; k < r.edges_end && !clip_.empty(); ++k) {
+    const ScreenLinear& e = crossing_[k];
+    ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
+  }
+  return clip_;
 }
 
 CellMoments CellCoverage::SquareMoments() const {

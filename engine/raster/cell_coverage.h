@@ -97,6 +97,8 @@ class CellCoverage {
     return static_cast<int>(front);
   }
   void DropHiddenByAFullPolygon();  // from reach_
+  struct Reach;
+  std::span<const Vec2> CutSquare(const Reach& r);
   CellMoments MomentsOf(const Piece& p, bool with_moments) const;
   bool Separated(const Piece& a, const Piece& b) const;
   // Every pair of pieces (but piece `skip`) has disjoint interiors.
