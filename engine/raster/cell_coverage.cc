@@ -478,7 +478,7 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
       }
       // The region cut by each of the piece's edges: the part outside an edge is kept, the part
       // inside goes on to the next edge, and what is inside all of them is the piece's visible
-      // part. In the fixed buffers when they hold every cut (each adds at most one vertex).
+      // part.
       auto edge_line = [&](size_t i, double& a, double& b, double& c) {
         const Vec2& p = verts_[piece.begin + i];
         const Vec2& q = verts_[piece.begin + (i + 1) % n];
