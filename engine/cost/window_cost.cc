@@ -23,9 +23,7 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
   for (int index : polygons) {
     const ScreenPolygon& p = geo.polygons[index];
     if (p.max_x <= x0 || p.min_x >= x1 || p.max_y <= y0 || p.min_y >= y1) continue;
-    const bool box_holds = p.min_x <= x0 && p.max_x >= x1 && p.min_y <= y0 && p.max_y >= y1;
-    if (box_holds && p.Contains(x0, y0) && p.Contains(x1, y0) && p.Contains(x1, y1) &&
-        p.Contains(x0, y1)) {
+    if (p.ContainsRect(x0, y0, x1, y1)) {
       ++f.polygons;  // covers the window (the ground): all area, no edges
       f.area += f.pixels;
       continue;

@@ -39,6 +39,12 @@ struct ScreenPolygon {
       if (e.At(x, y) < 0) return false;
     return true;
   }
+  // Holds the whole rectangle [x0, x1] x [y0, y1]: its four corners (convex). Only a polygon
+  // whose box holds the rectangle can, which is tested first.
+  bool ContainsRect(double x0, double y0, double x1, double y1) const {
+    if (min_x > x0 || max_x < x1 || min_y > y0 || max_y < y1) return false;
+    return Contains(x0, y0) && Contains(x1, y0) && Contains(x1, y1) && Contains(x0, y1);
+  }
 };
 
 }  // namespace aperture

@@ -96,11 +96,7 @@ class Subdivider {
     for (int c : inside) {
       const ScreenPolygon& p = geo_.polygons[c];
       if (p.transparent) continue;  // what lies behind it may show through
-      // Only a polygon whose box holds the rectangle can hold its corners.
-      if (p.min_x > r.x0 || p.max_x < r.x1 || p.min_y > r.y0 || p.max_y < r.y1) continue;
-      bool covers = true;
-      for (int k = 0; k < 4 && covers; ++k) covers = p.Contains(xs[k], ys[k]);
-      if (!covers) continue;
+      if (!p.ContainsRect(r.x0, r.y0, r.x1, r.y1)) continue;
       bool front = true;
       for (int o : inside) {
         if (o == c) continue;
