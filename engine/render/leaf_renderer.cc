@@ -23,7 +23,7 @@ bool LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
   return true;
 }
 
-void LeafRenderer::ShadeEntries() {
+void LeafRenderer::ShadeEntries(const PixelRect& r) {
   // The entries grouped by polygon (a counting sort, stable: each polygon's points keep their
   // order), the groups in the order their polygons first appear.
   if (slot_of_.size() < geo_.polygons.size()) slot_of_.assign(geo_.polygons.size(), -1);
@@ -52,112 +52,199 @@ void LeafRenderer::ShadeEntries() {
     const int polygon = entries_[order_[begin]].polygon;
     slot_of_[polygon] = -1;  // ready for the next leaf
     points_.clear();
-    for (size_t i = begin; i < end; ++i) points_.push_back(entries_[order_[i]].point);
+    for (size_t i = begin; i < end; ++i) {
+      const Weighted& entry = entries_[order_[i]];
+      points_.push_back({r.x0 + entry.px + 0.5, r.y0 + entry.py + 0.5});
+    }
     batch_.resize(points_.size());
     shader_.ShadeMany(polygon, points_.data(), static_cast<int>(points_.size()), batch_.data());
     for (size_t i = begin; i < end; ++i) colours_[order_[i]] = batch_[i - begin];
   }
 }
 
+// The leaf's rows are short runs of a large frame, which the hardware prefetcher does not follow:
+// written cold, each line of a mixed leaf's pixels stalls the final pass. Asked for here, they
+// arrive while the leaf's cells are computed.
+void LeafRenderer::PrefetchPixels(const PixelRect& r, Image& image) const {
+  constexpr int kLine = 64;
+  for (int y = r.y0; y < r.y1; ++y) {
+    const char* first = reinterpret_cast<const char*>(&Pixel(image, r.x0, y));
+    const char* last = reinterpret_cast<const char*>(&Pixel(image, r.x1 - 1, y));
+    for (const char* p = first; p <= last; p += kLine) __builtin_prefetch(p, 1, 3);
+    __builtin_prefetch(last, 1, 3);
+  }
+}
+
+std::pair<int, int> LeafRenderer::ReachedPixels(int py, int span, int width) const {
+  int from = width, to = 0;
+  for (int cy = 0; cy <= span; ++cy) {
+    if (reached_from_[py + cy] >= reached_to_[py + cy]) continue;
+    from = std::min(from, std::max(0, reached_from_[py + cy] - span));
+    to = std::max(to, std::min(width, reached_to_[py + cy]));
+  }
+  return from < to ? std::pair(from, to) : std::pair(0, 0);
+}
+
 bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
-  for (int p : leaf.polygons)
+  bool flat = true;
+  for (int p : leaf.polygons) {
     if (geo_.polygons[p].transparent) return RenderMixedTransparent(leaf, image);
+    flat = flat && shader_.IsFlat(p);
+  }
   const PixelRect& r = leaf.rect;
+  PrefetchPixels(r, image);
+  if (!ComputeCells(r, leaf.polygons)) return false;
+  if (flat) {  // each polygon's colour, by its slot
+    if (slot_of_.size() < geo_.polygons.size()) slot_of_.assign(geo_.polygons.size(), -1);
+    flat_colours_.clear();
+    for (int p : leaf.polygons) {
+      slot_of_[p] = static_cast<int>(flat_colours_.size());
+      flat_colours_.push_back(shader_.FlatColour(p));
+    }
+  }
+
+  // Each pixel's polygons and weights (its entries), in the order the colours are summed. A leaf
+  // of flat-coloured polygons finishes each pixel at once; any other keeps every pixel's entries,
+  // shades them in batches by polygon, then sums them.
+  const int span = shape_.cells_per_axis - 1;
+  const Rgba open_sky{sky_.r, sky_.g, sky_.b, PixelAlpha(0, 1)};  // a pixel nothing reaches
+  entries_.clear();
+  if (!flat) pixel_begin_.resize(static_cast<size_t>(r.width()) * r.height() + 1);
+  for (int py = 0; py < r.height(); ++py) {
+    const auto [from, to] = ReachedPixels(py, span, r.width());
+    Rgba* row = &Pixel(image, r.x0, r.y0 + py);
+    size_t* begins = flat ? nullptr : &pixel_begin_[static_cast<size_t>(py) * r.width()];
+    if (flat) {
+      std::fill(row, row + from, open_sky);
+      std::fill(row + to, row + r.width(), open_sky);
+    } else {
+      std::fill(begins, begins + from, entries_.size());
+    }
+    for (int px = from; px < to; ++px) {
+      const size_t first = entries_.size();
+      GatherPixel(px, py);
+      if (!flat) {
+        begins[px] = first;
+        continue;
+      }
+      row[px] =
+          first == entries_.size() ? open_sky : PixelValue(first, entries_.size(), [&](size_t e) {
+            return flat_colours_[slot_of_[entries_[e].polygon]];
+          });
+      entries_.resize(first);
+    }
+    if (!flat) std::fill(begins + to, begins + r.width(), entries_.size());
+  }
+  if (flat) {
+    for (int p : leaf.polygons) slot_of_[p] = -1;  // ready for the next leaf
+    return true;
+  }
+  pixel_begin_.back() = entries_.size();
+
+  ShadeEntries(r);
+  for (int py = 0; py < r.height(); ++py) {
+    Rgba* row = &Pixel(image, r.x0, r.y0 + py);
+    for (int px = 0; px < r.width(); ++px) {
+      const size_t pixel = static_cast<size_t>(py) * r.width() + px;
+      const size_t first = pixel_begin_[pixel], last = pixel_begin_[pixel + 1];
+      row[px] =
+          first == last ? open_sky : PixelValue(first, last, [&](size_t e) { return colours_[e]; });
+    }
+  }
+  return true;
+}
+
+bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygons) {
   const int span = shape_.cells_per_axis - 1;  // extra cells beyond the pixels
-  const int nx = r.width() + span, ny = r.height() + span;
+  nx_ = r.width() + span;
+  const int ny = r.height() + span;
   pieces_.clear();
-  cell_begin_.assign(static_cast<size_t>(nx) * ny + 1, 0);
-  bins_.Build(geo_.polygons, leaf.polygons, r.x0, r.y0, shape_.cell_offset, nx, ny);
+  cell_begin_.assign(static_cast<size_t>(nx_) * ny + 1, 0);
+  reached_from_.assign(ny, nx_);
+  reached_to_.assign(ny, 0);
+  bins_.Build(geo_.polygons, polygons, r.x0, r.y0, shape_.cell_offset, nx_, ny);
   for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      cell_begin_[static_cast<size_t>(j) * nx + i] = pieces_.size();
+    for (int i = 0; i < nx_; ++i) {
+      const size_t before = pieces_.size();
+      cell_begin_[static_cast<size_t>(j) * nx_ + i] = before;
       if (bins_.Cell(i, j).empty()) continue;  // nothing reaches it (most of a sparse frame)
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;
       const double cy = r.y0 + j + shape_.cell_offset + 0.5;
       coverage_.Compute(geo_.polygons, bins_.Cell(i, j), cx, cy, shape_.needs_moments, pieces_);
       if (coverage_.Stopped()) return false;
+      if (pieces_.size() > before) {
+        reached_from_[j] = std::min(reached_from_[j], i);
+        reached_to_[j] = i + 1;
+      }
     }
     if (stop_ && stop_()) return false;
   }
   cell_begin_.back() = pieces_.size();
+  return true;
+}
 
-  // Each pixel's polygons and weights, in the order the colours are summed.
-  entries_.clear();
-  pixel_begin_.resize(static_cast<size_t>(r.width()) * r.height() + 1);
+void LeafRenderer::GatherPixel(int px, int py) {
+  const int span = shape_.cells_per_axis - 1;
+  const size_t nx = nx_;
   // A box filter's weight is the area times a constant (CellWeight's, the same product).
   const bool box = !shape_.needs_moments;
   const double box_scale = CellWeight(aa_, {1, 0, 0, 0}, 0, 0);
-  for (int py = 0; py < r.height(); ++py) {
-    for (int px = 0; px < r.width(); ++px) {
-      const size_t first = entries_.size();
-      pixel_begin_[static_cast<size_t>(py) * r.width() + px] = first;
-      if (span == 0 && box) {  // box1: the pixel's one cell, whose pieces are distinct polygons
-        const size_t cell = static_cast<size_t>(py) * nx + px;
-        for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k)
-          entries_.push_back({pieces_[k].polygon,
-                              box_scale * pieces_[k].moments.area,
-                              {r.x0 + px + 0.5, r.y0 + py + 0.5}});
-        continue;
-      }
-      // A pixel's pieces are few but for crowded cells (a whole scene in one pixel), whose
-      // polygons are found through a map rather than by a scan of the pixel's entries.
-      size_t pieces = 0;
-      for (int cy = 0; cy <= span; ++cy) {
-        const size_t row = static_cast<size_t>(py + cy) * nx + px;
-        pieces += cell_begin_[row + span + 1] - cell_begin_[row];
-      }
-      if (pieces == 0) continue;  // the sky
-      const bool crowded = pieces > kCrowdedPixelPieces;
-      if (crowded) pixel_entry_.clear();
-      for (int cy = 0; cy <= span; ++cy) {
-        for (int cx = 0; cx <= span; ++cx) {
-          const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
-          for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
-            const double w = box ? box_scale * pieces_[k].moments.area
-                                 : CellWeight(aa_, pieces_[k].moments, cx, cy);
-            const int polygon = pieces_[k].polygon;
-            size_t e = first;
-            if (crowded) {
-              e = pixel_entry_.try_emplace(polygon, entries_.size()).first->second;
-            } else {
-              while (e < entries_.size() && entries_[e].polygon != polygon) ++e;
-            }
-            if (e < entries_.size())
-              entries_[e].weight += w;
-            else
-              entries_.push_back({polygon, w, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
-          }
+  if (span == 0 && box) {  // box1: the pixel's one cell, whose pieces are distinct polygons
+    const size_t cell = static_cast<size_t>(py) * nx + px;
+    for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k)
+      entries_.push_back({pieces_[k].polygon, Coordinate(px), Coordinate(py),
+                          box_scale * pieces_[k].moments.area});
+    return;
+  }
+  size_t pieces = 0;
+  for (int cy = 0; cy <= span; ++cy) {
+    const size_t row = static_cast<size_t>(py + cy) * nx + px;
+    pieces += cell_begin_[row + span + 1] - cell_begin_[row];
+  }
+  if (pieces == 0) return;  // the sky
+  if (pieces == 4 && span == 1 && box) {
+    // Most pixels of a box2 leaf: each of the four cells holds one piece, of one polygon
+    // (inside it, or beside an edge to the sky). The sum is the general loop's, in its order.
+    const size_t c00 = static_cast<size_t>(py) * nx + px, c01 = c00 + nx;
+    const size_t k00 = cell_begin_[c00], k10 = cell_begin_[c00 + 1];
+    const size_t k01 = cell_begin_[c01], k11 = cell_begin_[c01 + 1];
+    const int polygon = pieces_[k00].polygon;
+    if (k10 - k00 == 1 && cell_begin_[c00 + 2] - k10 == 1 && k11 - k01 == 1 &&
+        pieces_[k10].polygon == polygon && pieces_[k01].polygon == polygon &&
+        pieces_[k11].polygon == polygon) {
+      double w = box_scale * pieces_[k00].moments.area;
+      w += box_scale * pieces_[k10].moments.area;
+      w += box_scale * pieces_[k01].moments.area;
+      w += box_scale * pieces_[k11].moments.area;
+      entries_.push_back({polygon, Coordinate(px), Coordinate(py), w});
+      return;
+    }
+  }
+  // A pixel's pieces are few but for crowded cells (a whole scene in one pixel), whose
+  // polygons are found through a map rather than by a scan of the pixel's entries.
+  const size_t first = entries_.size();
+  const bool crowded = pieces > kCrowdedPixelPieces;
+  if (crowded) pixel_entry_.clear();
+  for (int cy = 0; cy <= span; ++cy) {
+    for (int cx = 0; cx <= span; ++cx) {
+      const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
+      for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
+        const double w =
+            box ? box_scale * pieces_[k].moments.area : CellWeight(aa_, pieces_[k].moments, cx, cy);
+        const int polygon = pieces_[k].polygon;
+        size_t e = first;
+        if (crowded) {
+          e = pixel_entry_.try_emplace(polygon, entries_.size()).first->second;
+        } else {
+          while (e < entries_.size() && entries_[e].polygon != polygon) ++e;
         }
+        if (e < entries_.size())
+          entries_[e].weight += w;
+        else
+          entries_.push_back({polygon, Coordinate(px), Coordinate(py), w});
       }
     }
   }
-  pixel_begin_.back() = entries_.size();
-
-  ShadeEntries();
-
-  const Rgba open_sky{sky_.r, sky_.g, sky_.b, PixelAlpha(0, 1)};  // a pixel nothing reaches
-  for (int py = 0; py < r.height(); ++py) {
-    Rgba* row = &Pixel(image, r.x0, r.y0 + py);
-    for (int px = 0; px < r.width(); ++px) {
-      const size_t pixel = static_cast<size_t>(py) * r.width() + px;
-      if (pixel_begin_[pixel] == pixel_begin_[pixel + 1]) {
-        row[px] = open_sky;
-        continue;
-      }
-      float r_sum = 0, g_sum = 0, b_sum = 0;
-      double total = 0;
-      for (size_t e = pixel_begin_[pixel]; e < pixel_begin_[pixel + 1]; ++e) {
-        const Rgba& c = colours_[e];
-        const float w = static_cast<float>(entries_[e].weight);
-        r_sum += c.r * w, g_sum += c.g * w, b_sum += c.b * w;
-        total += entries_[e].weight;
-      }
-      const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
-      row[px] = {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w, b_sum + sky_.b * sky_w,
-                 PixelAlpha(total, sky_w)};
-    }
-  }
-  return true;
 }
 
 void LeafRenderer::TransparentLayers(const LeafWindow& leaf, double cx, double cy) {
@@ -209,7 +296,7 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
         pixel_entry_.clear();
         auto add = [&](int polygon) {
           if (pixel_entry_.try_emplace(polygon, entries_.size()).second)
-            entries_.push_back({polygon, 0, {r.x0 + px + 0.5, r.y0 + py + 0.5}});
+            entries_.push_back({polygon, Coordinate(px), Coordinate(py), 0});
         };
         for (int cy = 0; cy <= span; ++cy) {
           for (int cx = 0; cx <= span; ++cx) {
@@ -233,7 +320,7 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
   // visibility passes: a cell under MASK layers alone needs at most one pass per pixel it feeds,
   // not 2^k. The passes left out would have weighed 0 everywhere: the pixels are unchanged.
   collect_entries(false);
-  ShadeEntries();
+  ShadeEntries(r);
   needed_.assign(cells, 0);
   for (int py = 0; py < r.height(); ++py) {
     for (int px = 0; px < r.width(); ++px) {
@@ -288,7 +375,7 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
 
   // Every polygon a pixel needs the colour and alpha of: its cells' pieces and layers.
   collect_entries(true);
-  ShadeEntries();
+  ShadeEntries(r);
 
   for (int py = 0; py < r.height(); ++py) {
     for (int px = 0; px < r.width(); ++px) {

@@ -1,7 +1,11 @@
 // Renders one Warnock leaf window into the frame.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
 #include <functional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -33,9 +37,34 @@ class LeafRenderer {
 
  private:
   bool RenderMixed(const LeafWindow& leaf, Image& image);
+  // The visible pieces of every cell of the leaf (pieces_, cell_begin_, reached_from_/to_).
+  // False when the stop test cut it short.
+  bool ComputeCells(const PixelRect& r, std::span<const int> polygons);
+  // Appends pixel (px, py)'s entries (one per polygon its aperture's cells hold) to entries_.
+  void GatherPixel(int px, int py);
+  // The pixel's value from its entries [first, last) with their colours: the weighted colours
+  // (summed in float, in the entries' order), the sky in what they leave uncovered.
+  template <typename ColourOf>
+  Rgba PixelValue(size_t first, size_t last, ColourOf colour_of) const {
+    float r_sum = 0, g_sum = 0, b_sum = 0;
+    double total = 0;
+    for (size_t e = first; e < last; ++e) {
+      const Rgba c = colour_of(e);
+      const float w = static_cast<float>(entries_[e].weight);
+      r_sum += c.r * w, g_sum += c.g * w, b_sum += c.b * w;
+      total += entries_[e].weight;
+    }
+    const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
+    return {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w, b_sum + sky_.b * sky_w,
+            PixelAlpha(total, sky_w)};
+  }
+  void PrefetchPixels(const PixelRect& r, Image& image) const;
+  // The pixels [from, to) of the leaf's row py whose cells hold any piece (the rest are sky, most
+  // of a sparse frame's mixed leaves, and skip the entries), from reached_from_/reached_to_.
+  std::pair<int, int> ReachedPixels(int py, int span, int width) const;
   // Shades every entry's point into colours_, each polygon's points in one batch (the texture
   // filters sample batches faster).
-  void ShadeEntries();
+  void ShadeEntries(const PixelRect& r);
   // A mixed leaf with MASK or BLEND polygons (ScreenPolygon::transparent), composited exactly.
   bool RenderMixedTransparent(const LeafWindow& leaf, Image& image);
   // The transparent polygons of `leaf` that reach the cell centred at (cx, cy), nearest at its
@@ -63,12 +92,17 @@ class LeafRenderer {
   std::function<bool()> stop_;
   CellBins bins_;  // the leaf's polygons by cell
   std::vector<CellPiece> pieces_;
+  int nx_ = 0;  // cells per row of the leaf being rendered
   std::vector<size_t> cell_begin_;
+  std::vector<int> reached_from_, reached_to_;  // per row of cells: its first, last + 1 with pieces
+  // A polygon's weight in one pixel of the leaf, (px, py) from the leaf's top-left corner (the
+  // renderer refuses frames over kMaxImageSide = 16384 a side): 16 bytes.
   struct Weighted {
     int polygon;
+    uint16_t px, py;
     double weight;
-    Vec2 point;  // the pixel centre
   };
+  static uint16_t Coordinate(int leaf_offset) { return static_cast<uint16_t>(leaf_offset); }
   absl::flat_hash_map<int, size_t> pixel_entry_;  // polygon -> its entry, in a crowded pixel
   std::vector<Weighted> entries_;                 // of every pixel of the leaf, row by row
   std::vector<size_t> pixel_begin_;  // pixel i's entries: [pixel_begin_[i], pixel_begin_[i + 1])
@@ -78,6 +112,7 @@ class LeafRenderer {
   std::vector<int> slot_of_;         // per polygon of the frame: its group in this leaf, or -1
   std::vector<Vec2> points_;
   std::vector<Rgba> batch_, colours_;
+  std::vector<Rgba> flat_colours_;  // a flat leaf's polygons' colours, by slot_of_
   // The transparent path's passes: a cell's passes are passes_[cell_begin_[c], cell_begin_[c + 1])
   // (its pieces each pass's [begin, end) of pieces_); bit j of `included` says whether the cell's
   // layer j took part. Its layers are cell_layers_[layer_begin_[c], layer_begin_[c + 1]).

@@ -32,6 +32,16 @@ class PolygonShader {
   void ShadeRow(int index, double x0, double y, int count, Rgba* out) const;
   // out[i] = Shade(index, points[i].x, points[i].y) for i < count, likewise batched.
   void ShadeMany(int index, const Vec2* points, int count, Rgba* out) const;
+  // Whether polygon `index` has one colour all over (untextured, no fog): then Shade gives
+  // FlatColour(index) at every point, bit for bit, and a renderer may skip the batches.
+  bool IsFlat(int index) const {
+    return !(scene_.fog_density > 0) &&
+           materials_[geo_.polygons[index].material].sampler == nullptr;
+  }
+  Rgba FlatColour(int index) const {
+    const ScreenPolygon& p = geo_.polygons[index];
+    return Finish(p, materials_[p.material].base, 0, 0, 0);
+  }
 
  private:
   double InvDepth(int index, double x, double y) const;
