@@ -66,6 +66,12 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
   square_ = {-kHalf, -kHalf, kHalf, kHalf};
   if (reach_.size() == 1) {  // one polygon (most cells of a sparse frame): as Resolve would do
     const Reach& r = reach_[0];
+    if (!with_moments && r.edges_end - r.edges_begin == 1) {  // one edge: its area in closed form
+      const ScreenLinear& e = crossing_[r.edges_begin];
+      const double area = HalfPlaneCellArea(e.a, e.b, e.c);
+      if (area > 0) out.push_back({r.polygon, {area, 0, 0, 0}});
+      return;
+    }
     const CellMoments m =
         r.edges_begin == r.edges_end ? SquareMoments() : PolygonMoments(CutSquare(r), with_moments);
     if (m.area > 0) out.push_back({r.polygon, m});
