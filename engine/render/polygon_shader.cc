@@ -1,5 +1,8 @@
 #include "render/polygon_shader.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -23,12 +26,16 @@ PolygonShader::PolygonShader(const Scene& scene, const FrameGeometry& geometry,
     }
     materials_.push_back(state);
   }
-  min_inv_depth_.reserve(geometry.polygons.size());
-  for (const ScreenPolygon& p : geometry.polygons) {
-    double w = INFINITY;
-    for (const Vec2& v : p.vertices) w = std::min(w, p.inv_depth.At(v.x, v.y));
-    min_inv_depth_.push_back(w);
-  }
+  min_inv_depth_.resize(geometry.polygons.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, geometry.polygons.size(), 4096),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      for (size_t i = range.begin(); i < range.end(); ++i) {
+                        const ScreenPolygon& p = geometry.polygons[i];
+                        double w = INFINITY;
+                        for (const Vec2& v : p.vertices) w = std::min(w, p.inv_depth.At(v.x, v.y));
+                        min_inv_depth_[i] = w;
+                      }
+                    });
 }
 
 double PolygonShader::InvDepth(int index, double x, double y) const {
