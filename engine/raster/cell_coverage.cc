@@ -34,7 +34,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
   // polygon in front of all the others is then answered without clipping any of them.
   stopped_ = false;
   reach_.clear();
-  crossing_.clear();
+  size_t crossings = 0;  // crossing_[0, crossings) are used
   for (int index : candidates) {
     const ScreenPolygon& sp = polygons[index];
     if (sp.max_x <= cx - kHalf || sp.min_x >= cx + kHalf || sp.max_y <= cy - kHalf ||
@@ -42,25 +42,24 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
       continue;
     // Over the cell each edge function ranges over e(centre) +- r: the cell is outside the
     // polygon when one edge is negative all over it, inside when all are non-negative; only
-    // the edges that cross the cell clip it.
+    // the edges that cross the cell clip it. Branch-free: every edge is written and the count
+    // advances past those that cross (which edges cross varies from cell to cell).
+    if (crossing_.size() < crossings + sp.edges.size())
+      crossing_.resize(2 * (crossings + sp.edges.size()));
     bool outside = false;
-    const size_t first_edge = crossing_.size();
+    const size_t first_edge = crossings;
     for (const ScreenLinear& e : sp.edges) {
       const double d = e.At(cx, cy), r = kHalf * (std::abs(e.a) + std::abs(e.b));
-      if (d + r <= 0) {
-        outside = true;
-        break;
-      }
-      if (d - r < 0) crossing_.push_back({e.a, e.b, d});
+      outside |= d + r <= 0;
+      crossing_[crossings] = {e.a, e.b, d};
+      crossings += d - r < 0;
     }
     if (outside) {
-      crossing_.resize(first_edge);
+      crossings = first_edge;
       continue;
     }
-    reach_.push_back({index,
-                      {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)},
-                      first_edge,
-                      crossing_.size()});
+    reach_.push_back(
+        {index, {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)}, first_edge, crossings});
   }
   if (reach_.empty()) return;
   square_ = {-kHalf, -kHalf, kHalf, kHalf};
