@@ -467,6 +467,20 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
       regions_b_.push_back({pool_b_.size(), pool_b_.size() + region.size()});
       pool_b_.insert(pool_b_.end(), region.begin(), region.end());
     };
+    // The lines of the piece's edges that cut the square's inside (not those on its border, nor
+    // repeated vertices), once for all regions.
+    lines_.clear();
+    for (size_t i = 0; i < n; ++i) {
+      const Vec2& p = verts_[piece.begin + i];
+      const Vec2& q = verts_[piece.begin + (i + 1 == n ? 0 : i + 1)];
+      if ((p.x == q.x && (p.x == square_.x0 || p.x == square_.x1)) ||
+          (p.y == q.y && (p.y == square_.y0 || p.y == square_.y1)))
+        continue;  // on the square's border: cuts nothing inside
+      const double a = -(q.y - p.y), b = q.x - p.x;
+      if (a == 0 && b == 0) continue;
+      lines_.push_back({a, b, -(a * p.x + b * p.y)});
+    }
+    const size_t lines = lines_.size();
     for (const auto& [begin, end] : regions_a_) {
       const std::span<const Vec2> region(pool_a_.data() + begin, end - begin);
       // A region beside the piece's bounding box stays whole: cutting it along the lines of the
@@ -483,20 +497,8 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
       }
       // The region cut by each of the piece's edges: the part outside an edge is kept, the part
       // inside goes on to the next edge, and what is inside all of them is the piece's visible
-      // part.
-      auto edge_line = [&](size_t i, double& a, double& b, double& c) {
-        const Vec2& p = verts_[piece.begin + i];
-        const Vec2& q = verts_[piece.begin + (i + 1) % n];
-        if ((p.x == q.x && (p.x == square_.x0 || p.x == square_.x1)) ||
-            (p.y == q.y && (p.y == square_.y0 || p.y == square_.y1)))
-          return false;  // on the square's border: cuts nothing inside
-        a = -(q.y - p.y), b = q.x - p.x;
-        if (a == 0 && b == 0) return false;
-        c = -(a * p.x + b * p.y);
-        return true;
-      };
-      // In the fixed buffers while the cuts fit; from the edge where one would not
-      // (kClipOverflow), in vectors.
+      // part. In the fixed buffers while the cuts fit; from the edge where one would not, in
+      // vectors.
       size_t i = 0;
       if (region.size() + 2 <= kClipBuffer) {
         Vec2* inside = clip_buffers_[0];
@@ -504,21 +506,19 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
         Vec2* outside = clip_buffers_[2];
         std::copy(region.begin(), region.end(), inside);
         size_t count = region.size();
-        for (; i < n && count >= 3; ++i) {
-          double a, b, c;
-          if (!edge_line(i, a, b, c)) continue;
-          const size_t out_count = ClipByHalfPlane(inside, count, -a, -b, -c, outside, kClipBuffer);
-          const size_t in_count = out_count == kClipOverflow
-                                      ? kClipOverflow
-                                      : ClipByHalfPlane(inside, count, a, b, c, next, kClipBuffer);
-          if (in_count == kClipOverflow) break;
+        for (; i < lines && count >= 3; ++i) {
+          const ScreenLinear& e = lines_[i];
+          size_t in_count, out_count;
+          if (!SplitByLine(inside, count, e.a, e.b, e.c, next, in_count, outside, out_count,
+                           kClipBuffer))
+            break;
           // A sliver of no area (a vertex on the line) is nothing left to paint.
           const std::span<const Vec2> outside_part(outside, out_count);
           if (out_count >= 3 && PolygonMoments(outside_part, false).area > 0) keep(outside_part);
           count = in_count;
           std::swap(inside, next);
         }
-        if (i == n || count < 3) {
+        if (i == lines || count < 3) {
           if (count >= 3) Accumulate(visible, PolygonMoments({inside, count}, with_moments));
           continue;
         }
@@ -526,13 +526,12 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
       } else {
         clip_.assign(region.begin(), region.end());
       }
-      for (; i < n && !clip_.empty(); ++i) {
-        double a, b, c;
-        if (!edge_line(i, a, b, c)) continue;
+      for (; i < lines && !clip_.empty(); ++i) {
+        const ScreenLinear& e = lines_[i];
         outside_.assign(clip_.begin(), clip_.end());
-        ClipByHalfPlane(outside_, -a, -b, -c, scratch_);
+        ClipByHalfPlane(outside_, -e.a, -e.b, -e.c, scratch_);
         if (outside_.size() >= 3 && PolygonMoments(outside_, false).area > 0) keep(outside_);
-        ClipByHalfPlane(clip_, a, b, c, scratch_);
+        ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
       }
       if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
     }

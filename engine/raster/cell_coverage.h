@@ -130,6 +130,7 @@ class CellCoverage {
   static constexpr size_t kClipBuffer = 64;
   Vec2 clip_buffers_[3][kClipBuffer];  // a piece being cut to the cell, a region being painted
   std::vector<ScreenLinear> crossing_;
+  std::vector<ScreenLinear> lines_;  // the painted piece's edges that cut the square
   std::vector<uint8_t> in_front_;
   std::vector<size_t> blockers_;
   std::vector<double> nearest_, farthest_;  // each piece's inverse-depth range over itself

@@ -38,6 +38,36 @@ inline size_t ClipByHalfPlane(const Vec2* in, size_t n, double a, double b, doub
   return count;
 }
 
+// Both sides of in[0, n) cut by the line a x + b y + c = 0, in one pass: `inside` gets what
+// ClipByHalfPlane(in, n, a, b, c, ...) gives and `outside` what ClipByHalfPlane(in, n, -a, -b,
+// -c, ...) gives, bit for bit (negation is exact, so the second's values, crossings and divisions
+// are the first's negated, and the crossing points the same). Each has room for `capacity`
+// vertices; false (counts undefined) when one might not fit.
+inline bool SplitByLine(const Vec2* in, size_t n, double a, double b, double c, Vec2* inside,
+                        size_t& in_count, Vec2* outside, size_t& out_count, size_t capacity) {
+  in_count = out_count = 0;
+  if (n == 0) return true;
+  double dp = a * in[0].x + b * in[0].y + c;
+  for (size_t i = 0; i < n; ++i) {
+    if (in_count + 2 > capacity || out_count + 2 > capacity) return false;
+    const Vec2& p = in[i];
+    const Vec2& q = in[i + 1 == n ? 0 : i + 1];
+    const double dq = a * q.x + b * q.y + c;
+    const double t = dp / (dp - dq);  // unused (maybe not finite) unless the edge crosses
+    const Vec2 cross{p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t};
+    inside[in_count] = p;
+    in_count += dp >= 0;
+    inside[in_count] = cross;
+    in_count += (dp >= 0) != (dq >= 0);
+    outside[out_count] = p;
+    out_count += dp <= 0;
+    outside[out_count] = cross;
+    out_count += (dp <= 0) != (dq <= 0);
+    dp = dq;
+  }
+  return true;
+}
+
 // Keeps the part where a x + b y + c >= 0 (emptied when fewer than 3 vertices are left).
 void ClipByHalfPlane(std::vector<Vec2>& polygon, double a, double b, double c,
                      std::vector<Vec2>& scratch);

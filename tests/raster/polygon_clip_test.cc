@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace aperture {
 namespace {
@@ -75,6 +78,53 @@ TEST(PolygonClip, APlaneCutsA3DPolygon) {
     EXPECT_LE(v.z, -2 + 1e-15);
     EXPECT_GE(v.z, -3 - 1e-15);
   }
+}
+
+}  // namespace
+}  // namespace aperture
+
+namespace aperture {
+namespace {
+
+// The painter's one-pass split gives each side exactly what the clip by the line and by its
+// negation give, vertices on the line and all (they go to both sides).
+TEST(PolygonClip, SplitByLineGivesBothClipsBitForBit) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> coordinate(-0.5, 0.5), angle(0, 6.283185307179586);
+  std::uniform_int_distribution<int> pick(0, 7);
+  int split = 0;
+  for (int round = 0; round < 5000; ++round) {
+    // A convex polygon: points on a circle, in order; some on a grid, so that lines through
+    // them put vertices exactly on the line.
+    std::vector<double> angles(3 + pick(rng));
+    for (double& a : angles) a = angle(rng);
+    std::sort(angles.begin(), angles.end());
+    std::vector<Vec2> polygon;
+    for (double a : angles) polygon.push_back({0.4 * std::cos(a), 0.4 * std::sin(a)});
+    if (pick(rng) == 0) polygon = {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+    double a = std::cos(angle(rng)), b = std::sin(angle(rng)), c = coordinate(rng);
+    if (pick(rng) < 2) {  // through a vertex
+      const Vec2& v = polygon[pick(rng) % polygon.size()];
+      c = -(a * v.x + b * v.y);
+    }
+    if (pick(rng) == 0) a = 1, b = 0, c = -polygon[0].x;  // axis-parallel, through a vertex
+    Vec2 inside[64], outside[64], expect_in[64], expect_out[64];
+    size_t in_count = 0, out_count = 0;
+    ASSERT_TRUE(SplitByLine(polygon.data(), polygon.size(), a, b, c, inside, in_count, outside,
+                            out_count, 64));
+    const size_t expect_in_count =
+        ClipByHalfPlane(polygon.data(), polygon.size(), a, b, c, expect_in, 64);
+    const size_t expect_out_count =
+        ClipByHalfPlane(polygon.data(), polygon.size(), -a, -b, -c, expect_out, 64);
+    ASSERT_EQ(in_count, expect_in_count) << round;
+    ASSERT_EQ(out_count, expect_out_count) << round;
+    for (size_t k = 0; k < in_count; ++k)
+      ASSERT_TRUE(inside[k].x == expect_in[k].x && inside[k].y == expect_in[k].y) << round;
+    for (size_t k = 0; k < out_count; ++k)
+      ASSERT_TRUE(outside[k].x == expect_out[k].x && outside[k].y == expect_out[k].y) << round;
+    split += in_count >= 3 && out_count >= 3;
+  }
+  EXPECT_GT(split, 1000);  // most lines cut the polygon
 }
 
 }  // namespace
