@@ -220,11 +220,34 @@ void LeafRenderer::GatherPixel(int px, int py) {
       return;
     }
   }
-  // A pixel's pieces are few but for crowded cells (a whole scene in one pixel), whose
-  // polygons are found through a map rather than by a scan of the pixel's entries.
-  const size_t first = entries_.size();
-  const bool crowded = pieces > kCrowdedPixelPieces;
-  if (crowded) pixel_entry_.clear();
+  // A pixel's pieces are few but for crowded cells (a whole scene in one pixel).
+  if (pieces <= kCrowdedPixelPieces) {
+    // Merged in a local array without branches on the data (which polygon repeats varies from
+    // pixel to pixel): each piece takes a new slot, or the slot of its polygon when it has one;
+    // a new slot's weight starts at 0, and 0 + w is w, so the sums are the same as adding to a
+    // found entry.
+    Weighted merged[kCrowdedPixelPieces];
+    size_t count = 0;
+    for (int cy = 0; cy <= span; ++cy) {
+      for (int cx = 0; cx <= span; ++cx) {
+        const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
+        for (size_t k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
+          const double w = box ? box_scale * pieces_[k].moments.area
+                               : CellWeight(aa_, pieces_[k].moments, cx, cy);
+          const int polygon = pieces_[k].polygon;
+          merged[count] = {polygon, Coordinate(px), Coordinate(py), 0};
+          size_t e = count;
+          for (size_t j = 0; j < count; ++j) e = merged[j].polygon == polygon ? j : e;
+          merged[e].weight += w;
+          count += e == count;
+        }
+      }
+    }
+    entries_.insert(entries_.end(), merged, merged + count);
+    return;
+  }
+  // A crowded pixel: its polygons found through a map.
+  pixel_entry_.clear();
   for (int cy = 0; cy <= span; ++cy) {
     for (int cx = 0; cx <= span; ++cx) {
       const size_t cell = static_cast<size_t>(py + cy) * nx + (px + cx);
@@ -232,16 +255,11 @@ void LeafRenderer::GatherPixel(int px, int py) {
         const double w =
             box ? box_scale * pieces_[k].moments.area : CellWeight(aa_, pieces_[k].moments, cx, cy);
         const int polygon = pieces_[k].polygon;
-        size_t e = first;
-        if (crowded) {
-          e = pixel_entry_.try_emplace(polygon, entries_.size()).first->second;
-        } else {
-          while (e < entries_.size() && entries_[e].polygon != polygon) ++e;
-        }
-        if (e < entries_.size())
-          entries_[e].weight += w;
-        else
+        const auto [it, added] = pixel_entry_.try_emplace(polygon, entries_.size());
+        if (added)
           entries_.push_back({polygon, Coordinate(px), Coordinate(py), w});
+        else
+          entries_[it->second].weight += w;
       }
     }
   }
