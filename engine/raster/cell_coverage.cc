@@ -305,7 +305,7 @@ void CellCoverage::Subdivide(int depth, bool with_moments, std::vector<CellPiece
           sub.full = x0 <= q.x0 && x1 >= q.x1 && y0 <= q.y0 && y1 >= q.y1;
           for (size_t i = 0; i < pv.size() && sub.full; ++i) {
             const Vec2& a = pv[i];
-            const Vec2& b = pv[(i + 1) % pv.size()];
+            const Vec2& b = pv[i + 1 == pv.size() ? 0 : i + 1];
             for (const Vec2& k : corners)
               sub.full = sub.full && (b.x - a.x) * (k.y - a.y) - (b.y - a.y) * (k.x - a.x) >= 0;
           }
@@ -354,7 +354,7 @@ void CellCoverage::FrontAtCentre(std::vector<CellPiece>& out) {
     const size_t n = p.end - p.begin;
     for (size_t i = 0; i < n && inside && !p.full; ++i) {
       const Vec2& a = verts_[p.begin + i];
-      const Vec2& b = verts_[p.begin + (i + 1) % n];
+      const Vec2& b = verts_[p.begin + (i + 1 == n ? 0 : i + 1)];
       inside = (b.x - a.x) * (yc - a.y) - (b.y - a.y) * (xc - a.x) >= 0;
     }
     if (inside && (front < 0 || p.depth.At(xc, yc) > best))
@@ -593,7 +593,7 @@ bool CellCoverage::Separated(const Piece& a, const Piece& b) const {
     const size_t n = edges.end - edges.begin;
     for (size_t i = 0; i < n; ++i) {
       const Vec2& p = verts_[edges.begin + i];
-      const Vec2& q = verts_[edges.begin + (i + 1) % n];
+      const Vec2& q = verts_[edges.begin + (i + 1 == n ? 0 : i + 1)];
       const double ex = q.x - p.x, ey = q.y - p.y;
       const double tol = kEps * (std::abs(ex) + std::abs(ey));
       if (tol == 0) continue;  // clipping can repeat a vertex: a zero-length edge separates nothing
@@ -629,7 +629,7 @@ void CellCoverage::AddDepthEqualityLine(const Piece& a, const Piece& b) {
     const size_t n = piece->end - piece->begin;
     for (size_t i = 0; i < n; ++i) {
       const Vec2& e0 = verts_[piece->begin + i];
-      const Vec2& e1 = verts_[piece->begin + (i + 1) % n];
+      const Vec2& e1 = verts_[piece->begin + (i + 1 == n ? 0 : i + 1)];
       // Inside of a counter-clockwise edge: cross(e1 - e0, v - e0) >= 0.
       const double ea = -(e1.y - e0.y), eb = e1.x - e0.x;
       const double ec = -(ea * e0.x + eb * e0.y);
@@ -655,7 +655,7 @@ void CellCoverage::Decompose(bool with_moments, std::vector<CellPiece>& out) {
     const size_t n = p.end - p.begin;
     for (size_t i = 0; i < n; ++i) {
       const Vec2& a = verts_[p.begin + i];
-      const Vec2& b = verts_[p.begin + (i + 1) % n];
+      const Vec2& b = verts_[p.begin + (i + 1 == n ? 0 : i + 1)];
       breaks_.push_back(a.y);
       if (a.y == b.y) continue;
       if (a.y < b.y)

@@ -22,7 +22,7 @@ void ScreenPolygon::Finalize() {
   edges.clear();
   for (size_t i = 0, n = vertices.size(); i < n; ++i) {
     const Vec2& p = vertices[i];
-    const Vec2& q = vertices[(i + 1) % n];
+    const Vec2& q = vertices[i + 1 == n ? 0 : i + 1];
     const double dx = q.x - p.x, dy = q.y - p.y;
     edges.push_back({-dy, dx, dy * p.x - dx * p.y});
   }

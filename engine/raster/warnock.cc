@@ -31,7 +31,7 @@ bool PolygonOverlapsRect(const ScreenPolygon& p, double x0, double y0, double x1
   const size_t n = p.vertices.size();
   for (size_t i = 0; i < n; ++i) {
     const Vec2& a = p.vertices[i];
-    const Vec2& b = p.vertices[(i + 1) % n];
+    const Vec2& b = p.vertices[i + 1 == n ? 0 : i + 1];
     const double ex = b.x - a.x, ey = b.y - a.y;
     auto inside = [&](double x, double y) { return ex * (y - a.y) - ey * (x - a.x) > 0; };
     if (!inside(r.x0, r.y0) && !inside(r.x1, r.y0) && !inside(r.x1, r.y1) && !inside(r.x0, r.y1))
