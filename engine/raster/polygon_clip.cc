@@ -5,11 +5,15 @@ namespace {
 
 template <typename Point, typename Distance>
 void ClipGeneric(std::vector<Point>& poly, Distance dist, std::vector<Point>& out) {
-  out.clear();
   const size_t n = poly.size();
+  // Wholly inside (most polygons against most planes): the clip would copy every vertex as it is.
+  bool inside = true;
+  for (size_t i = 0; i < n; ++i) inside &= dist(poly[i]) >= 0;
+  if (inside && n >= 3) return;
+  out.clear();
   for (size_t i = 0; i < n; ++i) {
     const Point& p = poly[i];
-    const Point& q = poly[(i + 1) % n];
+    const Point& q = poly[i + 1 == n ? 0 : i + 1];
     const double dp = dist(p), dq = dist(q);
     if (dp >= 0) out.push_back(p);
     if ((dp >= 0) != (dq >= 0)) {
