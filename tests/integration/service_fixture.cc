@@ -49,7 +49,7 @@ void ServiceTest::StartServer(const std::vector<std::string>& args) {
 
 namespace {
 
-// 12000 short thin triangles spread evenly over the view at many angles: every window is mixed,
+// 24000 short thin triangles spread evenly over the view at many angles: every window is mixed,
 // the cost is even over the frame, so a frame takes seconds but each of its tasks much less.
 v1::Scene SliverScene() {
   v1::Scene scene;
@@ -64,7 +64,7 @@ v1::Scene SliverScene() {
   }
   v1::Mesh& mesh = *scene.add_meshes();
   mesh.set_id("slivers");
-  constexpr int kTriangles = 12000;
+  constexpr int kTriangles = 24000;
   for (int i = 0; i < kTriangles; ++i) {
     const double angle = M_PI * i / kTriangles * 7.3;
     // Centres spread over the view by a low-discrepancy (golden ratio) sequence.

@@ -30,7 +30,7 @@ class ServiceTest : public ::testing::Test {
   std::string LoadScene(const v1::Scene& scene);
   // The built-in demo scene (inline textures).
   std::string LoadDemoScene();
-  // A frame that takes many seconds even on two fast threads (12000 short thin triangles, every
+  // A frame that takes many seconds even on two fast threads (24000 short thin triangles, every
   // window mixed, tent filter, 2048 x 2048) in tasks of a fraction of a second: longer than any
   // deadline or grace period of the tests, yet quick to stop.
   v1::RenderFrameRequest SlowFrame();
