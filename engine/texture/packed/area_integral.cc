@@ -117,21 +117,31 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
   return b;
 }
 
-void AreaIntegrator::Children(const Block& b, Block out[4]) const {
+AreaIntegrator::Block AreaIntegrator::Child(const Block& b, uint32_t digit) const {
   const int half = b.level - 1;
-  const uint64_t quarter = uint64_t{1} << (2 * half);
+  const auto [xb, yb, child] = ChildQuadrant(texture_.curve(), b.state, digit);
+  Block o;
+  o.level = half;
+  o.x = b.x + (xb << half);
+  o.y = b.y + (yb << half);
+  o.state = child;
+  o.step0 = b.step0 + digit * (uint64_t{1} << (2 * half));
+  o.run_lo = o.run_hi = 0;
+  return o;
+}
+
+void AreaIntegrator::FindRuns(const Block& parent, Block& o) const {
+  const uint64_t steps = uint64_t{1} << (2 * o.level);
+  o.run_lo = o.x < texture_.width() && o.y < texture_.height()
+                 ? RunIn(parent.run_lo, parent.run_hi, o.step0)
+                 : parent.run_hi;
+  o.run_hi = RunIn(o.run_lo, parent.run_hi, o.step0 + steps - 1);
+}
+
+void AreaIntegrator::Children(const Block& b, Block out[4]) const {
   for (uint32_t digit = 0; digit < 4; ++digit) {
-    const auto [xb, yb, child] = ChildQuadrant(texture_.curve(), b.state, digit);
-    Block& o = out[digit];
-    o.level = half;
-    o.x = b.x + (xb << half);
-    o.y = b.y + (yb << half);
-    o.state = child;
-    o.step0 = b.step0 + digit * quarter;
-    o.run_lo = o.x < texture_.width() && o.y < texture_.height()
-                   ? RunIn(b.run_lo, b.run_hi, o.step0)
-                   : b.run_hi;
-    o.run_hi = RunIn(o.run_lo, b.run_hi, o.step0 + quarter - 1);
+    out[digit] = Child(b, digit);
+    FindRuns(b, out[digit]);
   }
 }
 
@@ -181,9 +191,17 @@ void AreaIntegrator::IntegrateBlock(const Block& b, double x0, double y0, double
     for (int c = 0; c < 4; ++c) sum[c] += static_cast<double>(s[c]);
     return;
   }
-  Block children[4];
-  Children(b, children);
-  for (const Block& c : children) IntegrateBlock(c, x0, y0, x1, y1, sum);
+  // The children the rectangle reaches, by the test IntegrateBlock makes first, before their run
+  // searches: an edge of the rectangle mostly passes through two of the four.
+  const double half = size / 2;
+  for (uint32_t digit = 0; digit < 4; ++digit) {
+    Block c = Child(b, digit);
+    if (std::max<double>(c.x, x0) >= std::min<double>(c.x + half, x1) ||
+        std::max<double>(c.y, y0) >= std::min<double>(c.y + half, y1))
+      continue;
+    FindRuns(b, c);
+    IntegrateBlock(c, x0, y0, x1, y1, sum);
+  }
 }
 
 AreaSum AreaIntegrator::Integrate(double x0, double y0, double x1, double y1) const {

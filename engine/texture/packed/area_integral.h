@@ -55,6 +55,9 @@ class AreaIntegrator {
   };
   // The four sub-blocks in curve order; the run range of each found inside the parent's.
   void Children(const Block& b, Block out[4]) const;
+  // Sub-block `digit` in curve order, without its runs; FindRuns finds them inside the parent's.
+  Block Child(const Block& b, uint32_t digit) const;
+  void FindRuns(const Block& parent, Block& child) const;
   size_t RunIn(size_t lo, size_t hi, uint64_t step) const;
   // The smallest aligned block holding texels [x0, x1] x [y0, y1] (inclusive, inside the
   // texture): the descent starts there, skipping the levels above it.
