@@ -112,6 +112,14 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
   }
   const uint64_t last =
       std::min<uint64_t>(b.step0 + (uint64_t{1} << (2 * b.level)) - 1, texture_.steps().back());
+  uint32_t lo, hi;
+  const uint64_t side = uint64_t{1} << b.level;
+  if (index_ != nullptr && b.x + side <= texture_.width() && b.y + side <= texture_.height() &&
+      index_->RunsAround(b.x, b.y, b.level, lo, hi)) {
+    b.run_lo = RunIn(lo, hi, b.step0);
+    b.run_hi = RunIn(b.run_lo, hi, last);
+    return b;
+  }
   b.run_lo = texture_.RunOfStep(static_cast<uint32_t>(b.step0));
   b.run_hi = texture_.RunOfStep(static_cast<uint32_t>(last));
   return b;

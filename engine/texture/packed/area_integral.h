@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "texture/packed/packed_texture.h"
+#include "texture/packed/run_index.h"
 
 namespace aperture::packed {
 
@@ -30,6 +31,13 @@ class AreaIntegrator {
  public:
   // The view's bytes must outlive the integrator. Prefix sums: 32 bytes per run.
   explicit AreaIntegrator(const PackedTextureView& texture);
+  // With the texture's run index (which must outlive the integrator), a descent's first block
+  // finds its runs inside its cell's range rather than over every run: the same runs, fewer
+  // cache-missing steps of the search.
+  AreaIntegrator(const PackedTextureView& texture, const RunIndex* index)
+      : AreaIntegrator(texture) {
+    index_ = index;
+  }
 
   // Exact integer sums over texels [x0, x1) x [y0, y1) inside the texture (0 <= x0 <= x1 <= width,
   // likewise y).
@@ -70,6 +78,7 @@ class AreaIntegrator {
                       std::array<double, 4>& sum) const;
 
   PackedTextureView texture_;
+  const RunIndex* index_ = nullptr;
   // prefix_[i] = sum over runs < i of length x colour (length in steps; used only for runs wholly
   // inside a range of texture texels, where length = texel count).
   std::vector<std::array<uint64_t, 4>> prefix_;

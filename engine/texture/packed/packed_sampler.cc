@@ -22,7 +22,7 @@ Rgba ToRgba(uint32_t colour) {
 }  // namespace
 
 PackedTextureSampler::PackedTextureSampler(const PackedTextureView& texture, PackedSampling mode)
-    : texture_(texture), mode_(mode), index_(texture), area_(texture) {}
+    : texture_(texture), mode_(mode), index_(texture), area_(texture, &index_) {}
 
 Rgba PackedTextureSampler::Nearest(double u, double v) const {
   return ToRgba(index_.ColorAt(Wrap(u, texture_.width()), Wrap(v, texture_.height())));

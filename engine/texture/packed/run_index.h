@@ -71,6 +71,28 @@ class RunIndex {
     return SearchRuns(run + (sub >> 20), run + ((sub >> 8) & 0xFFFu), LocalStep(detail[0], x, y));
   }
 
+  // The runs [lo, hi] that cover the aligned block of 2^level texels a side with top-left texel
+  // (x, y) hold all of the block's runs, when the grid knows such a range: the block lies within
+  // one cell (or, for a cell with a detail record, within one subcell). False otherwise.
+  bool RunsAround(uint32_t x, uint32_t y, int level, uint32_t& lo, uint32_t& hi) const {
+    if (level > cell_bits_) return false;
+    const Cell& cell = CellOf(x, y);
+    if (!shortcut_) {
+      if (cell.last & kHasDetail) return false;
+      lo = cell.first, hi = cell.last;
+      return true;
+    }
+    const uint32_t run = cell.first >> 8;
+    if (!(cell.last & kHasDetail)) {
+      lo = run, hi = cell.last;
+      return true;
+    }
+    if (level > cell_bits_ - 2) return false;
+    const uint32_t sub = details_[(cell.last & ~kHasDetail) + 1 + SubcellOf(x, y)];
+    lo = run + (sub >> 20), hi = run + ((sub >> 8) & 0xFFFu);
+    return true;
+  }
+
   // colours[i] = ColorAt(xs[i], ys[i]); spans of equal length.
   void ColorsAt(std::span<const uint32_t> xs, std::span<const uint32_t> ys,
                 std::span<uint32_t> colours) const;
