@@ -1,6 +1,7 @@
 #include "texture/packed/area_integral.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace aperture::packed {
@@ -86,10 +87,9 @@ size_t AreaIntegrator::RunIn(size_t lo, size_t hi, uint64_t step) const {
 
 AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32_t x1,
                                                 uint32_t y1) const {
-  int level = 0;
-  while (level < texture_.order() &&
-         ((x0 >> level) != (x1 >> level) || (y0 >> level) != (y1 >> level)))
-    ++level;
+  // The lowest level at which both corners fall in one block: above the highest differing bit.
+  const int level =
+      std::min(texture_.order(), static_cast<int>(std::bit_width((x0 ^ x1) | (y0 ^ y1))));
   // Walk down the curve to that block: orientation and first step, no run searches.
   Block b{texture_.order(), 0, 0, 0, 0, 0, 0};
   while (b.level > level) {
@@ -97,13 +97,8 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
     const uint32_t xb = (x0 >> half) & 1u, yb = (y0 >> half) & 1u;
     uint32_t digit = xb | (yb << 1);
     if (texture_.curve() == Curve::kHilbert) {
-      for (digit = 0; digit < 4; ++digit) {
-        const HilbertChild c = HilbertChildOf(b.state, digit);
-        if (c.xb == xb && c.yb == yb) {
-          b.state = c.state;
-          break;
-        }
-      }
+      digit = kHilbertDigits.digit[b.state][yb * 2 + xb];
+      b.state = HilbertChildOf(b.state, digit).state;
     }
     b.step0 += uint64_t{digit} << (2 * half);
     b.x += xb << half;

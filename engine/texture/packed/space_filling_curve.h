@@ -92,6 +92,23 @@ constexpr HilbertChild HilbertChildOf(uint32_t state, uint32_t digit) {
   return {xb, yb, state ^ rotation};
 }
 
+// The digit whose Hilbert quadrant in a sub-square of orientation `state` is (xb, yb): the inverse
+// of HilbertChildOf, by table rather than by trying the four digits.
+struct HilbertDigits {
+  uint32_t digit[4][4];  // [state][yb * 2 + xb]
+};
+constexpr HilbertDigits MakeHilbertDigits() {
+  HilbertDigits t{};
+  for (uint32_t state = 0; state < 4; ++state) {
+    for (uint32_t digit = 0; digit < 4; ++digit) {
+      const HilbertChild c = HilbertChildOf(state, digit);
+      t.digit[state][c.yb * 2 + c.xb] = digit;
+    }
+  }
+  return t;
+}
+inline constexpr HilbertDigits kHilbertDigits = MakeHilbertDigits();
+
 // Quadrant `digit` of a sub-square in either curve (Morton: x bit, y bit; no orientation).
 constexpr HilbertChild ChildQuadrant(Curve curve, uint32_t state, uint32_t digit) {
   if (curve == Curve::kMorton) return {digit & 1u, digit >> 1, state};
