@@ -29,13 +29,17 @@ bool ClipParam(const Vec2& p, const Vec2& q, double a, double b, double c, doubl
 }  // namespace
 
 void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
-                           double cx, double cy, bool with_moments, std::vector<CellPiece>& out) {
+                           std::span<const double> nearest, double cx, double cy, bool with_moments,
+                           std::vector<CellPiece>& out) {
   // First which polygons reach the cell and how (no clipping yet): a cell wholly covered by the
   // polygon in front of all the others is then answered without clipping any of them.
   stopped_ = false;
   reach_.clear();
-  size_t crossings = 0;  // crossing_[0, crossings) are used
+  size_t crossings = 0;          // crossing_[0, crossings) are used
+  double cover_far = -INFINITY;  // nearest first: the farthest corner of the nearest whole cover
   for (int index : candidates) {
+    // (A margin far above the rounding of both sides: a tie is not taken as hidden.)
+    if (!nearest.empty() && nearest[index] < cover_far - 1e-9 * std::abs(cover_far)) break;
     const ScreenPolygon& sp = polygons[index];
     if (sp.max_x <= cx - kHalf || sp.min_x >= cx + kHalf || sp.max_y <= cy - kHalf ||
         sp.min_y >= cy + kHalf)
@@ -60,6 +64,15 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     }
     reach_.push_back(
         {index, {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)}, first_edge, crossings});
+    if (!nearest.empty() && first_edge == crossings) {  // covers the cell
+      const ScreenLinear& d = reach_.back().depth;
+      cover_far = std::max(cover_far, d.c - kHalf * (std::abs(d.a) + std::abs(d.b)));
+    }
+  }
+  if (!nearest.empty()) {  // back to the polygons' order (few: an insertion sort)
+    for (size_t i = 1; i < reach_.size(); ++i)
+      for (size_t j = i; j > 0 && reach_[j - 1].polygon > reach_[j].polygon; --j)
+        std::swap(reach_[j - 1], reach_[j]);
   }
   if (reach_.empty()) return;
   square_ = {-kHalf, -kHalf, kHalf, kHalf};

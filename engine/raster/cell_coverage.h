@@ -53,7 +53,20 @@ class CellCoverage {
   // Visible pieces in the cell [cx - 0.5, cx + 0.5] x [cy - 0.5, cy + 0.5]. `candidates` are
   // indices into `polygons`; pieces with zero visible area are omitted. Output is appended.
   void Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates, double cx,
-               double cy, bool with_moments, std::vector<CellPiece>& out);
+               double cy, bool with_moments, std::vector<CellPiece>& out) {
+    Compute(polygons, candidates, {}, cx, cy, with_moments, out);
+  }
+  // The same with `candidates` nearest first: sorted by `nearest[polygon]` (the polygon's largest
+  // inverse depth over its vertices) descending, their polygon indices otherwise ascending. The
+  // scan stops at the first candidate whose nearest point lies behind a polygon already found to
+  // cover the whole cell (behind its farthest corner): that one and every later one are hidden
+  // wherever they are. Under a crowded frame's front layer most candidates are not tested at all.
+  // The polygons found are then taken in index order, as the plain Compute takes them, so the
+  // result differs from it only where a hidden polygon's zero area would have come out as
+  // rounding.
+  void Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
+               std::span<const double> nearest, double cx, double cy, bool with_moments,
+               std::vector<CellPiece>& out);
 
  private:
   // The square being resolved, in cell-local coordinates (the cell is [-0.5, 0.5]^2).

@@ -162,7 +162,20 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
   cell_begin_.assign(static_cast<size_t>(nx_) * ny + 1, 0);
   reached_from_.assign(ny, nx_);
   reached_to_.assign(ny, 0);
-  bins_.Build(geo_.polygons, polygons, r.x0, r.y0, shape_.cell_offset, nx_, ny);
+  // The leaf's polygons nearest first (CellCoverage::Compute stops its scan of a cell at the
+  // first one behind a whole-cell cover), each by the largest inverse depth over its vertices.
+  if (nearest_.size() < geo_.polygons.size()) nearest_.resize(geo_.polygons.size());
+  by_depth_.assign(polygons.begin(), polygons.end());
+  for (int p : polygons) {
+    const ScreenPolygon& polygon = geo_.polygons[p];
+    double w = -INFINITY;
+    for (const Vec2& v : polygon.vertices) w = std::max(w, polygon.inv_depth.At(v.x, v.y));
+    nearest_[p] = w;
+  }
+  std::sort(by_depth_.begin(), by_depth_.end(), [&](int a, int b) {
+    return nearest_[a] > nearest_[b] || (nearest_[a] == nearest_[b] && a < b);
+  });
+  bins_.Build(geo_.polygons, by_depth_, r.x0, r.y0, shape_.cell_offset, nx_, ny);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx_; ++i) {
       const size_t before = pieces_.size();
@@ -170,7 +183,8 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
       if (bins_.Cell(i, j).empty()) continue;  // nothing reaches it (most of a sparse frame)
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;
       const double cy = r.y0 + j + shape_.cell_offset + 0.5;
-      coverage_.Compute(geo_.polygons, bins_.Cell(i, j), cx, cy, shape_.needs_moments, pieces_);
+      coverage_.Compute(geo_.polygons, bins_.Cell(i, j), nearest_, cx, cy, shape_.needs_moments,
+                        pieces_);
       if (coverage_.Stopped()) return false;
       if (pieces_.size() > before) {
         reached_from_[j] = std::min(reached_from_[j], i);

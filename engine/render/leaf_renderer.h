@@ -92,7 +92,9 @@ class LeafRenderer {
   std::function<bool()> stop_;
   CellBins bins_;  // the leaf's polygons by cell
   std::vector<CellPiece> pieces_;
-  int nx_ = 0;  // cells per row of the leaf being rendered
+  int nx_ = 0;                   // cells per row of the leaf being rendered
+  std::vector<double> nearest_;  // per polygon of the frame: its largest 1/depth (set per leaf)
+  std::vector<int> by_depth_;    // the leaf's polygons, nearest first
   std::vector<size_t> cell_begin_;
   std::vector<int> reached_from_, reached_to_;  // per row of cells: its first, last + 1 with pieces
   // A polygon's weight in one pixel of the leaf, (px, py) from the leaf's top-left corner (the
