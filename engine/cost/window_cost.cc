@@ -28,14 +28,21 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
       f.area += f.pixels;
       continue;
     }
-    // A polygon strictly inside the window (most of a dense part of a frame) needs no clipping.
+    // A polygon strictly inside the window (most of a dense part of a frame) needs no clipping,
+    // and its area and edges are its own (no edge on the window's border): kept by
+    // ScreenPolygon::Finalize, the same sums, so its vertices are not read at all.
     const bool inside = !(p.min_x <= x0 || p.max_x >= x1 || p.min_y <= y0 || p.max_y >= y1);
-    if (!inside) {
-      poly = p.vertices;
-      ClipToRect(poly, x0, y0, x1, y1, scratch);
-      if (poly.empty()) continue;
+    if (inside) {
+      ++f.polygons;
+      f.area += p.area;
+      f.boundary +=
+          a * p.perimeter / std::sqrt(2.0) + a * a * static_cast<double>(p.vertices.size());
+      continue;
     }
-    const std::vector<Vec2>& part = inside ? p.vertices : poly;
+    poly = p.vertices;
+    ClipToRect(poly, x0, y0, x1, y1, scratch);
+    if (poly.empty()) continue;
+    const std::vector<Vec2>& part = poly;
     ++f.polygons;
     f.area += std::abs(SignedArea(part));
     // seed 002, eq. 6: the edges widen the polygon by at most a / sqrt(2) on each side, each

@@ -31,8 +31,13 @@ struct ScreenPolygon {
   Rgba light{1, 1, 1, 1};  // ambient + sun * cos(angle), constant over a flat polygon
   // One per edge (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
   std::vector<ScreenLinear> edges;
+  // Its area and the sum of its edges' lengths, in pixels: what the cost model measures of a
+  // polygon wholly inside a window (cost/window_cost.h), kept so that planning a crowded frame
+  // does not read every polygon's vertices again for each window.
+  double area = 0, perimeter = 0;
 
-  // Sets the bounding box and edge functions from `vertices` (call after filling them).
+  // Sets the bounding box, edge functions, area and perimeter from `vertices` (call after
+  // filling them).
   void Finalize();
   bool Contains(double x, double y) const {
     for (const ScreenLinear& e : edges)

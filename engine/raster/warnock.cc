@@ -1,5 +1,7 @@
 #include "raster/warnock.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -122,22 +124,40 @@ std::vector<std::vector<int>> BinPolygons(const FrameGeometry& geo, double margi
   const int cols = (region.width() + tile - 1) / tile, rows = (region.height() + tile - 1) / tile;
   *columns = std::max(cols, 0);
   if (cols <= 0 || rows <= 0) return {};
-  std::vector<std::vector<int>> bins(static_cast<size_t>(cols) * rows);
+  const size_t tiles = static_cast<size_t>(cols) * rows;
   auto col = [&](double x) {
     return std::clamp(static_cast<int>(std::floor((x - region.x0) / tile)), 0, cols - 1);
   };
   auto row = [&](double y) {
     return std::clamp(static_cast<int>(std::floor((y - region.y0) / tile)), 0, rows - 1);
   };
-  for (size_t i = 0; i < geo.polygons.size(); ++i) {
-    const ScreenPolygon& p = geo.polygons[i];
-    if (p.max_x < region.x0 - margin || p.min_x > region.x1 + margin ||
-        p.max_y < region.y0 - margin || p.min_y > region.y1 + margin)
-      continue;
-    for (int r = row(p.min_y - margin); r <= row(p.max_y + margin); ++r)
-      for (int c = col(p.min_x - margin); c <= col(p.max_x + margin); ++c)
-        bins[static_cast<size_t>(r) * cols + c].push_back(static_cast<int>(i));
-  }
+  // Fixed chunks of the polygons binned in parallel, each chunk's bins joined in chunk order: every
+  // bin lists its polygons in ascending order, whatever the threads.
+  constexpr size_t kChunk = 1 << 16;
+  const size_t count = geo.polygons.size();
+  const size_t chunks = std::max<size_t>(1, (count + kChunk - 1) / kChunk);
+  std::vector<std::vector<std::vector<int>>> parts(chunks);
+  tbb::parallel_for(size_t{0}, chunks, [&](size_t k) {
+    std::vector<std::vector<int>>& bins = parts[k];
+    bins.resize(tiles);
+    for (size_t i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i) {
+      const ScreenPolygon& p = geo.polygons[i];
+      if (p.max_x < region.x0 - margin || p.min_x > region.x1 + margin ||
+          p.max_y < region.y0 - margin || p.min_y > region.y1 + margin)
+        continue;
+      for (int r = row(p.min_y - margin); r <= row(p.max_y + margin); ++r)
+        for (int c = col(p.min_x - margin); c <= col(p.max_x + margin); ++c)
+          bins[static_cast<size_t>(r) * cols + c].push_back(static_cast<int>(i));
+    }
+  });
+  if (chunks == 1) return std::move(parts[0]);
+  std::vector<std::vector<int>> bins(tiles);
+  tbb::parallel_for(size_t{0}, tiles, [&](size_t t) {
+    size_t total = 0;
+    for (const auto& part : parts) total += part[t].size();
+    bins[t].reserve(total);
+    for (const auto& part : parts) bins[t].insert(bins[t].end(), part[t].begin(), part[t].end());
+  });
   return bins;
 }
 
