@@ -20,6 +20,7 @@ void ScreenPolygon::Finalize() {
     min_y = std::min(min_y, v.y), max_y = std::max(max_y, v.y);
   }
   edges.clear();
+  edges.reserve(vertices.size());
   perimeter = 0;
   for (size_t i = 0, n = vertices.size(); i < n; ++i) {
     const Vec2& p = vertices[i];
