@@ -16,8 +16,14 @@ struct ScreenLinear {
 };
 
 struct ScreenPolygon {
-  std::vector<Vec2> vertices;  // convex, counter-clockwise in screen space (y down)
+  // (The box, area, perimeter and the vertices' pointers share the first cache line: planning a
+  // crowded frame reads just these of every polygon, for each window it reaches.)
   double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+  // Its area and the sum of its edges' lengths, in pixels: what the cost model measures of a
+  // polygon wholly inside a window (cost/window_cost.h), kept so that planning a crowded frame
+  // does not read every polygon's vertices again for each window.
+  double area = 0, perimeter = 0;
+  std::vector<Vec2> vertices;  // convex, counter-clockwise in screen space (y down)
   // 1 / view depth: the denominator of seed 000 eq. 1. Larger is nearer.
   ScreenLinear inv_depth;
   // seed 000, eq. 1: U = u_num / inv_depth, V = v_num / inv_depth (texture repeats, shifted by
@@ -31,10 +37,6 @@ struct ScreenPolygon {
   Rgba light{1, 1, 1, 1};  // ambient + sun * cos(angle), constant over a flat polygon
   // One per edge (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
   std::vector<ScreenLinear> edges;
-  // Its area and the sum of its edges' lengths, in pixels: what the cost model measures of a
-  // polygon wholly inside a window (cost/window_cost.h), kept so that planning a crowded frame
-  // does not read every polygon's vertices again for each window.
-  double area = 0, perimeter = 0;
 
   // Sets the bounding box, edge functions, area and perimeter from `vertices` (call after
   // filling them).
