@@ -15,7 +15,7 @@ struct LeafWindow {
   PixelRect rect;
   Kind kind = Kind::kEmpty;
   int cover = -1;             // kCovered: the polygon seen in every aperture of the window
-  std::vector<int> polygons;  // kMixed: polygons reaching into the window's apertures
+  std::vector<int> polygons;  // kMixed: polygons reaching into the window's apertures, ascending
 };
 
 struct WarnockOptions {

@@ -92,6 +92,8 @@ TEST(Warnock, EdgesEndInSmallMixedLeavesThatListWhatReachesThem) {
     ++mixed;
     EXPECT_LE(leaf.rect.width(), options.leaf_size);
     EXPECT_LE(leaf.rect.height(), options.leaf_size);
+    // In ascending order, as the candidates came (the cells' nearest-first scan restores it).
+    EXPECT_TRUE(std::is_sorted(leaf.polygons.begin(), leaf.polygons.end()));
     // Each polygon reaching the leaf's area is listed (box1: the aperture is the pixel square).
     for (int p = 0; p < 2; ++p) {
       const bool reaches = PolygonOverlapsRect(geometry.polygons[p], leaf.rect.x0, leaf.rect.y0,
