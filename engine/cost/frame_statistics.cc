@@ -20,7 +20,7 @@ FrameStatistics ComputeFrameStatistics(const FrameGeometry& geo, double aperture
   std::vector<Vec2> poly, scratch;
   double area_sum = 0, weighted_l = 0, sqrt_sum = 0;
   for (size_t i = 0; i < geo.polygons.size(); ++i) {
-    poly = geo.polygons[i].vertices;
+    poly.assign(geo.polygons[i].vertices.begin(), geo.polygons[i].vertices.end());
     ClipToRect(poly, 0, 0, geo.width, geo.height, scratch);
     if (poly.empty()) continue;
     const double area = std::abs(SignedArea(poly));

@@ -39,7 +39,7 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
           a * p.perimeter / std::sqrt(2.0) + a * a * static_cast<double>(p.vertices.size());
       continue;
     }
-    poly = p.vertices;
+    poly.assign(p.vertices.begin(), p.vertices.end());
     ClipToRect(poly, x0, y0, x1, y1, scratch);
     if (poly.empty()) continue;
     const std::vector<Vec2>& part = poly;

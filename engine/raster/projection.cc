@@ -141,14 +141,17 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
   tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
     PolygonProjector& projector = projectors.local();
     ScreenPolygon sp;
+    parts[c].reserve(std::min(count, (c + 1) * kChunk) - c * kChunk);
     for (size_t index = c * kChunk; index < std::min(count, (c + 1) * kChunk); ++index)
       if (projector.Project(index, sp)) parts[c].push_back(std::move(sp));
   });
   size_t total = 0;
   for (const auto& part : parts) total += part.size();
   geo.polygons.reserve(total);
-  for (auto& part : parts)
+  for (auto& part : parts) {
     for (ScreenPolygon& sp : part) geo.polygons.push_back(std::move(sp));
+    std::vector<ScreenPolygon>().swap(part);  // (the frame's peak memory holds one copy, not two)
+  }
   return geo;
 }
 

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "absl/container/inlined_vector.h"
 #include "base/image.h"
 #include "scene/vec.h"
 
@@ -23,7 +24,9 @@ struct ScreenPolygon {
   // polygon wholly inside a window (cost/window_cost.h), kept so that planning a crowded frame
   // does not read every polygon's vertices again for each window.
   double area = 0, perimeter = 0;
-  std::vector<Vec2> vertices;  // convex, counter-clockwise in screen space (y down)
+  // Convex, counter-clockwise in screen space (y down). Held in place up to a quad: a frame of a
+  // million triangles would otherwise make two million heap blocks and free them one by one.
+  absl::InlinedVector<Vec2, 4> vertices;
   // 1 / view depth: the denominator of seed 000 eq. 1. Larger is nearer.
   ScreenLinear inv_depth;
   // seed 000, eq. 1: U = u_num / inv_depth, V = v_num / inv_depth (texture repeats, shifted by
@@ -36,7 +39,7 @@ struct ScreenPolygon {
   bool transparent = false;
   Rgba light{1, 1, 1, 1};  // ambient + sun * cos(angle), constant over a flat polygon
   // One per edge (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
-  std::vector<ScreenLinear> edges;
+  absl::InlinedVector<ScreenLinear, 4> edges;
 
   // Sets the bounding box, edge functions, area and perimeter from `vertices` (call after
   // filling them).

@@ -281,7 +281,7 @@ class MonotoneTriangulator {
 
 }  // namespace
 
-double SignedArea(const std::vector<Vec2>& poly) {
+double SignedArea(std::span<const Vec2> poly) {
   double area = 0;
   for (size_t i = 0, n = poly.size(); i < n; ++i) {
     const Vec2& a = poly[i];
@@ -291,7 +291,7 @@ double SignedArea(const std::vector<Vec2>& poly) {
   return 0.5 * area;
 }
 
-bool IsConvex(const std::vector<Vec2>& poly) {
+bool IsConvex(std::span<const Vec2> poly) {
   const size_t n = poly.size();
   const double sign = SignedArea(poly) >= 0 ? 1.0 : -1.0;
   // Every turn the same way, and once round in all: a pentagram turns the same way at every

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -11,10 +12,10 @@
 namespace aperture {
 
 // Signed area of a 2D polygon (positive when counter-clockwise).
-double SignedArea(const std::vector<Vec2>& polygon);
+double SignedArea(std::span<const Vec2> polygon);
 
 // Convex and simple: every turn the same way (or straight on) and one turn round in all.
-bool IsConvex(const std::vector<Vec2>& polygon);
+bool IsConvex(std::span<const Vec2> polygon);
 
 // Triangles as counter-clockwise vertex index triples of a simple polygon given in 2D (either
 // winding): n - 2 of them, O(n log n) time. Fails with InvalidArgument on input the sweep finds

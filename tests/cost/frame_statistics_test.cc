@@ -36,7 +36,7 @@ TEST(PolygonsPerAperture, ShapeFactorOfACircleIsOne) {
 
 ScreenPolygon Polygon(std::vector<Vec2> vertices) {
   ScreenPolygon p;
-  p.vertices = std::move(vertices);
+  p.vertices.assign(vertices.begin(), vertices.end());
   p.Finalize();
   return p;
 }

@@ -88,7 +88,7 @@ void CheckRandomTriangles(uint32_t seed, double snap, bool layered = false, int 
     const int count = 2 + trial % (max_triangles - 1);
     for (int k = 0; k < count; ++k) {
       const Vec2 a = p(), b = p(), c = p();
-      if (std::abs(SignedArea({a, b, c})) < 1e-9) continue;
+      if (std::abs(SignedArea(std::vector<Vec2>{a, b, c})) < 1e-9) continue;
       // Layered: constant depths, so the painter's order exists; else planes that cross.
       const ScreenLinear w = layered ? ScreenLinear{0, 0, depth(rng)}
                                      : ScreenLinear{slope(rng), slope(rng), depth(rng)};
@@ -152,7 +152,7 @@ TEST(CellCoverage, NearestFirstScanStopsBehindACoverWithTheSamePieces) {
       const Vec2 a = cover ? Vec2{-9, -9} : Vec2{pos(rng), pos(rng)};
       const Vec2 b = cover ? Vec2{9, -9} : Vec2{pos(rng), pos(rng)};
       const Vec2 c = cover ? Vec2{0, 9} : Vec2{pos(rng), pos(rng)};
-      if (std::abs(SignedArea({a, b, c})) < 1e-9) continue;
+      if (std::abs(SignedArea(std::vector<Vec2>{a, b, c})) < 1e-9) continue;
       // Flat layers at one of four depths (ties) or tilted planes.
       const double w = layered ? 1 + 0.5 * static_cast<double>(rng() % 4) : depth(rng);
       polys.push_back(Triangle(
@@ -266,7 +266,7 @@ TEST(CellCoverage, ThousandsOfInterpenetratingPiecesMatchSampling) {
     const Vec2 c{centre(rng), centre(rng)};
     const Vec2 a{c.x + offset(rng), c.y + offset(rng)}, b{c.x + offset(rng), c.y + offset(rng)},
         d{c.x + offset(rng), c.y + offset(rng)};
-    if (std::abs(SignedArea({a, b, d})) < 1e-6) continue;
+    if (std::abs(SignedArea(std::vector<Vec2>{a, b, d})) < 1e-6) continue;
     polys.push_back(Triangle(a, b, d, {slope(rng), slope(rng), depth(rng)}));
   }
   CellCoverage coverage;

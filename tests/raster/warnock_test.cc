@@ -21,7 +21,7 @@ ScreenPolygon Flat(std::vector<Vec2> vertices, double depth, int id) {
   }
   if (twice_area < 0) std::reverse(vertices.begin(), vertices.end());
   ScreenPolygon p;
-  p.vertices = std::move(vertices);
+  p.vertices.assign(vertices.begin(), vertices.end());
   p.inv_depth = {0, 0, 1.0 / depth};
   p.scene_polygon = id;
   p.Finalize();
