@@ -131,26 +131,30 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
   geo.frustum = ResolveFrustum(camera, width, height);
   // Fixed chunks of the scene's polygons, projected in parallel (a million polygons took a
   // quarter of a second on one thread), each chunk's results kept in scene order and the chunks
-  // joined in order: the geometry is the same whatever the threads.
-  constexpr size_t kChunk = 4096;
+  // joined in order: the geometry is the same whatever the threads. The chunks go in batches, each
+  // joined before the next is projected, so that the frame's peak memory holds the polygons once
+  // and a batch of them, not twice; the room reserved for all is address space until written.
+  constexpr size_t kChunk = 4096, kBatch = 64 * kChunk;
   const size_t count = scene.polygons.size();
-  const size_t chunks = (count + kChunk - 1) / kChunk;
-  std::vector<std::vector<ScreenPolygon>> parts(chunks);
+  geo.polygons.reserve(count);
+  std::vector<std::vector<ScreenPolygon>> parts(kBatch / kChunk);
   tbb::enumerable_thread_specific<PolygonProjector> projectors(
       [&] { return PolygonProjector(scene, camera, geo.frustum, width, height, margin); });
-  tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
-    PolygonProjector& projector = projectors.local();
-    ScreenPolygon sp;
-    parts[c].reserve(std::min(count, (c + 1) * kChunk) - c * kChunk);
-    for (size_t index = c * kChunk; index < std::min(count, (c + 1) * kChunk); ++index)
-      if (projector.Project(index, sp)) parts[c].push_back(std::move(sp));
-  });
-  size_t total = 0;
-  for (const auto& part : parts) total += part.size();
-  geo.polygons.reserve(total);
-  for (auto& part : parts) {
-    for (ScreenPolygon& sp : part) geo.polygons.push_back(std::move(sp));
-    std::vector<ScreenPolygon>().swap(part);  // (the frame's peak memory holds one copy, not two)
+  for (size_t batch = 0; batch < count; batch += kBatch) {
+    const size_t end = std::min(count, batch + kBatch);
+    const size_t chunks = (end - batch + kChunk - 1) / kChunk;
+    tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+      PolygonProjector& projector = projectors.local();
+      const size_t first = batch + c * kChunk, last = std::min(end, first + kChunk);
+      std::vector<ScreenPolygon>& part = parts[c];
+      part.clear();
+      part.reserve(last - first);
+      ScreenPolygon sp;
+      for (size_t index = first; index < last; ++index)
+        if (projector.Project(index, sp)) part.push_back(std::move(sp));
+    });
+    for (size_t c = 0; c < chunks; ++c)
+      for (ScreenPolygon& sp : parts[c]) geo.polygons.push_back(std::move(sp));
   }
   return geo;
 }

@@ -31,9 +31,9 @@ bool SamePolygon(const ScreenPolygon& a, const ScreenPolygon& b) {
 }
 
 TEST(ProjectScene, TheSameGeometryOnOneThreadAndOnTwoInSceneOrder) {
-  // Many chunks' worth of triangles, a frame narrower than the scene's (the right part of the
-  // scene is culled, so chunks keep different counts).
-  auto scene = BuildScene(MakeTrisScene(30000));
+  // More than one batch of chunks' worth of triangles, a frame narrower than the scene's (the right
+  // part of the scene is culled, so chunks keep different counts).
+  auto scene = BuildScene(MakeTrisScene(300000));
   ASSERT_TRUE(scene.ok()) << scene.status();
   const Camera camera = testing::OriginCamera();
   auto project = [&](int threads) {
@@ -42,8 +42,8 @@ TEST(ProjectScene, TheSameGeometryOnOneThreadAndOnTwoInSceneOrder) {
   };
   const FrameGeometry one = project(1), two = project(2);
   ASSERT_EQ(one.polygons.size(), two.polygons.size());
-  EXPECT_GT(one.polygons.size(), 10000u);
-  EXPECT_LT(one.polygons.size(), 30000u);  // some culled
+  EXPECT_GT(one.polygons.size(), 100000u);
+  EXPECT_LT(one.polygons.size(), 300000u);  // some culled
   for (size_t i = 0; i < one.polygons.size(); ++i) {
     ASSERT_TRUE(SamePolygon(one.polygons[i], two.polygons[i])) << i;
     if (i > 0) {
