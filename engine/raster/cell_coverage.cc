@@ -438,7 +438,11 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
           j_front = j_front && wj >= wi - tol;
         }
       }
-      if (i_front == j_front) return Order::kInterpenetrating;  // (or coplanar): decompose
+      if (!i_front && !j_front) return Order::kInterpenetrating;  // decompose
+      // Coplanar (each in front of the other within the tolerance): the first in index order
+      // is in front, as the decomposition decides a tie (its nearest is the first found). Taking
+      // them for interpenetrating sent every cell of overlapping coplanar polygons (decals,
+      // layers of slivers) to the decomposition, about the cube of its pieces.
       if (i_front)
         mark(i, j);
       else

@@ -75,7 +75,7 @@ TEST_F(ServiceTest, FullQueueAnswersResourceExhaustedAtOnce) {
 TEST_F(ServiceTest, SigtermLetsShortFramesFinishAndCancelsLongOnes) {
   StartServer({"--threads=2", "--concurrent-frames=2", "--grace-s=2"});
   const v1::RenderFrameRequest slow_request = SlowFrame();
-  v1::RenderFrameRequest quick_request = slow_request;  // a 256th of the slow frame
+  v1::RenderFrameRequest quick_request = slow_request;  // a 1024th of the slow frame
   quick_request.mutable_region()->set_width(128);
   quick_request.mutable_region()->set_height(128);
   auto slow = std::async(std::launch::async, [&] { return Render(slow_request, 60).error_code(); });

@@ -299,6 +299,42 @@ TEST(CellCoverage, ThousandsOfStackedAndFannedPiecesMatchSampling) {
   EXPECT_LT(WorstAreaError(polys, 1024, coverage), 2e-3);
 }
 
+// Overlapping coplanar pieces (decals, layers of slivers) are ordered, the first in index order
+// in front, as the decomposition and the dense sampling decide a tie: no decomposition (which
+// would ask the stop test between its slabs, or cut the cell into quadrants), and the areas of the
+// sampling. Flat and tilted planes, with pieces on other planes among them.
+TEST(CellCoverage, CoplanarOverlapsTakeTheFirstInIndexOrderWithoutDecomposing) {
+  std::mt19937 rng(91);
+  std::uniform_real_distribution<double> pos(-1.2, 1.2);
+  for (const ScreenLinear plane : {ScreenLinear{0, 0, 2}, ScreenLinear{0.1, -0.2, 2}}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<ScreenPolygon> polys;
+      for (int k = 0; k < 40; ++k) {
+        const Vec2 a{pos(rng), pos(rng)}, b{pos(rng), pos(rng)}, c{pos(rng), pos(rng)};
+        if (std::abs(SignedArea(std::vector<Vec2>{a, b, c})) < 1e-3) continue;
+        // Every fifth on a plane of its own, in front or behind.
+        const ScreenLinear w =
+            k % 5 == 4 ? ScreenLinear{plane.a, plane.b, plane.c + (k % 10 == 4 ? 0.5 : -0.5)}
+                       : plane;
+        polys.push_back(Triangle(a, b, c, w));
+      }
+      std::vector<int> candidates(polys.size());
+      for (size_t k = 0; k < polys.size(); ++k) candidates[k] = static_cast<int>(k);
+      CellCoverage coverage;
+      int asked = 0;
+      coverage.SetStop([&] { return ++asked < 0; });
+      std::vector<CellPiece> out;
+      coverage.Compute(polys, candidates, 0, 0, false, out);
+      EXPECT_EQ(asked, 0) << "decomposed or subdivided, trial " << trial;
+      std::vector<double> exact(polys.size(), 0);
+      for (const CellPiece& piece : out) exact[piece.polygon] += piece.moments.area;
+      const std::vector<double> sampled = SampledAreas(polys, 0, 0, 512);
+      for (size_t k = 0; k < polys.size(); ++k)
+        ASSERT_NEAR(exact[k], sampled[k], 4e-3) << "trial " << trial << " polygon " << k;
+    }
+  }
+}
+
 TEST(CellCoverage, StopTestCutsACrowdedCellShort) {
   std::vector<ScreenPolygon> polys;
   std::mt19937 rng(5);
