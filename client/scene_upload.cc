@@ -97,10 +97,12 @@ bool IsBuiltinScene(const std::string& argument) {
   if (argument == "demo" || argument == "airport" || argument == "triangles" ||
       argument == "skewed")
     return true;
-  // tris-N: the server checks N's range and names it when it is out of range.
-  constexpr std::string_view kTris = "tris-";
-  return argument.size() > kTris.size() && argument.compare(0, kTris.size(), kTris) == 0 &&
-         argument.find_first_not_of("0123456789", kTris.size()) == std::string::npos;
+  // tris-N, slivers-N: the server checks N's range and names it when it is out of range.
+  for (const std::string_view prefix : {std::string_view("tris-"), std::string_view("slivers-")})
+    if (argument.size() > prefix.size() && argument.compare(0, prefix.size(), prefix) == 0 &&
+        argument.find_first_not_of("0123456789", prefix.size()) == std::string::npos)
+      return true;
+  return false;
 }
 
 absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,

@@ -37,7 +37,8 @@ ABSL_FLAG(std::string, scene, "airport",
           "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'demo' (the "
           "benchmarks' synthetic airfield), 'triangles' (10,000 random triangles), 'skewed' (a "
           "city block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
-          "benchmark's), a scene JSON file or a glTF 2.0 model (.gltf, .glb)");
+          "benchmark's), 'slivers-N' (N slivers on 13 planes, the service tests' slow frame), a "
+          "scene JSON file or a glTF 2.0 model (.gltf, .glb)");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: a built-in "
           "scene's approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");

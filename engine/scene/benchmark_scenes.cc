@@ -102,6 +102,38 @@ v1::Scene MakeTrisScene(int count, double radius_px, int width, int height, uint
   return scene;
 }
 
+v1::Scene MakeSliversScene(int count) {
+  v1::Scene scene;
+  scene.set_name(absl::StrCat("slivers-", count));
+  for (int m = 0; m < 2; ++m) {
+    v1::Material* material = scene.add_materials();
+    material->set_id(m == 0 ? "orange" : "blue");
+    material->set_unlit(true);
+    SetColor(material->mutable_base_color(), m == 0 ? 1.0f : 0.1f, 0.5f, m == 0 ? 0.2f : 0.9f);
+  }
+  v1::Mesh* mesh = scene.add_meshes();
+  mesh->set_id("slivers");
+  for (int i = 0; i < count; ++i) {
+    const double angle = 3.14159265358979323846 * i / count * 7.3;
+    // Centres spread over the view by a low-discrepancy (golden ratio) sequence.
+    const double cx = 12 * std::fmod(i * 0.6180339887, 1.0) - 6;
+    const double cy = 12 * std::fmod(i * 0.7548776662, 1.0) - 6;
+    const double dx = std::cos(angle), dy = std::sin(angle);
+    const double nx = -0.02 * std::sin(angle), ny = 0.02 * std::cos(angle);
+    v1::Polygon* polygon = mesh->add_polygons();
+    polygon->set_material_id(i % 2 ? "blue" : "orange");
+    for (const auto& [x, y] :
+         {std::pair{cx - dx, cy - dy}, {cx + dx, cy + dy}, {cx + dx + nx, cy + dy + ny}}) {
+      v1::Vec3* vertex = polygon->add_vertices();
+      vertex->set_x(x);
+      vertex->set_y(y);
+      vertex->set_z(-10 - 0.001 * (i % 13));
+    }
+  }
+  scene.add_objects()->set_mesh_id("slivers");
+  return scene;
+}
+
 v1::Scene MakeSkewedCityScene(uint32_t seed) {
   v1::Scene scene;
   scene.set_name("skewed-city");

@@ -21,8 +21,15 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
           absl::StrCat("built-in scene '", name, "': tris-N takes N in 1..", kMaxTrisCount));
     return BuiltinScene{MakeTrisScene(count), Camera{}};
   }
-  return absl::InvalidArgumentError(absl::StrCat("unknown built-in scene '", name,
-                                                 "' (demo, airport, triangles, skewed, tris-N)"));
+  if (name.rfind("slivers-", 0) == 0) {
+    int count = 0;
+    if (!absl::SimpleAtoi(name.substr(8), &count) || count < 1 || count > kMaxSliversCount)
+      return absl::InvalidArgumentError(
+          absl::StrCat("built-in scene '", name, "': slivers-N takes N in 1..", kMaxSliversCount));
+    return BuiltinScene{MakeSliversScene(count), Camera{}};
+  }
+  return absl::InvalidArgumentError(absl::StrCat(
+      "unknown built-in scene '", name, "' (demo, airport, triangles, skewed, tris-N, slivers-N)"));
 }
 
 }  // namespace aperture

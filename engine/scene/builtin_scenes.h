@@ -1,7 +1,8 @@
 // The scenes built into every tool and the server, by name: "demo" (the airfield on final
 // approach), "airport" (the same approach to a real airport's map, scene/airport_scene.h),
 // "triangles" (10,000 random triangles), "skewed" (a dense city block in one corner
-// of the view) and "tris-N" (issue 19's peer-benchmark scene of N triangles painted in order).
+// of the view), "tris-N" (issue 19's peer-benchmark scene of N triangles painted in order) and
+// "slivers-N" (N slivers on 13 planes, the service tests' slow frame).
 // Each comes with the camera it is meant to be seen from.
 #pragma once
 
@@ -20,6 +21,8 @@ struct BuiltinScene {
 
 // The largest N of "tris-N" (the peer benchmark's largest scene).
 inline constexpr int kMaxTrisCount = 1000000;
+// The largest N of "slivers-N".
+inline constexpr int kMaxSliversCount = 1000000;
 
 // InvalidArgument naming the known scenes for any other name.
 absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name);

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "scene/benchmark_scenes.h"
 #include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
@@ -47,53 +48,14 @@ void ServiceTest::StartServer(const std::vector<std::string>& args) {
       server_->address(), grpc::InsecureChannelCredentials(), channel_args));
 }
 
-namespace {
-
-// 72000 short thin triangles spread evenly over the view at many angles: every window is mixed,
-// the cost is even over the frame, so a 4096 x 4096 frame takes seconds (8.9 s on one thread of
-// the 2-core machine) but each of its tasks much less.
-v1::Scene SliverScene() {
-  v1::Scene scene;
-  scene.set_name("slivers");
-  for (int m = 0; m < 2; ++m) {
-    v1::Material& material = *scene.add_materials();
-    material.set_id(m == 0 ? "orange" : "blue");
-    material.mutable_base_color()->set_r(m == 0 ? 1.0f : 0.1f);
-    material.mutable_base_color()->set_g(0.5f);
-    material.mutable_base_color()->set_b(m == 0 ? 0.2f : 0.9f);
-    material.set_unlit(true);
-  }
-  v1::Mesh& mesh = *scene.add_meshes();
-  mesh.set_id("slivers");
-  constexpr int kTriangles = 72000;
-  for (int i = 0; i < kTriangles; ++i) {
-    const double angle = M_PI * i / kTriangles * 7.3;
-    // Centres spread over the view by a low-discrepancy (golden ratio) sequence.
-    const double cx = 12 * std::fmod(i * 0.6180339887, 1.0) - 6;
-    const double cy = 12 * std::fmod(i * 0.7548776662, 1.0) - 6;
-    const double dx = std::cos(angle), dy = std::sin(angle);
-    const double nx = -0.02 * std::sin(angle), ny = 0.02 * std::cos(angle);
-    v1::Polygon& polygon = *mesh.add_polygons();
-    polygon.set_material_id(i % 2 ? "blue" : "orange");
-    for (const auto& [x, y] :
-         {std::pair{cx - dx, cy - dy}, {cx + dx, cy + dy}, {cx + dx + nx, cy + dy + ny}}) {
-      v1::Vec3& vertex = *polygon.add_vertices();
-      vertex.set_x(x);
-      vertex.set_y(y);
-      vertex.set_z(-10 - 0.001 * (i % 13));
-    }
-  }
-  scene.add_objects()->set_mesh_id("slivers");
-  return scene;
-}
-
-}  // namespace
-
 std::string ServiceTest::LoadDemoScene() { return LoadScene(MakeDemoScene()); }
 
 v1::RenderFrameRequest ServiceTest::SlowFrame() {
   v1::RenderFrameRequest request;
-  request.set_scene_id(LoadScene(SliverScene()));
+  // 72,000 slivers (scene/benchmark_scenes.h): every window is mixed, the cost is even over the
+  // frame, so a 4096 x 4096 frame takes seconds (8.9 s on one thread of the 2-core machine) but
+  // each of its tasks much less.
+  request.set_scene_id(LoadScene(MakeSliversScene(72000)));
   request.mutable_camera()->mutable_position();
   request.mutable_options()->set_width(4096);
   request.mutable_options()->set_height(4096);

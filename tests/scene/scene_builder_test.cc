@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <set>
 
 #include "scene/builtin_scenes.h"
 #include "scene/demo_scene.h"
@@ -155,6 +156,38 @@ TEST(SceneBuilder, TrisSceneByNameHasItsTrianglesInPaintingOrder) {
     }
   }
   for (const char* bad : {"tris-0", "tris-x", "tris-1000001"}) {
+    auto refused = FindBuiltinScene(bad);
+    ASSERT_FALSE(refused.ok()) << bad;
+    EXPECT_NE(refused.status().message().find("1..1000000"), std::string::npos) << bad;
+  }
+}
+
+// The slivers-N scene (the service tests' slow frame): N slivers 2 units long and 0.02 wide on
+// 13 planes facing the camera, in view of the camera at the origin.
+TEST(SceneBuilder, SliversSceneByNameHasItsSliversOnThirteenPlanes) {
+  auto builtin = FindBuiltinScene("slivers-260");
+  ASSERT_TRUE(builtin.ok()) << builtin.status();
+  auto scene = BuildScene(builtin->scene);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  ASSERT_EQ(scene->polygons.size(), 260u);
+  std::set<double> planes;
+  for (const ScenePolygon& p : scene->polygons) {
+    ASSERT_EQ(p.vertices.size(), 3u);
+    for (const Vec3& v : p.vertices) {
+      EXPECT_EQ(v.z, p.vertices[0].z);
+      EXPECT_LE(std::abs(v.x), 7.1);  // centres within 6 units of the axis, half-length 1
+      EXPECT_LE(std::abs(v.y), 7.1);
+    }
+    planes.insert(p.vertices[0].z);
+    EXPECT_NEAR(std::hypot(p.vertices[1].x - p.vertices[0].x, p.vertices[1].y - p.vertices[0].y),
+                2.0, 1e-9);
+    EXPECT_NEAR(std::hypot(p.vertices[2].x - p.vertices[1].x, p.vertices[2].y - p.vertices[1].y),
+                0.02, 1e-9);
+  }
+  EXPECT_EQ(planes.size(), 13u);
+  EXPECT_GE(*planes.begin(), -10.0125);
+  EXPECT_LE(*planes.rbegin(), -10.0);
+  for (const char* bad : {"slivers-0", "slivers-", "slivers-1000001"}) {
     auto refused = FindBuiltinScene(bad);
     ASSERT_FALSE(refused.ok()) << bad;
     EXPECT_NE(refused.status().message().find("1..1000000"), std::string::npos) << bad;
