@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "texture/packed/area_integral.h"
 #include "texture/packed/packed_sampler.h"
@@ -115,6 +117,39 @@ TEST(PackedArea, TheRunIndexNarrowsTheSearchWithoutChangingAnIntegral) {
     }
   }
   EXPECT_GT(narrowed_sizes, 10000);  // the index answered for most single texels
+}
+
+// A thread keeps the runs of the blocks its integrals visited, per integrator. Integrators made
+// and dropped one after another (likely at the same address) over different textures of one size
+// must never answer from another's entries: each integral equals the brute-force sum of its own
+// texture, and a second pass over the same rectangles (answered from the cache) gives the same
+// values bit for bit as the first.
+TEST(PackedArea, AThreadsCachedBlockRunsNeverAnswerForAnotherTexture) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<std::array<double, 4>> rects;
+  for (int i = 0; i < 60; ++i) {
+    const double x0 = unit(rng) * 64, y0 = unit(rng) * 64;
+    rects.push_back({x0, y0, x0 + 0.5 + unit(rng) * 20, y0 + 0.5 + unit(rng) * 20});
+  }
+  for (int texture = 0; texture < 12; ++texture) {
+    const IndexedImage image =
+        RandomIndexedImage(64, 64, texture % 2 ? 5 : 120, 100 + texture, texture % 2 == 1);
+    auto packed = PackTexture(image, texture % 3 ? Curve::kHilbert : Curve::kMorton);
+    ASSERT_TRUE(packed.ok());
+    const RunIndex index(packed->view());
+    const AreaIntegrator area(packed->view(), &index);
+    std::vector<AreaSum> first;
+    for (const auto& [x0, y0, x1, y1] : rects) {
+      first.push_back(area.Integrate(x0, y0, x1, y1));
+      ExpectNear(first.back(), BruteForce(image, x0, y0, x1, y1), "texture");
+    }
+    for (size_t i = 0; i < rects.size(); ++i) {
+      const auto& [x0, y0, x1, y1] = rects[i];
+      const AreaSum again = area.Integrate(x0, y0, x1, y1);
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(again.channels[c], first[i].channels[c]) << i;
+    }
+  }
 }
 
 TEST(PackedArea, IntegerSumsAreExactOnAMap) {

@@ -1,8 +1,10 @@
 #include "texture/packed/area_integral.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
+#include <memory>
 
 namespace aperture::packed {
 namespace {
@@ -47,6 +49,8 @@ int SplitPeriodic(double a, double b, double n, Piece out[3]) {
 }  // namespace
 
 AreaIntegrator::AreaIntegrator(const PackedTextureView& texture) : texture_(texture) {
+  static std::atomic<uint64_t> next_id{1};
+  id_ = next_id.fetch_add(1, std::memory_order_relaxed);
   const auto steps = texture.steps();
   const auto indices = texture.indices();
   const auto palette = texture.palette();
@@ -85,6 +89,28 @@ size_t AreaIntegrator::RunIn(size_t lo, size_t hi, uint64_t step) const {
       steps.begin());
 }
 
+// A thread's recent answers to "which runs hold this block", per integrator: neighbouring
+// pixels' footprints visit mostly the same blocks, and a block's runs are a function of the block
+// (the airport's frame, whose ground is a packed map: 60.3 -> 55.7 ms at 2 threads). Entries are
+// tagged with the integrator's id, never its address, which a later integrator may reuse.
+struct AreaIntegrator::RunsCache {
+  struct Entry {
+    uint64_t owner = 0;  // 0: empty (ids start at 1)
+    uint64_t key = 0;
+    size_t run_lo = 0, run_hi = 0;
+  };
+  static constexpr size_t kEntries = 16384;  // 512 KiB a thread, from the heap
+  static uint64_t Key(const Block& b) {
+    return (uint64_t{b.x} << 34) | (uint64_t{b.y} << 6) | static_cast<uint64_t>(b.level);
+  }
+  static Entry& Of(const Block& b) {
+    static thread_local std::unique_ptr<Entry[]> entries;
+    if (!entries) entries = std::make_unique<Entry[]>(kEntries);
+    return entries[(b.x * 73856093u ^ b.y * 19349663u ^ static_cast<uint32_t>(b.level)) &
+                   (kEntries - 1)];
+  }
+};
+
 AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32_t x1,
                                                 uint32_t y1) const {
   // The lowest level at which both corners fall in one block: above the highest differing bit.
@@ -105,6 +131,20 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
     b.y += yb << half;
     b.level = half;
   }
+  // Neighbouring pixels' footprints mostly start at the same block: its runs from the thread's
+  // last answers for this integrator, or searched and kept there.
+  RunsCache::Entry& entry = RunsCache::Of(b);
+  if (entry.owner == id_ && entry.key == RunsCache::Key(b)) {
+    b.run_lo = entry.run_lo;
+    b.run_hi = entry.run_hi;
+    return b;
+  }
+  SetRuns(b);
+  entry = {id_, RunsCache::Key(b), b.run_lo, b.run_hi};
+  return b;
+}
+
+void AreaIntegrator::SetRuns(Block& b) const {
   const uint64_t last =
       std::min<uint64_t>(b.step0 + (uint64_t{1} << (2 * b.level)) - 1, texture_.steps().back());
   uint32_t lo, hi;
@@ -113,11 +153,10 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
       index_->RunsAround(b.x, b.y, b.level, lo, hi)) {
     b.run_lo = RunIn(lo, hi, b.step0);
     b.run_hi = RunIn(b.run_lo, hi, last);
-    return b;
+    return;
   }
   b.run_lo = texture_.RunOfStep(static_cast<uint32_t>(b.step0));
   b.run_hi = texture_.RunOfStep(static_cast<uint32_t>(last));
-  return b;
 }
 
 AreaIntegrator::Block AreaIntegrator::Child(const Block& b, uint32_t digit) const {
@@ -134,6 +173,22 @@ AreaIntegrator::Block AreaIntegrator::Child(const Block& b, uint32_t digit) cons
 }
 
 void AreaIntegrator::FindRuns(const Block& parent, Block& o) const {
+  const uint64_t side = uint64_t{1} << o.level;
+  const bool inside = o.x + side <= texture_.width() && o.y + side <= texture_.height();
+  RunsCache::Entry* entry = nullptr;
+  if (inside) {
+    entry = &RunsCache::Of(o);
+    if (entry->owner == id_ && entry->key == RunsCache::Key(o)) {
+      o.run_lo = entry->run_lo;
+      o.run_hi = entry->run_hi;
+      return;
+    }
+  }
+  FindRunsBySearch(parent, o);
+  if (entry != nullptr) *entry = {id_, RunsCache::Key(o), o.run_lo, o.run_hi};
+}
+
+void AreaIntegrator::FindRunsBySearch(const Block& parent, Block& o) const {
   const uint64_t steps = uint64_t{1} << (2 * o.level);
   o.run_lo = o.x < texture_.width() && o.y < texture_.height()
                  ? RunIn(parent.run_lo, parent.run_hi, o.step0)

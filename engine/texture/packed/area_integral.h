@@ -66,10 +66,14 @@ class AreaIntegrator {
   // Sub-block `digit` in curve order, without its runs; FindRuns finds them inside the parent's.
   Block Child(const Block& b, uint32_t digit) const;
   void FindRuns(const Block& parent, Block& child) const;
+  void FindRunsBySearch(const Block& parent, Block& child) const;
+  struct RunsCache;
   size_t RunIn(size_t lo, size_t hi, uint64_t step) const;
   // The smallest aligned block holding texels [x0, x1] x [y0, y1] (inclusive, inside the
   // texture): the descent starts there, skipping the levels above it.
   Block Enclosing(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) const;
+  // A block's runs by search (Enclosing's, when its thread has not just found them).
+  void SetRuns(Block& b) const;
   std::array<uint64_t, 4> SumBlock(const Block& b, uint32_t x0, uint32_t y0, uint32_t x1,
                                    uint32_t y1) const;
   // Rectangle with fractional edges inside [0, width] x [0, height], in one descent: blocks
@@ -83,6 +87,7 @@ class AreaIntegrator {
   // inside a range of texture texels, where length = texel count).
   std::vector<std::array<uint64_t, 4>> prefix_;
   std::array<uint64_t, 4> total_{};
+  uint64_t id_ = 0;  // this integrator's tag in the threads' caches of block runs (RunsCache)
 };
 
 }  // namespace aperture::packed
