@@ -94,7 +94,7 @@ size_t AreaIntegrator::RunIn(size_t lo, size_t hi, uint64_t step) const {
 // and runs are functions of the block (the airport's frame, whose ground is a packed map: 60.3 ->
 // 50.1 ms at 2 threads). Entries are tagged with the integrator's id, never its address, which a
 // later integrator may reuse.
-struct AreaIntegrator::RunsCache {
+struct AreaIntegrator::BlockCache {
   struct Entry {
     uint64_t owner = 0;  // 0: empty (ids start at 1)
     uint64_t key = 0;
@@ -131,8 +131,8 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
           0};
   // Neighbouring pixels' footprints mostly start at the same block: all of it from the thread's
   // last answers for this integrator, or walked to and searched, and kept there.
-  RunsCache::Entry& entry = RunsCache::Of(b);
-  if (entry.owner == id_ && entry.key == RunsCache::Key(b)) {
+  BlockCache::Entry& entry = BlockCache::Of(b);
+  if (entry.owner == id_ && entry.key == BlockCache::Key(b)) {
     b.state = entry.state;
     b.step0 = entry.step0;
     b.run_lo = entry.run_lo;
@@ -155,7 +155,7 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
     b.level = half;
   }
   SetRuns(b);
-  entry = RunsCache::EntryOf(id_, b);
+  entry = BlockCache::EntryOf(id_, b);
   return b;
 }
 
@@ -190,17 +190,17 @@ AreaIntegrator::Block AreaIntegrator::Child(const Block& b, uint32_t digit) cons
 void AreaIntegrator::FindRuns(const Block& parent, Block& o) const {
   const uint64_t side = uint64_t{1} << o.level;
   const bool inside = o.x + side <= texture_.width() && o.y + side <= texture_.height();
-  RunsCache::Entry* entry = nullptr;
+  BlockCache::Entry* entry = nullptr;
   if (inside) {
-    entry = &RunsCache::Of(o);
-    if (entry->owner == id_ && entry->key == RunsCache::Key(o)) {
+    entry = &BlockCache::Of(o);
+    if (entry->owner == id_ && entry->key == BlockCache::Key(o)) {
       o.run_lo = entry->run_lo;
       o.run_hi = entry->run_hi;
       return;
     }
   }
   FindRunsBySearch(parent, o);
-  if (entry != nullptr) *entry = RunsCache::EntryOf(id_, o);
+  if (entry != nullptr) *entry = BlockCache::EntryOf(id_, o);
 }
 
 void AreaIntegrator::FindRunsBySearch(const Block& parent, Block& o) const {

@@ -67,7 +67,7 @@ class AreaIntegrator {
   Block Child(const Block& b, uint32_t digit) const;
   void FindRuns(const Block& parent, Block& child) const;
   void FindRunsBySearch(const Block& parent, Block& child) const;
-  struct RunsCache;
+  struct BlockCache;
   size_t RunIn(size_t lo, size_t hi, uint64_t step) const;
   // The smallest aligned block holding texels [x0, x1] x [y0, y1] (inclusive, inside the
   // texture): the descent starts there, skipping the levels above it.
@@ -87,7 +87,7 @@ class AreaIntegrator {
   // inside a range of texture texels, where length = texel count).
   std::vector<std::array<uint64_t, 4>> prefix_;
   std::array<uint64_t, 4> total_{};
-  uint64_t id_ = 0;  // this integrator's tag in the threads' caches of block runs (RunsCache)
+  uint64_t id_ = 0;  // this integrator's tag in the threads' caches of blocks (BlockCache)
 };
 
 }  // namespace aperture::packed
