@@ -17,8 +17,8 @@ struct ScreenLinear {
 };
 
 struct ScreenPolygon {
-  // (The box, area, perimeter and the vertices' pointers share the first cache line: planning a
-  // crowded frame reads just these of every polygon, for each window it reaches.)
+  // (The box, area and perimeter come first, in one cache line with the start of the vertices:
+  // planning a crowded frame reads just these of every polygon, for each window it reaches.)
   double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
   // Its area and the sum of its edges' lengths, in pixels: what the cost model measures of a
   // polygon wholly inside a window (cost/window_cost.h), kept so that planning a crowded frame
