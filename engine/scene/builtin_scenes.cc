@@ -1,5 +1,6 @@
 #include "scene/builtin_scenes.h"
 
+#include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "scene/airport_scene.h"
@@ -14,19 +15,24 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   // The benchmark scenes are laid out around a camera at the origin looking along -z.
   if (name == "triangles") return BuiltinScene{MakeTriangleFieldScene(10000), Camera{}};
   if (name == "skewed") return BuiltinScene{MakeSkewedCityScene(), Camera{}};
-  if (name.rfind("tris-", 0) == 0) {
+  // The benchmark families named with a count, "tris-N" and "slivers-N".
+  struct Family {
+    absl::string_view prefix;
+    int max_count;
+    v1::Scene (*make)(int count);
+  };
+  const Family families[] = {
+      {"tris-", kMaxTrisCount, [](int count) { return MakeTrisScene(count); }},
+      {"slivers-", kMaxSliversCount, [](int count) { return MakeSliversScene(count); }},
+  };
+  for (const Family& family : families) {
+    if (!absl::StartsWith(name, family.prefix)) continue;
     int count = 0;
-    if (!absl::SimpleAtoi(name.substr(5), &count) || count < 1 || count > kMaxTrisCount)
-      return absl::InvalidArgumentError(
-          absl::StrCat("built-in scene '", name, "': tris-N takes N in 1..", kMaxTrisCount));
-    return BuiltinScene{MakeTrisScene(count), Camera{}};
-  }
-  if (name.rfind("slivers-", 0) == 0) {
-    int count = 0;
-    if (!absl::SimpleAtoi(name.substr(8), &count) || count < 1 || count > kMaxSliversCount)
-      return absl::InvalidArgumentError(
-          absl::StrCat("built-in scene '", name, "': slivers-N takes N in 1..", kMaxSliversCount));
-    return BuiltinScene{MakeSliversScene(count), Camera{}};
+    if (!absl::SimpleAtoi(absl::string_view(name).substr(family.prefix.size()), &count) ||
+        count < 1 || count > family.max_count)
+      return absl::InvalidArgumentError(absl::StrCat("built-in scene '", name, "': ", family.prefix,
+                                                     "N takes N in 1..", family.max_count));
+    return BuiltinScene{family.make(count), Camera{}};
   }
   return absl::InvalidArgumentError(absl::StrCat(
       "unknown built-in scene '", name, "' (demo, airport, triangles, skewed, tris-N, slivers-N)"));
