@@ -7,7 +7,8 @@ namespace aperture {
 namespace {
 
 // One axis of the construction: `along` picks the coordinate the grid lines cross (x for Lx).
-// Fills `out` with the group rectangles and returns their total area.
+// Fills `out` with the group rectangles and returns their total area. `l` is a power of two (the
+// grid of level k, 2^-k).
 //
 // Steps 3-7: the list L = {a, b, c, d, crossings of the edges with the lines key = m l}, sorted by
 // the key and grouped by grid cell (a point on a line joins both cells it separates), each group
@@ -44,7 +45,11 @@ double BuildGroups(const std::array<TexPoint, 4>& quad, double l, bool along_x,
     const double lo = std::min(kp, kq), hi = std::max(kp, kq);
     for (double m = std::ceil(lo / l); m * l <= hi; m += 1) {
       const double k = m * l, t = (k - kp) / (kq - kp);
-      place(k, other(p) + t * (other(q) - other(p)));
+      // On line m (l is a power of two, so k / l is m exactly): what `place` finds, without
+      // its division.
+      const double o = other(p) + t * (other(q) - other(p));
+      add(m - 1, k, o);
+      add(m, k, o);
     }
   }
   // A cell holding only points on its border line has no width: not a fragment.
