@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace aperture {
 namespace {
@@ -32,6 +33,18 @@ double BuildGroups(const std::array<TexPoint, 4>& quad, double l, bool along_x,
     r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x);
     r.z0 = std::min(r.z0, z), r.z1 = std::max(r.z1, z);
   };
+  auto add_two = [&](double cell, double k, double o, double k1, double o1) {
+    const size_t index = static_cast<size_t>(cell - first);
+    if (index >= out->size()) return;  // not reached: every key lies in [kmin, kmax]
+    TexRect& r = (*out)[index];
+    double x0 = r.x0, x1 = r.x1, z0 = r.z0, z1 = r.z1;
+    for (const auto& [kk, oo] : {std::pair{k, o}, std::pair{k1, o1}}) {
+      const double x = along_x ? kk : oo, z = along_x ? oo : kk;
+      x0 = std::min(x0, x), x1 = std::max(x1, x);
+      z0 = std::min(z0, z), z1 = std::max(z1, z);
+    }
+    r = {x0, z0, x1, z1};
+  };
   auto place = [&](double k, double o) {
     const double c = k / l, cell = std::floor(c);
     if (c == cell) add(cell - 1, k, o);  // on a grid line: also the cell before it
@@ -43,13 +56,25 @@ double BuildGroups(const std::array<TexPoint, 4>& quad, double l, bool along_x,
     const double kp = key(p), kq = key(q);
     if (kp == kq) continue;  // parallel to the lines: its ends are vertices already
     const double lo = std::min(kp, kq), hi = std::max(kp, kq);
-    for (double m = std::ceil(lo / l); m * l <= hi; m += 1) {
+    // The crossing with line m joins cells m - 1 and m (l is a power of two, so k / l is m
+    // exactly: what `place` would find, without its division). Cell m takes the crossings with
+    // lines m and m + 1 in that order, in one update.
+    auto crossing = [&](double m) {
       const double k = m * l, t = (k - kp) / (kq - kp);
-      // On line m (l is a power of two, so k / l is m exactly): what `place` finds, without
-      // its division.
-      const double o = other(p) + t * (other(q) - other(p));
-      add(m - 1, k, o);
-      add(m, k, o);
+      return std::pair{k, other(p) + t * (other(q) - other(p))};
+    };
+    double m = std::ceil(lo / l);
+    if (!(m * l <= hi)) continue;
+    auto [k, o] = crossing(m);
+    add(m - 1, k, o);
+    for (;; m += 1) {
+      if (!((m + 1) * l <= hi)) {
+        add(m, k, o);
+        break;
+      }
+      const auto [k1, o1] = crossing(m + 1);
+      add_two(m, k, o, k1, o1);
+      k = k1, o = o1;
     }
   }
   // A cell holding only points on its border line has no width: not a fragment.
