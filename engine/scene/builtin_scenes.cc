@@ -8,6 +8,26 @@
 #include "scene/demo_scene.h"
 
 namespace aperture {
+namespace {
+
+// The benchmark families named with a count, "tris-N" and "slivers-N".
+struct Family {
+  absl::string_view prefix;
+  int max_count;
+  v1::Scene (*make)(int count);
+};
+constexpr Family kFamilies[] = {
+    {"tris-", kMaxTrisCount, [](int count) { return MakeTrisScene(count); }},
+    {"slivers-", kMaxSliversCount, [](int count) { return MakeSliversScene(count); }},
+};
+
+}  // namespace
+
+bool NamesCountedBuiltinScene(const std::string& name) {
+  for (const Family& family : kFamilies)
+    if (absl::StartsWith(name, family.prefix)) return true;
+  return false;
+}
 
 absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   if (name == "demo") return BuiltinScene{MakeDemoScene(), DemoCamera()};
@@ -15,17 +35,7 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   // The benchmark scenes are laid out around a camera at the origin looking along -z.
   if (name == "triangles") return BuiltinScene{MakeTriangleFieldScene(10000), Camera{}};
   if (name == "skewed") return BuiltinScene{MakeSkewedCityScene(), Camera{}};
-  // The benchmark families named with a count, "tris-N" and "slivers-N".
-  struct Family {
-    absl::string_view prefix;
-    int max_count;
-    v1::Scene (*make)(int count);
-  };
-  const Family families[] = {
-      {"tris-", kMaxTrisCount, [](int count) { return MakeTrisScene(count); }},
-      {"slivers-", kMaxSliversCount, [](int count) { return MakeSliversScene(count); }},
-  };
-  for (const Family& family : families) {
+  for (const Family& family : kFamilies) {
     if (!absl::StartsWith(name, family.prefix)) continue;
     int count = 0;
     if (!absl::SimpleAtoi(absl::string_view(name).substr(family.prefix.size()), &count) ||

@@ -24,6 +24,10 @@ inline constexpr int kMaxTrisCount = 1000000;
 // The largest N of "slivers-N".
 inline constexpr int kMaxSliversCount = 1000000;
 
+// Whether `name` starts like a built-in family named with a count ("tris-", "slivers-"): such a
+// name is never a file, so its error (a count out of range) is the one to report.
+bool NamesCountedBuiltinScene(const std::string& name);
+
 // InvalidArgument naming the known scenes for any other name.
 absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name);
 

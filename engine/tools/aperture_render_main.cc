@@ -123,8 +123,7 @@ int Run() {
   const std::string scene_arg = absl::GetFlag(FLAGS_scene);
   // A built-in scene by name (scene/builtin_scenes.h) comes with its camera; else a file.
   auto builtin = FindBuiltinScene(scene_arg);
-  if (!builtin.ok() && (scene_arg.rfind("tris-", 0) == 0 || scene_arg.rfind("slivers-", 0) == 0))
-    return Fail(builtin.status());
+  if (!builtin.ok() && NamesCountedBuiltinScene(scene_arg)) return Fail(builtin.status());
   std::optional<v1::Camera> own_camera;
   if (builtin.ok()) own_camera = CameraToProto(builtin->camera);
   // A glTF model is read here, once: its cameras (by name, the first by default) are options.

@@ -25,25 +25,27 @@ double BuildGroups(const std::array<TexPoint, 4>& quad, double l, bool along_x,
   const double first = std::ceil(kmin / l) - 1;
   out->assign(static_cast<size_t>(std::floor(kmax / l) - first) + 1,
               TexRect{INFINITY, INFINITY, -INFINITY, -INFINITY});
-  auto add = [&](double cell, double k, double o) {
+  // The rectangle of a cell, null outside [kmin, kmax] (not reached: every key lies there).
+  auto rect_of = [&](double cell) -> TexRect* {
     const size_t index = static_cast<size_t>(cell - first);
-    if (index >= out->size()) return;  // not reached: every key lies in [kmin, kmax]
-    TexRect& r = (*out)[index];
+    return index < out->size() ? &(*out)[index] : nullptr;
+  };
+  auto include = [&](TexRect& r, double k, double o) {
     const double x = along_x ? k : o, z = along_x ? o : k;
     r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x);
     r.z0 = std::min(r.z0, z), r.z1 = std::max(r.z1, z);
   };
+  auto add = [&](double cell, double k, double o) {
+    if (TexRect* r = rect_of(cell)) include(*r, k, o);
+  };
+  // Two points into one cell in one update (a local copy, stored once).
   auto add_two = [&](double cell, double k, double o, double k1, double o1) {
-    const size_t index = static_cast<size_t>(cell - first);
-    if (index >= out->size()) return;  // not reached: every key lies in [kmin, kmax]
-    TexRect& r = (*out)[index];
-    double x0 = r.x0, x1 = r.x1, z0 = r.z0, z1 = r.z1;
-    for (const auto& [kk, oo] : {std::pair{k, o}, std::pair{k1, o1}}) {
-      const double x = along_x ? kk : oo, z = along_x ? oo : kk;
-      x0 = std::min(x0, x), x1 = std::max(x1, x);
-      z0 = std::min(z0, z), z1 = std::max(z1, z);
-    }
-    r = {x0, z0, x1, z1};
+    TexRect* r = rect_of(cell);
+    if (r == nullptr) return;
+    TexRect both = *r;
+    include(both, k, o);
+    include(both, k1, o1);
+    *r = both;
   };
   auto place = [&](double k, double o) {
     const double c = k / l, cell = std::floor(c);

@@ -191,7 +191,11 @@ TEST(SceneBuilder, SliversSceneByNameHasItsSliversOnThirteenPlanes) {
     auto refused = FindBuiltinScene(bad);
     ASSERT_FALSE(refused.ok()) << bad;
     EXPECT_NE(refused.status().message().find("1..1000000"), std::string::npos) << bad;
+    EXPECT_TRUE(NamesCountedBuiltinScene(bad)) << bad;  // its error is reported, not a file's
   }
+  EXPECT_TRUE(NamesCountedBuiltinScene("tris-x"));
+  EXPECT_FALSE(NamesCountedBuiltinScene("demo"));
+  EXPECT_FALSE(NamesCountedBuiltinScene("slivers.json"));
 }
 
 }  // namespace

@@ -106,6 +106,9 @@ struct AreaIntegrator::BlockCache {
   static uint64_t Key(const Block& b) {
     return (uint64_t{b.x} << 34) | (uint64_t{b.y} << 6) | static_cast<uint64_t>(b.level);
   }
+  static bool Holds(const Entry& e, uint64_t owner, const Block& b) {
+    return e.owner == owner && e.key == Key(b);
+  }
   static Entry EntryOf(uint64_t owner, const Block& b) {
     return {owner, Key(b), b.step0, b.run_lo, b.run_hi, b.state};
   }
@@ -122,17 +125,12 @@ AreaIntegrator::Block AreaIntegrator::Enclosing(uint32_t x0, uint32_t y0, uint32
   // The lowest level at which both corners fall in one block: above the highest differing bit.
   const int level =
       std::min(texture_.order(), static_cast<int>(std::bit_width((x0 ^ x1) | (y0 ^ y1))));
-  Block b{level,
-          level >= 32 ? 0 : (x0 >> level) << level,
-          level >= 32 ? 0 : (y0 >> level) << level,
-          0,
-          0,
-          0,
-          0};
+  const uint32_t above = level >= 32 ? 0 : ~0u << level;  // the block's bits of a coordinate
+  Block b{level, x0 & above, y0 & above, 0, 0, 0, 0};
   // Neighbouring pixels' footprints mostly start at the same block: all of it from the thread's
   // last answers for this integrator, or walked to and searched, and kept there.
   BlockCache::Entry& entry = BlockCache::Of(b);
-  if (entry.owner == id_ && entry.key == BlockCache::Key(b)) {
+  if (BlockCache::Holds(entry, id_, b)) {
     b.state = entry.state;
     b.step0 = entry.step0;
     b.run_lo = entry.run_lo;
@@ -193,7 +191,7 @@ void AreaIntegrator::FindRuns(const Block& parent, Block& o) const {
   BlockCache::Entry* entry = nullptr;
   if (inside) {
     entry = &BlockCache::Of(o);
-    if (entry->owner == id_ && entry->key == BlockCache::Key(o)) {
+    if (BlockCache::Holds(*entry, id_, o)) {
       o.run_lo = entry->run_lo;
       o.run_hi = entry->run_hi;
       return;
