@@ -98,6 +98,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     return;
   }
   DropHiddenByAFullPolygon();
+  if (PaintStacked(polygons, cx, cy, with_moments, out)) return;
   pieces_.clear();
   verts_.clear();
   for (const Reach& r : reach_) {
@@ -129,6 +130,57 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     else
       Accumulate(out[it->second].moments, piece.moments);
   }
+}
+
+// Polygons whose depth ranges over the whole cell are stacked (each wholly in front of the next:
+// small triangles drawn one over another, runway paint over the ground) need no piece cut out
+// first, no pairwise test and no painter's order found by tests: the painter cuts the square by
+// their crossing edges directly, nearest first. A polygon covering the cell takes what the ones
+// in front left, the square less their moments (as the layers' rule above it computes), and hides
+// the rest. Most crowded cells of a frame of small polygons are such (issue 19).
+bool CellCoverage::PaintStacked(std::span<const ScreenPolygon> polygons, double cx, double cy,
+                                bool with_moments, std::vector<CellPiece>& out) {
+  const size_t n = reach_.size();
+  if (n > kStackedPieces) return false;  // the quadrants bound a crowded cell's regions
+  // Nearest first (an insertion sort: a handful), ties in reach_'s order.
+  double nearest[kStackedPieces], farthest[kStackedPieces];
+  size_t order[kStackedPieces];
+  for (size_t i = 0; i < n; ++i) {
+    const ScreenLinear& d = reach_[i].depth;  // over the cell: its centre's value +- r
+    const double r = kHalf * (std::abs(d.a) + std::abs(d.b));
+    nearest[i] = d.c + r;
+    farthest[i] = d.c - r;
+    size_t k = i;
+    for (; k > 0 && nearest[order[k - 1]] < nearest[i]; --k) order[k] = order[k - 1];
+    order[k] = i;
+  }
+  for (size_t k = 0; k + 1 < n; ++k)
+    if (!(farthest[order[k]] > nearest[order[k + 1]])) return false;
+
+  StartPainting();
+  CellMoments rest = SquareMoments();
+  auto covers_cell = [&](size_t k) {
+    return reach_[order[k]].edges_begin == reach_[order[k]].edges_end;
+  };
+  for (size_t k = 0; k < n; ++k) {
+    const Reach& r = reach_[order[k]];
+    if (covers_cell(k)) {  // takes the rest and hides what is behind
+      if (rest.area > 0) out.push_back({r.polygon, rest});
+      return true;
+    }
+    const ScreenPolygon& p = polygons[r.polygon];
+    const Box box{p.min_x - cx, p.min_y - cy, p.max_x - cx, p.max_y - cy};
+    // The regions left are only needed by a later polygon that does not cover the cell (one that
+    // does takes the square less the moments).
+    const bool last_cut = k + 1 == n || covers_cell(k + 1);
+    const CellMoments m =
+        PaintInside(std::span(crossing_).subspan(r.edges_begin, r.edges_end - r.edges_begin), box,
+                    with_moments, /*keep_rest=*/!last_cut);
+    if (m.area > 0) out.push_back({r.polygon, m});
+    rest = {rest.area - m.area, rest.mx - m.mx, rest.my - m.my, rest.mxy - m.mxy};
+    if (!last_cut && regions_a_.empty()) return true;
+  }
+  return true;
 }
 
 // The polygon nearest at the centre among those covering the whole cell hides every polygon it is
@@ -463,27 +515,15 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
 // Painter's algorithm front to back with exact convex clipping: each piece sees what the pieces
 // in front of it left of the cell; what it covers is removed from the rest.
 void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out) {
-  std::vector<Vec2>& pool = pool_a_;
-  pool.assign({{square_.x0, square_.y0},
-               {square_.x1, square_.y0},
-               {square_.x1, square_.y1},
-               {square_.x0, square_.y1}});
-  regions_a_.assign({{0, 4}});
+  StartPainting();
   for (size_t index : order_) {
     const Piece& piece = pieces_[index];
-    pool_b_.clear();
-    regions_b_.clear();
-    CellMoments visible;
     const size_t n = piece.end - piece.begin;
-    double px0 = INFINITY, py0 = INFINITY, px1 = -INFINITY, py1 = -INFINITY;
+    Box box{INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (size_t k = piece.begin; k < piece.end; ++k) {
-      px0 = std::min(px0, verts_[k].x), px1 = std::max(px1, verts_[k].x);
-      py0 = std::min(py0, verts_[k].y), py1 = std::max(py1, verts_[k].y);
+      box.x0 = std::min(box.x0, verts_[k].x), box.x1 = std::max(box.x1, verts_[k].x);
+      box.y0 = std::min(box.y0, verts_[k].y), box.y1 = std::max(box.y1, verts_[k].y);
     }
-    auto keep = [&](std::span<const Vec2> region) {
-      regions_b_.push_back({pool_b_.size(), pool_b_.size() + region.size()});
-      pool_b_.insert(pool_b_.end(), region.begin(), region.end());
-    };
     // The lines of the piece's edges that cut the square's inside (not those on its border, nor
     // repeated vertices), once for all regions.
     lines_.clear();
@@ -497,66 +537,107 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
       if (a == 0 && b == 0) continue;
       lines_.push_back({a, b, -(a * p.x + b * p.y)});
     }
-    const size_t lines = lines_.size();
-    for (const auto& [begin, end] : regions_a_) {
-      const std::span<const Vec2> region(pool_a_.data() + begin, end - begin);
-      // A region beside the piece's bounding box stays whole: cutting it along the lines of the
-      // piece's edges would only multiply the regions (a crowded cell's painter would then grow
-      // them without bound).
-      double rx0 = INFINITY, ry0 = INFINITY, rx1 = -INFINITY, ry1 = -INFINITY;
-      for (const Vec2& v : region) {
-        rx0 = std::min(rx0, v.x), rx1 = std::max(rx1, v.x);
-        ry0 = std::min(ry0, v.y), ry1 = std::max(ry1, v.y);
-      }
-      if (rx1 <= px0 || rx0 >= px1 || ry1 <= py0 || ry0 >= py1) {
-        keep(region);
-        continue;
-      }
-      // The region cut by each of the piece's edges: the part outside an edge is kept, the part
-      // inside goes on to the next edge, and what is inside all of them is the piece's visible
-      // part. In the fixed buffers while the cuts fit; from the edge where one would not, in
-      // vectors.
-      size_t i = 0;
-      if (region.size() + 2 <= kClipBuffer) {
-        Vec2* inside = clip_buffers_[0];
-        Vec2* next = clip_buffers_[1];
-        Vec2* outside = clip_buffers_[2];
-        std::copy(region.begin(), region.end(), inside);
-        size_t count = region.size();
-        for (; i < lines && count >= 3; ++i) {
-          const ScreenLinear& e = lines_[i];
-          size_t in_count, out_count;
-          if (!SplitByLine(inside, count, e.a, e.b, e.c, next, in_count, outside, out_count,
-                           kClipBuffer))
-            break;
-          // A sliver of no area (a vertex on the line) is nothing left to paint.
-          const std::span<const Vec2> outside_part(outside, out_count);
-          if (out_count >= 3 && PolygonMoments(outside_part, false).area > 0) keep(outside_part);
-          count = in_count;
-          std::swap(inside, next);
-        }
-        if (i == lines || count < 3) {
-          if (count >= 3) Accumulate(visible, PolygonMoments({inside, count}, with_moments));
-          continue;
-        }
-        clip_.assign(inside, inside + count);
-      } else {
-        clip_.assign(region.begin(), region.end());
-      }
-      for (; i < lines && !clip_.empty(); ++i) {
-        const ScreenLinear& e = lines_[i];
-        outside_.assign(clip_.begin(), clip_.end());
-        ClipByHalfPlane(outside_, -e.a, -e.b, -e.c, scratch_);
-        if (outside_.size() >= 3 && PolygonMoments(outside_, false).area > 0) keep(outside_);
-        ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
-      }
-      if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
-    }
+    const CellMoments visible = PaintInside(lines_, box, with_moments, /*keep_rest=*/true);
     if (visible.area > 0) out.push_back({piece.polygon, visible});
-    std::swap(pool_a_, pool_b_);
-    std::swap(regions_a_, regions_b_);
     if (regions_a_.empty()) break;
   }
+}
+
+void CellCoverage::StartPainting() {
+  pool_a_.assign({{square_.x0, square_.y0},
+                  {square_.x1, square_.y0},
+                  {square_.x1, square_.y1},
+                  {square_.x0, square_.y1}});
+  regions_a_.assign({{0, 4}});
+}
+
+CellMoments CellCoverage::PaintInside(std::span<const ScreenLinear> lines, const Box& box,
+                                      bool with_moments, bool keep_rest) {
+  CellMoments visible;
+  if (!keep_rest) {  // only what lies inside: clipped, not split
+    for (const auto& [begin, end] : regions_a_) {
+      const std::span<const Vec2> region(pool_a_.data() + begin, end - begin);
+      Vec2* from = clip_buffers_[0];
+      Vec2* to = clip_buffers_[1];
+      size_t count = region.size() + 2 <= kClipBuffer ? region.size() : kClipOverflow;
+      if (count != kClipOverflow) std::copy(region.begin(), region.end(), from);
+      for (size_t i = 0; i < lines.size() && count >= 3 && count != kClipOverflow; ++i) {
+        count = ClipByHalfPlane(from, count, lines[i].a, lines[i].b, lines[i].c, to, kClipBuffer);
+        std::swap(from, to);
+      }
+      if (count != kClipOverflow) {
+        if (count >= 3) Accumulate(visible, PolygonMoments({from, count}, with_moments));
+        continue;
+      }
+      clip_.assign(region.begin(), region.end());  // a cut would not fit: again, in vectors
+      for (size_t i = 0; i < lines.size() && !clip_.empty(); ++i)
+        ClipByHalfPlane(clip_, lines[i].a, lines[i].b, lines[i].c, scratch_);
+      if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
+    }
+    return visible;
+  }
+  pool_b_.clear();
+  regions_b_.clear();
+  auto keep = [&](std::span<const Vec2> region) {
+    regions_b_.push_back({pool_b_.size(), pool_b_.size() + region.size()});
+    pool_b_.insert(pool_b_.end(), region.begin(), region.end());
+  };
+  for (const auto& [begin, end] : regions_a_) {
+    const std::span<const Vec2> region(pool_a_.data() + begin, end - begin);
+    // A region beside the piece's bounding box stays whole: cutting it along the lines of the
+    // piece's edges would only multiply the regions (a crowded cell's painter would then grow
+    // them without bound).
+    double rx0 = INFINITY, ry0 = INFINITY, rx1 = -INFINITY, ry1 = -INFINITY;
+    for (const Vec2& v : region) {
+      rx0 = std::min(rx0, v.x), rx1 = std::max(rx1, v.x);
+      ry0 = std::min(ry0, v.y), ry1 = std::max(ry1, v.y);
+    }
+    if (rx1 <= box.x0 || rx0 >= box.x1 || ry1 <= box.y0 || ry0 >= box.y1) {
+      keep(region);
+      continue;
+    }
+    // The region cut by each line: the part outside a line is kept, the part inside goes on to
+    // the next line, and what is inside all of them is the piece's visible part. In the fixed
+    // buffers while the cuts fit; from the line where one would not, in vectors.
+    size_t i = 0;
+    if (region.size() + 2 <= kClipBuffer) {
+      Vec2* inside = clip_buffers_[0];
+      Vec2* next = clip_buffers_[1];
+      Vec2* outside = clip_buffers_[2];
+      std::copy(region.begin(), region.end(), inside);
+      size_t count = region.size();
+      for (; i < lines.size() && count >= 3; ++i) {
+        const ScreenLinear& e = lines[i];
+        size_t in_count, out_count;
+        if (!SplitByLine(inside, count, e.a, e.b, e.c, next, in_count, outside, out_count,
+                         kClipBuffer))
+          break;
+        // A sliver of no area (a vertex on the line) is nothing left to paint.
+        const std::span<const Vec2> outside_part(outside, out_count);
+        if (out_count >= 3 && PolygonMoments(outside_part, false).area > 0) keep(outside_part);
+        count = in_count;
+        std::swap(inside, next);
+      }
+      if (i == lines.size() || count < 3) {
+        if (count >= 3) Accumulate(visible, PolygonMoments({inside, count}, with_moments));
+        continue;
+      }
+      clip_.assign(inside, inside + count);
+    } else {
+      clip_.assign(region.begin(), region.end());
+    }
+    for (; i < lines.size() && !clip_.empty(); ++i) {
+      const ScreenLinear& e = lines[i];
+      outside_.assign(clip_.begin(), clip_.end());
+      ClipByHalfPlane(outside_, -e.a, -e.b, -e.c, scratch_);
+      if (outside_.size() >= 3 && PolygonMoments(outside_, false).area > 0) keep(outside_);
+      ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
+    }
+    if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
+  }
+  std::swap(pool_a_, pool_b_);
+  std::swap(regions_a_, regions_b_);
+  return visible;
 }
 
 // Only pairs whose bounding boxes overlap are tested, so a mesh's pieces cost about k log k, not

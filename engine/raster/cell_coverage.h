@@ -8,6 +8,10 @@
 // depth order are constant, so the front polygon is found at its centre and receives the
 // trapezoid's exact area and moments. Interpenetrating polygons are therefore exact as well.
 //
+// Polygons whose depth ranges over the cell are stacked (small flat triangles drawn over one
+// another, paint over the ground) skip the pieces, the pairwise tests and the decomposition: the
+// painter cuts the cell's square by their crossing edges directly, nearest first (PaintStacked).
+//
 // A crowded cell (more than kCrowdedPieces pieces: a whole scene seen in one pixel, a far city)
 // is first cut into quadrants, recursively, each resolved with the pieces clipped to it, so its
 // work grows with the pieces and their edges' length, not with their square or cube (issue 19).
@@ -110,6 +114,12 @@ class CellCoverage {
     return static_cast<int>(front);
   }
   void DropHiddenByAFullPolygon();  // from reach_
+  // Resolves reach_ when its polygons' depth ranges over the cell are stacked; else false.
+  bool PaintStacked(std::span<const ScreenPolygon> polygons, double cx, double cy,
+                    bool with_moments, std::vector<CellPiece>& out);
+  // More polygons than this in a cell go the general way (the quadrants bound the painter's
+  // regions of a crowded cell).
+  static constexpr size_t kStackedPieces = 16;
   struct Reach;
   std::span<const Vec2> CutSquare(const Reach& r);
   CellMoments MomentsOf(const Piece& p, bool with_moments) const;
@@ -122,6 +132,16 @@ class CellCoverage {
   // ordered without a test.
   Order FrontToBackOrder(bool order_by_ranges);
   void PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out);
+  // The painter's remaining regions: the whole square to begin with.
+  void StartPainting();
+  // Cuts the remaining regions that meet `box` by `lines` (a convex piece's inner half-planes,
+  // a x + b y + c >= 0): returns the moments of what lies inside all of them, and with
+  // `keep_rest` leaves the rest as the remaining regions (else they are left undefined).
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  CellMoments PaintInside(std::span<const ScreenLinear> lines, const Box& box, bool with_moments,
+                          bool keep_rest);
   void Decompose(bool with_moments, std::vector<CellPiece>& out);
 
   // A polygon reaching the cell, before clipping: its crossing edges are
@@ -132,9 +152,6 @@ class CellCoverage {
     size_t edges_begin, edges_end;
   };
   std::vector<Reach> reach_;
-  struct Box {
-    double x0, y0, x1, y1;
-  };
   std::vector<Box> boxes_;                 // PairwiseDisjoint's sweep
   static constexpr size_t kFewPieces = 8;  // PairwiseDisjoint compares every pair's boxes
   std::vector<size_t> by_left_;
