@@ -101,6 +101,11 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
       slot_of_[p] = static_cast<int>(flat_colours_.size());
       flat_colours_.push_back(shader_.FlatColour(p));
     }
+    if (!shape_.needs_moments) {
+      RenderFlatBox(r, image);
+      for (int p : leaf.polygons) slot_of_[p] = -1;  // ready for the next leaf
+      return true;
+    }
   }
 
   // Each pixel's polygons and weights (its entries), in the order the colours are summed. A leaf
@@ -152,6 +157,44 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
     }
   }
   return true;
+}
+
+// Under a box filter every cell of a pixel's aperture weighs the same, so a flat-coloured leaf's
+// pixel is the box's scale times the sum of its cells' colours by area: each cell is summed once
+// (not once for each of the pixels that weigh it) and no pixel merges its pieces by polygon. The
+// sums are the merged ones, taken in another order (in double, not float): pixels agree with
+// the merging path to rounding.
+void LeafRenderer::RenderFlatBox(const PixelRect& r, Image& image) {
+  const size_t cells = cell_begin_.size() - 1;
+  cell_sums_.resize(cells);
+  for (size_t c = 0; c < cells; ++c) {
+    CellSum sum{0, 0, 0, 0};
+    for (size_t k = cell_begin_[c]; k < cell_begin_[c + 1]; ++k) {
+      const Rgba& colour = flat_colours_[slot_of_[pieces_[k].polygon]];
+      const double area = pieces_[k].moments.area;
+      sum.r += colour.r * area, sum.g += colour.g * area, sum.b += colour.b * area;
+      sum.area += area;
+    }
+    cell_sums_[c] = sum;
+  }
+  const double scale = CellWeight(aa_, {1, 0, 0, 0}, 0, 0);
+  const int span = shape_.cells_per_axis - 1;
+  for (int py = 0; py < r.height(); ++py) {
+    Rgba* row = &Pixel(image, r.x0, r.y0 + py);
+    for (int px = 0; px < r.width(); ++px) {
+      CellSum sum{0, 0, 0, 0};
+      for (int cy = 0; cy <= span; ++cy) {
+        const CellSum* cell = &cell_sums_[static_cast<size_t>(py + cy) * nx_ + px];
+        for (int cx = 0; cx <= span; ++cx)
+          sum.r += cell[cx].r, sum.g += cell[cx].g, sum.b += cell[cx].b, sum.area += cell[cx].area;
+      }
+      const double total = scale * sum.area;
+      const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
+      row[px] = {static_cast<float>(scale * sum.r) + sky_.r * sky_w,
+                 static_cast<float>(scale * sum.g) + sky_.g * sky_w,
+                 static_cast<float>(scale * sum.b) + sky_.b * sky_w, PixelAlpha(total, sky_w)};
+    }
+  }
 }
 
 bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygons) {

@@ -58,6 +58,8 @@ class LeafRenderer {
     return {r_sum + sky_.r * sky_w, g_sum + sky_.g * sky_w, b_sum + sky_.b * sky_w,
             PixelAlpha(total, sky_w)};
   }
+  // A flat-coloured leaf under a box filter, from its cells' colour sums.
+  void RenderFlatBox(const PixelRect& r, Image& image);
   void PrefetchPixels(const PixelRect& r, Image& image) const;
   // The pixels [from, to) of the leaf's row py whose cells hold any piece (the rest are sky, most
   // of a sparse frame's mixed leaves, and skip the entries), from reached_from_/reached_to_.
@@ -115,6 +117,10 @@ class LeafRenderer {
   std::vector<Vec2> points_;
   std::vector<Rgba> batch_, colours_;
   std::vector<Rgba> flat_colours_;  // a flat leaf's polygons' colours, by slot_of_
+  struct CellSum {
+    double r, g, b, area;  // a cell's pieces' colours by area, and their area
+  };
+  std::vector<CellSum> cell_sums_;  // RenderFlatBox's, per cell of the leaf
   // The transparent path's passes: a cell's passes are passes_[cell_begin_[c], cell_begin_[c + 1])
   // (its pieces each pass's [begin, end) of pieces_); bit j of `included` says whether the cell's
   // layer j took part. Its layers are cell_layers_[layer_begin_[c], layer_begin_[c + 1]).

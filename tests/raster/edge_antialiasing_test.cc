@@ -149,6 +149,27 @@ TEST(EdgeAntiAliasing, NearHorizontalEdge) {
   ExpectAccurate(polys, "near-horizontal edges");
 }
 
+// A crowd of small flat triangles drawn one over another (tris-N in miniature: 60 of them with
+// vertices within 4 pixels of their centres in a 16 x 12 patch, each on a plane of its own, later
+// ones nearer): most
+// cells hold several stacked pieces (CellCoverage::PaintStacked), and the box filters sum each
+// flat leaf's cells by colour (LeafRenderer::RenderFlatBox).
+TEST(EdgeAntiAliasing, CrowdOfStackedSmallTriangles) {
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> centre_x(12, 28), centre_y(9, 21), unit(0, 1);
+  std::vector<FlatPolygon> polys;
+  for (int i = 0; i < 60; ++i) {
+    const double cx = centre_x(rng), cy = centre_y(rng), depth = 40 - 0.2 * i;
+    std::vector<Vec3> corners;
+    for (int k = 0; k < 3; ++k) {
+      const double r = 4 * std::sqrt(unit(rng)), a = 2 * kPi * unit(rng);
+      corners.push_back(At(cx + r * std::cos(a), cy + r * std::sin(a), depth));
+    }
+    polys.push_back({corners, RandomColour(rng)});
+  }
+  ExpectAccurate(polys, "crowd of stacked triangles");
+}
+
 TEST(EdgeAntiAliasing, InterpenetratingPolygonsAreExactToo) {
   // Two quads crossing in depth along a line: the trapezoid decomposition splits at the line
   // where their depths are equal.
