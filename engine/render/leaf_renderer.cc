@@ -93,7 +93,6 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
   }
   const PixelRect& r = leaf.rect;
   PrefetchPixels(r, image);
-  if (!ComputeCells(r, leaf.polygons)) return false;
   if (flat) {  // each polygon's colour, by its slot
     if (slot_of_.size() < geo_.polygons.size()) slot_of_.assign(geo_.polygons.size(), -1);
     flat_colours_.clear();
@@ -101,12 +100,14 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
       slot_of_[p] = static_cast<int>(flat_colours_.size());
       flat_colours_.push_back(shader_.FlatColour(p));
     }
-    if (!shape_.needs_moments) {
-      RenderFlatBox(r, image);
-      for (int p : leaf.polygons) slot_of_[p] = -1;  // ready for the next leaf
-      return true;
-    }
   }
+  const bool flat_box = flat && !shape_.needs_moments;
+  const bool computed = ComputeCells(r, leaf.polygons, /*colour_sums=*/flat_box);
+  if (computed && flat_box) RenderFlatBox(r, image);
+  if (flat && (flat_box || !computed))
+    for (int p : leaf.polygons) slot_of_[p] = -1;  // ready for the next leaf
+  if (!computed) return false;
+  if (flat_box) return true;
 
   // Each pixel's polygons and weights (its entries), in the order the colours are summed. A leaf
   // of flat-coloured polygons finishes each pixel at once; any other keeps every pixel's entries,
@@ -165,18 +166,6 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
 // sums are the merged ones, taken in another order (in double, not float): pixels agree with
 // the merging path to rounding.
 void LeafRenderer::RenderFlatBox(const PixelRect& r, Image& image) {
-  const size_t cells = cell_begin_.size() - 1;
-  cell_sums_.resize(cells);
-  for (size_t c = 0; c < cells; ++c) {
-    CellSum sum{0, 0, 0, 0};
-    for (size_t k = cell_begin_[c]; k < cell_begin_[c + 1]; ++k) {
-      const Rgba& colour = flat_colours_[slot_of_[pieces_[k].polygon]];
-      const double area = pieces_[k].moments.area;
-      sum.r += colour.r * area, sum.g += colour.g * area, sum.b += colour.b * area;
-      sum.area += area;
-    }
-    cell_sums_[c] = sum;
-  }
   const double scale = CellWeight(aa_, {1, 0, 0, 0}, 0, 0);
   const int span = shape_.cells_per_axis - 1;
   for (int py = 0; py < r.height(); ++py) {
@@ -197,11 +186,24 @@ void LeafRenderer::RenderFlatBox(const PixelRect& r, Image& image) {
   }
 }
 
-bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygons) {
+LeafRenderer::CellSum LeafRenderer::ColourSum(size_t first) const {
+  CellSum sum{0, 0, 0, 0};
+  for (size_t k = first; k < pieces_.size(); ++k) {
+    const Rgba& colour = flat_colours_[slot_of_[pieces_[k].polygon]];
+    const double area = pieces_[k].moments.area;
+    sum.r += colour.r * area, sum.g += colour.g * area, sum.b += colour.b * area;
+    sum.area += area;
+  }
+  return sum;
+}
+
+bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygons,
+                                bool colour_sums) {
   const int span = shape_.cells_per_axis - 1;  // extra cells beyond the pixels
   nx_ = r.width() + span;
   const int ny = r.height() + span;
   pieces_.clear();
+  if (colour_sums) cell_sums_.assign(static_cast<size_t>(nx_) * ny, CellSum{0, 0, 0, 0});
   cell_begin_.assign(static_cast<size_t>(nx_) * ny + 1, 0);
   reached_from_.assign(ny, nx_);
   reached_to_.assign(ny, 0);
@@ -229,6 +231,11 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
       coverage_.Compute(geo_.polygons, bins_.Cell(i, j), nearest_, cx, cy, shape_.needs_moments,
                         pieces_);
       if (coverage_.Stopped()) return false;
+      if (colour_sums) {  // the cell's pieces are summed at once, not kept
+        cell_sums_[static_cast<size_t>(j) * nx_ + i] = ColourSum(before);
+        pieces_.resize(before);
+        continue;
+      }
       if (pieces_.size() > before) {
         reached_from_[j] = std::min(reached_from_[j], i);
         reached_to_[j] = i + 1;

@@ -37,9 +37,10 @@ class LeafRenderer {
 
  private:
   bool RenderMixed(const LeafWindow& leaf, Image& image);
-  // The visible pieces of every cell of the leaf (pieces_, cell_begin_, reached_from_/to_).
-  // False when the stop test cut it short.
-  bool ComputeCells(const PixelRect& r, std::span<const int> polygons);
+  // The visible pieces of every cell of the leaf (pieces_, cell_begin_, reached_from_/to_), or
+  // with `colour_sums` (a flat-coloured leaf under a box filter, its colours in flat_colours_)
+  // only each cell's colour sum (cell_sums_). False when the stop test cut it short.
+  bool ComputeCells(const PixelRect& r, std::span<const int> polygons, bool colour_sums);
   // Appends pixel (px, py)'s entries (one per polygon its aperture's cells hold) to entries_.
   void GatherPixel(int px, int py);
   // The pixel's value from its entries [first, last) with their colours: the weighted colours
@@ -60,6 +61,11 @@ class LeafRenderer {
   }
   // A flat-coloured leaf under a box filter, from its cells' colour sums.
   void RenderFlatBox(const PixelRect& r, Image& image);
+  struct CellSum {
+    double r, g, b, area;  // a cell's pieces' colours by area, and their area
+  };
+  // The colours by area of pieces_[first, end).
+  CellSum ColourSum(size_t first) const;
   void PrefetchPixels(const PixelRect& r, Image& image) const;
   // The pixels [from, to) of the leaf's row py whose cells hold any piece (the rest are sky, most
   // of a sparse frame's mixed leaves, and skip the entries), from reached_from_/reached_to_.
@@ -117,9 +123,6 @@ class LeafRenderer {
   std::vector<Vec2> points_;
   std::vector<Rgba> batch_, colours_;
   std::vector<Rgba> flat_colours_;  // a flat leaf's polygons' colours, by slot_of_
-  struct CellSum {
-    double r, g, b, area;  // a cell's pieces' colours by area, and their area
-  };
   std::vector<CellSum> cell_sums_;  // RenderFlatBox's, per cell of the leaf
   // The transparent path's passes: a cell's passes are passes_[cell_begin_[c], cell_begin_[c + 1])
   // (its pieces each pass's [begin, end) of pieces_); bit j of `included` says whether the cell's
