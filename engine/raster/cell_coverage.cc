@@ -76,11 +76,6 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
       cover_far = std::max(cover_far, d.c - kHalf * (std::abs(d.a) + std::abs(d.b)));
     }
   }
-  if (!nearest.empty()) {  // back to the polygons' order (few: an insertion sort)
-    for (size_t i = 1; i < reach_.size(); ++i)
-      for (size_t j = i; j > 0 && reach_[j - 1].polygon > reach_[j].polygon; --j)
-        std::swap(reach_[j - 1], reach_[j]);
-  }
   if (reach_.empty()) return;
   square_ = {-kHalf, -kHalf, kHalf, kHalf};
   if (reach_.size() == 1) {  // one polygon (most cells of a sparse frame): as Resolve would do
@@ -96,6 +91,15 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     if (m.area > 0) out.push_back({r.polygon, m});
     return;
   }
+  // Stacked polygons have one painter's order, whatever the order found: the whole-cell cover in
+  // front of all (the test below) is then the first painted, and the polygons that
+  // DropHiddenByAFullPolygon drops lie behind the first cover painted, where the painter stops.
+  if (PaintStacked(polygons, cx, cy, with_moments, out)) return;
+  if (!nearest.empty()) {  // back to the polygons' order (few: an insertion sort)
+    for (size_t i = 1; i < reach_.size(); ++i)
+      for (size_t j = i; j > 0 && reach_[j - 1].polygon > reach_[j].polygon; --j)
+        std::swap(reach_[j - 1], reach_[j]);
+  }
   // The test Resolve makes first, on every polygon that reaches the cell: when it holds here it
   // holds for the clipped pieces too, which are these less the empty ones.
   if (const int front =
@@ -104,7 +108,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     out.push_back({reach_[front].polygon, SquareMoments()});
     return;
   }
-  DropHiddenByAFullPolygon();
+  DropHiddenByAFullPolygon();  // which may leave the rest stacked
   if (PaintStacked(polygons, cx, cy, with_moments, out)) return;
   pieces_.clear();
   verts_.clear();
