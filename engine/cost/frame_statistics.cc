@@ -69,7 +69,8 @@ double MeasurePolygonsPerAperture(const FrameGeometry& geo, double aperture) {
                 continue;
               // Separating axes: the polygon's edges (the square's are the bounding box).
               bool separated = false;
-              for (const ScreenLinear& e : p.edges) {
+              for (size_t k = 0; k < p.vertices.size(); ++k) {
+                const ScreenLinear e = p.Edge(k);
                 if (e.At(cx, cy) + half * (std::abs(e.a) + std::abs(e.b)) <= 0) {
                   separated = true;
                   break;

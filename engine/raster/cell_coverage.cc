@@ -55,11 +55,12 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     // polygon when one edge is negative all over it, inside when all are non-negative; only
     // the edges that cross the cell clip it. Branch-free: every edge is written and the count
     // advances past those that cross (which edges cross varies from cell to cell).
-    if (crossing_.size() < crossings + sp.edges.size())
-      crossing_.resize(2 * (crossings + sp.edges.size()));
+    const size_t edges = sp.vertices.size();
+    if (crossing_.size() < crossings + edges) crossing_.resize(2 * (crossings + edges));
     bool outside = false;
     const size_t first_edge = crossings;
-    for (const ScreenLinear& e : sp.edges) {
+    for (size_t i = 0; i < edges; ++i) {
+      const ScreenLinear e = sp.Edge(i);
       const double d = e.At(cx, cy), r = kHalf * (std::abs(e.a) + std::abs(e.b));
       outside |= d + r <= 0;
       crossing_[crossings] = {e.a, e.b, d};

@@ -19,14 +19,10 @@ void ScreenPolygon::Finalize() {
     min_x = std::min(min_x, v.x), max_x = std::max(max_x, v.x);
     min_y = std::min(min_y, v.y), max_y = std::max(max_y, v.y);
   }
-  edges.clear();
-  edges.reserve(vertices.size());
   perimeter = 0;
   for (size_t i = 0, n = vertices.size(); i < n; ++i) {
     const Vec2& p = vertices[i];
     const Vec2& q = vertices[i + 1 == n ? 0 : i + 1];
-    const double dx = q.x - p.x, dy = q.y - p.y;
-    edges.push_back({-dy, dx, dy * p.x - dx * p.y});
     // (The window features' sum, term for term: sqrt, not hypot.)
     perimeter += std::sqrt((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y));
   }

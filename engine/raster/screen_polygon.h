@@ -38,15 +38,21 @@ struct ScreenPolygon {
   // a window's cover and cells composite what lies behind it (render/leaf_renderer).
   bool transparent = false;
   Rgba light{1, 1, 1, 1};  // ambient + sun * cos(angle), constant over a flat polygon
-  // One per edge (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
-  absl::InlinedVector<ScreenLinear, 4> edges;
 
-  // Sets the bounding box, edge functions, area and perimeter from `vertices` (call after
-  // filling them).
+  // Sets the bounding box, area and perimeter from `vertices` (call after filling them).
   void Finalize();
+  // Edge i's function (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
+  // Computed from the vertices when asked, not stored: a third of the polygon's size, which a
+  // frame of 100,000 triangles writes into fresh memory and joins serially (issue 19).
+  ScreenLinear Edge(size_t i) const {
+    const Vec2& p = vertices[i];
+    const Vec2& q = vertices[i + 1 == vertices.size() ? 0 : i + 1];
+    const double dx = q.x - p.x, dy = q.y - p.y;
+    return {-dy, dx, dy * p.x - dx * p.y};
+  }
   bool Contains(double x, double y) const {
-    for (const ScreenLinear& e : edges)
-      if (e.At(x, y) < 0) return false;
+    for (size_t i = 0; i < vertices.size(); ++i)
+      if (Edge(i).At(x, y) < 0) return false;
     return true;
   }
   // Holds the whole rectangle [x0, x1] x [y0, y1]: its four corners (convex). Only a polygon

@@ -19,11 +19,9 @@ bool SameLinear(const ScreenLinear& a, const ScreenLinear& b) {
 }
 
 bool SamePolygon(const ScreenPolygon& a, const ScreenPolygon& b) {
-  if (a.vertices.size() != b.vertices.size() || a.edges.size() != b.edges.size()) return false;
+  if (a.vertices.size() != b.vertices.size()) return false;
   for (size_t i = 0; i < a.vertices.size(); ++i)
     if (a.vertices[i].x != b.vertices[i].x || a.vertices[i].y != b.vertices[i].y) return false;
-  for (size_t i = 0; i < a.edges.size(); ++i)
-    if (!SameLinear(a.edges[i], b.edges[i])) return false;
   return a.scene_polygon == b.scene_polygon && a.material == b.material &&
          SameLinear(a.inv_depth, b.inv_depth) && SameLinear(a.u_num, b.u_num) &&
          SameLinear(a.v_num, b.v_num) && a.light == b.light && a.min_x == b.min_x &&
