@@ -168,15 +168,26 @@ bool LeafRenderer::RenderMixed(const LeafWindow& leaf, Image& image) {
 void LeafRenderer::RenderFlatBox(const PixelRect& r, Image& image) {
   const double scale = CellWeight(aa_, {1, 0, 0, 0}, 0, 0);
   const int span = shape_.cells_per_axis - 1;
+  // Each row's cells summed with their right neighbours once (box2), shared by the two rows of
+  // pixels that weigh them.
+  auto add = [](const CellSum& a, const CellSum& b) {
+    return CellSum{a.r + b.r, a.g + b.g, a.b + b.b, a.area + b.area};
+  };
+  if (span == 1) {
+    pair_sums_.resize(static_cast<size_t>(nx_) * (r.height() + 1));
+    for (int j = 0; j <= r.height(); ++j) {
+      const CellSum* cells = &cell_sums_[static_cast<size_t>(j) * nx_];
+      CellSum* pairs = &pair_sums_[static_cast<size_t>(j) * nx_];
+      for (int i = 0; i < r.width(); ++i) pairs[i] = add(cells[i], cells[i + 1]);
+    }
+  }
+  const std::vector<CellSum>& rows = span == 1 ? pair_sums_ : cell_sums_;
   for (int py = 0; py < r.height(); ++py) {
     Rgba* row = &Pixel(image, r.x0, r.y0 + py);
+    const CellSum* upper = &rows[static_cast<size_t>(py) * nx_];
+    const CellSum* lower = &rows[static_cast<size_t>(py + span) * nx_];
     for (int px = 0; px < r.width(); ++px) {
-      CellSum sum{0, 0, 0, 0};
-      for (int cy = 0; cy <= span; ++cy) {
-        const CellSum* cell = &cell_sums_[static_cast<size_t>(py + cy) * nx_ + px];
-        for (int cx = 0; cx <= span; ++cx)
-          sum.r += cell[cx].r, sum.g += cell[cx].g, sum.b += cell[cx].b, sum.area += cell[cx].area;
-      }
+      const CellSum sum = span == 1 ? add(upper[px], lower[px]) : upper[px];
       const double total = scale * sum.area;
       const float sky_w = static_cast<float>(std::max(0.0, 1.0 - total));
       row[px] = {static_cast<float>(scale * sum.r) + sky_.r * sky_w,

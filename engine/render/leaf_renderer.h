@@ -122,8 +122,8 @@ class LeafRenderer {
   std::vector<int> slot_of_;         // per polygon of the frame: its group in this leaf, or -1
   std::vector<Vec2> points_;
   std::vector<Rgba> batch_, colours_;
-  std::vector<Rgba> flat_colours_;  // a flat leaf's polygons' colours, by slot_of_
-  std::vector<CellSum> cell_sums_;  // RenderFlatBox's, per cell of the leaf
+  std::vector<Rgba> flat_colours_;              // a flat leaf's polygons' colours, by slot_of_
+  std::vector<CellSum> cell_sums_, pair_sums_;  // RenderFlatBox's, per cell of the leaf
   // The transparent path's passes: a cell's passes are passes_[cell_begin_[c], cell_begin_[c + 1])
   // (its pieces each pass's [begin, end) of pieces_); bit j of `included` says whether the cell's
   // layer j took part. Its layers are cell_layers_[layer_begin_[c], layer_begin_[c + 1]).
