@@ -9,6 +9,8 @@
 
 #include "cost/rank_correlation.h"
 #include "cost/window_cost.h"
+#include "raster/polygon_clip.h"
+#include "scene/triangulate.h"
 
 namespace aperture {
 namespace {
@@ -32,6 +34,58 @@ TEST(WindowCost, FeaturesOfASquareInsideAndAcrossTheWindow) {
   // bottom (4) edges count, its top lies on the window's border y = 0 and its right is the clip;
   // one vertex, (28, 8), is inside.
   EXPECT_NEAR(f.boundary, 2 * 60 / std::sqrt(2.0) + 4 * 4 + 2 * 12 / std::sqrt(2.0) + 4 * 1, 1e-9);
+}
+
+// Random polygons across a window (triangles, 24-gons, and 40-gons, which the fixed buffers do
+// not hold): the area and boundary of each polygon's part inside, computed
+// here by clipping it to the window's four sides in turn (raster/polygon_clip's ClipToRect) and
+// summing its own edges' lengths and vertices, equal the features bit for bit.
+TEST(WindowCost, FeaturesOfPolygonsAcrossTheWindowAreThoseOfTheirClippedParts) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> pos(-20, 52), unit(0, 1);
+  const PixelRect window{0, 0, 32, 32};
+  const double a = 2;
+  for (int trial = 0; trial < 400; ++trial) {
+    ScreenPolygon p;
+    const int n = trial % 8 == 7 ? 40 : trial % 4 == 3 ? 24 : 3;
+    const double cx = pos(rng), cy = pos(rng), r = 1 + 30 * unit(rng);
+    for (int k = 0; k < n; ++k) {
+      const double t = 2 * M_PI * (k + 0.5 * unit(rng)) / n;
+      p.vertices.push_back({cx + r * std::cos(t), cy + r * std::sin(t)});
+    }
+    p.Finalize();
+    FrameGeometry g;
+    g.width = g.height = 64;
+    g.polygons = {p};
+    const WindowFeatures f = MeasureWindowFeatures(g, {0}, window, a);
+
+    std::vector<Vec2> part(p.vertices.begin(), p.vertices.end()), scratch;
+    ClipToRect(part, 0, 0, 32, 32, scratch);
+    double area = 0, boundary = 0;
+    const bool covers = p.ContainsRect(0, 0, 32, 32);
+    const bool inside = p.min_x > 0 && p.max_x < 32 && p.min_y > 0 && p.max_y < 32;
+    if (covers) {
+      area = 1024;
+    } else if (inside) {
+      area = p.area;
+      boundary = a * p.perimeter / std::sqrt(2.0) + a * a * n;
+    } else if (!part.empty()) {
+      area = std::abs(SignedArea(part));
+      double length = 0;
+      for (size_t k = 0; k < part.size(); ++k) {
+        const Vec2& s = part[k];
+        const Vec2& e = part[(k + 1) % part.size()];
+        const bool on_border =
+            (s.x == e.x && (s.x == 0 || s.x == 32)) || (s.y == e.y && (s.y == 0 || s.y == 32));
+        if (!on_border) length += std::sqrt((e.x - s.x) * (e.x - s.x) + (e.y - s.y) * (e.y - s.y));
+      }
+      int vertices = 0;
+      for (const Vec2& v : p.vertices) vertices += v.x > 0 && v.x < 32 && v.y > 0 && v.y < 32;
+      boundary = a * length / std::sqrt(2.0) + a * a * vertices;
+    }
+    ASSERT_EQ(f.area, area) << "trial " << trial;
+    ASSERT_EQ(f.boundary, boundary) << "trial " << trial;
+  }
 }
 
 TEST(WindowCost, FitRecoversTheConstants) {
