@@ -65,9 +65,10 @@ class CellCoverage {
   // scan stops at the first candidate whose nearest point lies behind a polygon already found to
   // cover the whole cell (behind its farthest corner): that one and every later one are hidden
   // wherever they are. Under a crowded frame's front layer most candidates are not tested at all.
-  // The polygons found are then taken in index order, which is the order the plain Compute takes
-  // ascending candidates in (a Warnock leaf's lists are ascending), so the result differs from it
-  // only where a hidden polygon's zero area would have come out as rounding.
+  // The polygons found are then taken in index order (unless their depth ranges are stacked,
+  // whose one painter's order needs none), which is the order the plain Compute takes ascending
+  // candidates in (a Warnock leaf's lists are ascending), so the result differs from it only
+  // where a hidden polygon's zero area would have come out as rounding.
   void Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
                std::span<const double> nearest, double cx, double cy, bool with_moments,
                std::vector<CellPiece>& out);
