@@ -50,26 +50,33 @@ void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const in
       const Vec2& a = p.vertices[e];
       const Vec2& b = p.vertices[e + 1 == n ? 0 : e + 1];
       const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-      const double slope = (b.x - a.x) / (b.y - a.y);  // used where b.y - a.y is not tiny
       int r0, r1;  // the rows whose strips the edge's y range may meet
       AxisRange(lo, hi, y0, offset, ny, r0, r1);
       r0 = std::max(r0, j0), r1 = std::min(r1, j1);
+      // A horizontal edge, or one so nearly so that its slope would magnify rounding: its whole x
+      // range (the part in each strip lies within it).
+      if (std::abs(b.y - a.y) <= 1e-6 * std::abs(b.x - a.x)) {
+        const double ex_min = std::min(a.x, b.x), ex_max = std::max(a.x, b.x);
+        for (int j = r0; j < r1; ++j) {
+          extent_min_[j - j0] = std::min(extent_min_[j - j0], ex_min);
+          extent_max_[j - j0] = std::max(extent_max_[j - j0], ex_max);
+        }
+        continue;
+      }
+      // The edge's x where it meets each strip's top and bottom (or its ends), each row's top
+      // being the row above's bottom: every x computed once.
+      const double slope = (b.x - a.x) / (b.y - a.y);
+      auto x_at = [&](double y) { return a.x + slope * (y - a.y); };
+      double x_top = x_at(std::max(lo, static_cast<double>(y0 + r0) + offset));
       for (int j = r0; j < r1; ++j) {
         const double top = static_cast<double>(y0 + j) + offset;
         const double ya = std::max(lo, top), yb = std::min(hi, top + 1);
+        if (ya > yb) continue;  // (only at a range's ends)
+        const double x_bottom = x_at(yb);
         double& x_min = extent_min_[j - j0];
         double& x_max = extent_max_[j - j0];
-        // A horizontal edge, or one so nearly so that its slope would magnify rounding: its
-        // whole x range (the part in the strip lies within it).
-        if (std::abs(b.y - a.y) <= 1e-6 * std::abs(b.x - a.x)) {
-          x_min = std::min({x_min, a.x, b.x}), x_max = std::max({x_max, a.x, b.x});
-          continue;
-        }
-        if (ya > yb) continue;
-        for (double y : {ya, yb}) {
-          const double x = a.x + slope * (y - a.y);
-          x_min = std::min(x_min, x), x_max = std::max(x_max, x);
-        }
+        x_min = std::min({x_min, x_top, x_bottom}), x_max = std::max({x_max, x_top, x_bottom});
+        x_top = x_bottom;
       }
     }
     for (int j = j0; j < j1; ++j) {
