@@ -32,6 +32,7 @@ void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const in
   nx_ = nx;
   const size_t cells = static_cast<size_t>(nx) * ny;
   begin_.assign(cells + 1, 0);
+  starts_.assign(cells + 1, 0);
   // Each candidate's cells, row by row: the x extent of its part in each row's strip, from its
   // edges, each edge walked over the rows it crosses.
   rows_.clear();
@@ -87,12 +88,19 @@ void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const in
       a = std::max(a, i0), b = std::min(b, i1);
       if (a >= b) continue;
       rows_.push_back({j, a, b});
-      for (int i = a; i < b; ++i) ++begin_[static_cast<size_t>(j) * nx + i + 1];
+      ++starts_[static_cast<size_t>(j) * nx + a];
+      --starts_[static_cast<size_t>(j) * nx + b];
     }
   }
   row_begin_[candidates.size()] = rows_.size();
-  // Counting sort: each cell's start, then the items in the candidates' order.
-  for (size_t c = 0; c < cells; ++c) begin_[c + 1] += begin_[c];
+  // Counting sort: each cell's count, the running sum of the runs starting and ending there (a
+  // run's end at a row's last cell is the next row's first: cells are counted row after row),
+  // then each cell's start, then the items in the candidates' order.
+  int covering = 0;
+  for (size_t c = 0; c < cells; ++c) {
+    covering += starts_[c];
+    begin_[c + 1] = begin_[c] + static_cast<size_t>(covering);
+  }
   items_.resize(begin_[cells]);
   for (size_t k = 0; k < candidates.size(); ++k)
     for (size_t row = row_begin_[k]; row < row_begin_[k + 1]; ++row)

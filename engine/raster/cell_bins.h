@@ -34,6 +34,7 @@ class CellBins {
  private:
   int nx_ = 0;
   std::vector<size_t> begin_;  // cell c's items: [begin_[c], begin_[c + 1])
+  std::vector<int> starts_;    // runs of cells starting at cell c less those ending before it
   std::vector<int> items_;
   struct RowCells {
     int j, i0, i1;  // cells [i0, i1) of row j
