@@ -51,7 +51,7 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
       Vec2* to = cut[1];
       std::copy(p.vertices.begin(), p.vertices.end(), from);
       size_t n = p.vertices.size();
-      const bool crosses[4] = {p.min_x<x0, p.max_x> x1, p.min_y<y0, p.max_y> y1};
+      const bool crosses[4] = {(p.min_x < x0), (p.max_x > x1), (p.min_y < y0), (p.max_y > y1)};
       const double sides[4][3] = {{1, 0, -x0}, {-1, 0, x1}, {0, 1, -y0}, {0, -1, y1}};
       for (int side = 0; side < 4 && n >= 3 && n != kClipOverflow; ++side) {
         if (!crosses[side]) continue;
