@@ -9,9 +9,6 @@
 #if defined(__SSE4_1__)
 #include <smmintrin.h>
 #endif
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#endif
 
 namespace aperture {
 namespace {
@@ -111,78 +108,6 @@ template <typename Visit>
   }
 }
 
-// The copy reads of BlendReads ("jobs"): one CopySample each, with its weight in the sum.
-struct ReadJobs {
-  // A group of 8 samples reads at most two readings of kMaxProbes probes and 6 copies each.
-  static constexpr int kMax =
-      SelectionLanes::kLanes * 2 * (SelectionLanes::kMaxProbes + SelectionLanes::kSlots);
-  int count = 0;
-  alignas(32) float u[kMax], v[kMax], tg[kMax];
-  alignas(32) float width[kMax], height[kMax], lambda[kMax];
-  alignas(32) uint32_t width_mask[kMax], height_mask[kMax], tilt_v[kMax];  // tilt_v: ~0u or 0
-  // Out of the kernel: the texel indices of the four reads and the three interpolation weights.
-  alignas(32) uint32_t i00[kMax], i01[kMax], i10[kMax], i11[kMax];
-  alignas(32) float w1[kMax], w2[kMax], wM[kMax];
-  // Per job, for the reads: the copy's texels, the weight and the sample it adds to.
-  const uint8_t* texels[kMax];
-  float weight[kMax];
-  int sample[kMax];
-};
-
-#if defined(__x86_64__) && defined(__GNUC__)
-#define APERTURE_HAVE_AVX2_KERNEL 1
-
-// Fetch's texel index of at(major, minor): (x, y) = (minor, major) on copies tilted to V.
-__attribute__((target("avx2"))) inline __m256i ReadIndex(__m256i major, __m256i minor, __m256i tilt,
-                                                         __m256i wmask, __m256i hmask,
-                                                         __m256i row) {
-  const __m256i x = _mm256_blendv_epi8(major, minor, tilt);
-  const __m256i y = _mm256_blendv_epi8(minor, major, tilt);
-  return _mm256_add_epi32(_mm256_mullo_epi32(_mm256_and_si256(y, hmask), row),
-                          _mm256_and_si256(x, wmask));
-}
-
-// CopySample's addresses and weights for eight jobs: the same operations in the same order.
-__attribute__((target("avx2"))) void ComputeReadsAvx2(ReadJobs& jobs) {
-  const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
-  const __m256i ione = _mm256_set1_epi32(1);
-  for (int j = 0; j < jobs.count; j += 8) {
-    const __m256 X = _mm256_sub_ps(
-        _mm256_mul_ps(_mm256_load_ps(jobs.u + j), _mm256_load_ps(jobs.width + j)), half);
-    const __m256 Y = _mm256_sub_ps(
-        _mm256_mul_ps(_mm256_load_ps(jobs.v + j), _mm256_load_ps(jobs.height + j)), half);
-    const __m256i tilt = _mm256_load_si256(reinterpret_cast<const __m256i*>(jobs.tilt_v + j));
-    const __m256 tilt_f = _mm256_castsi256_ps(tilt);
-    const __m256 M = _mm256_blendv_ps(X, Y, tilt_f), m = _mm256_blendv_ps(Y, X, tilt_f);
-    const __m256 shift =
-        _mm256_mul_ps(_mm256_load_ps(jobs.lambda + j), _mm256_load_ps(jobs.tg + j));
-    const __m256 M0 = _mm256_floor_ps(M), fM = _mm256_sub_ps(M, M0);
-    const __m256 m1 = _mm256_sub_ps(m, _mm256_mul_ps(fM, shift));
-    const __m256 m2 = _mm256_add_ps(m, _mm256_mul_ps(_mm256_sub_ps(one, fM), shift));
-    const __m256 m1f = _mm256_floor_ps(m1), m2f = _mm256_floor_ps(m2);
-    const __m256i a = _mm256_cvttps_epi32(M0), b1 = _mm256_cvttps_epi32(m1f),
-                  b2 = _mm256_cvttps_epi32(m2f);
-    const __m256i wmask = _mm256_load_si256(reinterpret_cast<const __m256i*>(jobs.width_mask + j));
-    const __m256i hmask = _mm256_load_si256(reinterpret_cast<const __m256i*>(jobs.height_mask + j));
-    const __m256i row = _mm256_add_epi32(wmask, ione);
-    const __m256i a1 = _mm256_add_epi32(a, ione);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i00 + j),
-                       ReadIndex(a, b1, tilt, wmask, hmask, row));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i01 + j),
-                       ReadIndex(a, _mm256_add_epi32(b1, ione), tilt, wmask, hmask, row));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i10 + j),
-                       ReadIndex(a1, b2, tilt, wmask, hmask, row));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(jobs.i11 + j),
-                       ReadIndex(a1, _mm256_add_epi32(b2, ione), tilt, wmask, hmask, row));
-    _mm256_store_ps(jobs.w1 + j, _mm256_sub_ps(m1, m1f));
-    _mm256_store_ps(jobs.w2 + j, _mm256_sub_ps(m2, m2f));
-    _mm256_store_ps(jobs.wM + j, fM);
-  }
-}
-#else
-void ComputeReadsAvx2(ReadJobs&) {}
-#endif
-
 }  // namespace
 
 AnisoSampler::CopyLayout AnisoSampler::LayoutOf(const CopyEntry& e) const {
@@ -195,14 +120,10 @@ AnisoSampler::CopyLayout AnisoSampler::LayoutOf(const CopyEntry& e) const {
           e.axis == TiltAxis::kV};
 }
 
-AnisoSampler::AnisoSampler(PrefilteredTable table) : table_(std::move(table)), selector_(table_) {
+AnisoSampler::AnisoSampler(PrefilteredTable table)
+    : table_(std::move(table)), selector_(table_), lane_reader_(LaneReader::For(table_)) {
   layouts_.reserve(table_.directory().size());
-  read_kernel_ = selector_.has_kernel();  // the same processor test (AVX2)
-  for (const CopyEntry& e : table_.directory()) {
-    layouts_.push_back(LayoutOf(e));
-    // The kernel's texel indices are 32-bit.
-    if (uint64_t{e.width} * e.height >= (uint64_t{1} << 31)) read_kernel_ = false;
-  }
+  for (const CopyEntry& e : table_.directory()) layouts_.push_back(LayoutOf(e));
 }
 
 Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg) const {
@@ -253,54 +174,12 @@ void AnisoSampler::SampleLanes(const float* dudx, const float* dvdx, const float
                                Rgba* out) const {
   SelectionLanes lanes;
   selector_.Select(dudx, dvdx, dudy, dvdy, n, lanes);
-  if (read_kernel_) {
-    BlendReads(lanes, u, v, n, out);
+  if (lane_reader_) {
+    lane_reader_->Read(lanes, u, v, n, out);
     return;
   }
   for (int i = 0; i < n; ++i)
     out[i] = Blend(lanes, i, static_cast<float>(u[i]), static_cast<float>(v[i]));
-}
-
-void AnisoSampler::BlendReads(const SelectionLanes& s, const double* u, const double* v, int n,
-                              Rgba* out) const {
-  ReadJobs jobs;  // uninitialised arrays: each job is written before the kernel reads it
-  // Blend's reads in Blend's order.
-  for (int i = 0; i < n; ++i) {
-    ForEachRead(s, i, static_cast<float>(u[i]), static_cast<float>(v[i]),
-                [&](const CopyLayout& c, float pu, float pv, float tg, float weight) {
-                  const int j = jobs.count++;
-                  jobs.u[j] = pu, jobs.v[j] = pv, jobs.tg[j] = tg;
-                  jobs.width[j] = c.width, jobs.height[j] = c.height, jobs.lambda[j] = c.lambda;
-                  jobs.width_mask[j] = c.width_mask, jobs.height_mask[j] = c.height_mask;
-                  jobs.tilt_v[j] = c.tilt_v ? ~0u : 0u;
-                  jobs.texels[j] = c.texels, jobs.weight[j] = weight, jobs.sample[j] = i;
-                });
-  }
-  // Whole vectors: the padding repeats the first job (its results are not read).
-  const int jobs_count = jobs.count;
-  while (jobs.count % 8 != 0) {
-    const int j = jobs.count++;
-    jobs.u[j] = jobs.u[0], jobs.v[j] = jobs.v[0], jobs.tg[j] = jobs.tg[0];
-    jobs.width[j] = jobs.width[0], jobs.height[j] = jobs.height[0];
-    jobs.lambda[j] = jobs.lambda[0], jobs.width_mask[j] = jobs.width_mask[0];
-    jobs.height_mask[j] = jobs.height_mask[0], jobs.tilt_v[j] = jobs.tilt_v[0];
-  }
-  ComputeReadsAvx2(jobs);
-  // The reads and sums, sample by sample in job order (CopySample's Mix, then AddScaled).
-  int j = 0;
-  for (int i = 0; i < n; ++i) {
-    V4 sum = Zero();
-    for (; j < jobs_count && jobs.sample[j] == i; ++j) {
-      const uint8_t* t = jobs.texels[j];
-      const V4 r = Mix(Mix(LoadTexel(t + 4 * size_t{jobs.i00[j]}),
-                           LoadTexel(t + 4 * size_t{jobs.i01[j]}), jobs.w1[j]),
-                       Mix(LoadTexel(t + 4 * size_t{jobs.i10[j]}),
-                           LoadTexel(t + 4 * size_t{jobs.i11[j]}), jobs.w2[j]),
-                       jobs.wM[j]);
-      sum = AddScaled(sum, r, jobs.weight[j]);
-    }
-    out[i] = ToRgba(sum);
-  }
 }
 
 void AnisoSampler::SampleMany(const TextureFootprint* in, Rgba* out, int count) const {

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "texture/aniso_lane_reads.h"
 #include "texture/aniso_selection.h"
 #include "texture/prefiltered_table.h"
 #include "texture/texture_sampler.h"
@@ -43,10 +45,6 @@ class AnisoSampler final : public TextureSampler {
   // summed.
   template <typename Visit>
   void ForEachRead(const SelectionLanes& s, int lane, float u, float v, Visit visit) const;
-  // A group of samples' copy reads (Blend's, in its order), their addresses and weights
-  // computed eight at a time by an AVX2 kernel; the same floats as Blend.
-  void BlendReads(const SelectionLanes& s, const double* u, const double* v, int n,
-                  Rgba* out) const;
   Rgba Blend(const SelectionLanes& s, int lane, float u, float v) const;
   // Up to eight samples from derivative and coordinate arrays.
   void SampleLanes(const float* dudx, const float* dvdx, const float* dudy, const float* dvdy,
@@ -55,7 +53,8 @@ class AnisoSampler final : public TextureSampler {
   PrefilteredTable table_;
   CopySelector selector_;
   std::vector<CopyLayout> layouts_;
-  bool read_kernel_ = false;  // BlendReads: AVX2 present and every copy under 2^31 texels
+  // Blend's reads eight samples at a time (AVX2), when the processor has it.
+  std::optional<LaneReader> lane_reader_;
 };
 
 }  // namespace aperture

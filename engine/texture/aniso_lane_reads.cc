@@ -1,0 +1,239 @@
+#include "texture/aniso_lane_reads.h"
+
+#include <algorithm>
+#include <bit>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+namespace aperture {
+
+#if defined(__x86_64__) && defined(__GNUC__)
+namespace {
+
+constexpr int32_t kTiltV = 1 << 8, kTilted = 1 << 14;
+
+// 2^e as a float, for 0 <= e <= 127 (exact: the exponent bits).
+__attribute__((target("avx2"))) inline __m256 PowerOfTwo(__m256i e) {
+  return _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_add_epi32(e, _mm256_set1_epi32(127)), 23));
+}
+
+// a + (b - a) w: the sampler's Mix, channel by channel.
+__attribute__((target("avx2"))) inline __m256 Mix(__m256 a, __m256 b, __m256 w) {
+  return _mm256_add_ps(a, _mm256_mul_ps(_mm256_sub_ps(b, a), w));
+}
+
+// Channel c (0..3) of eight RGBA8 texels, as floats 0..255.
+__attribute__((target("avx2"))) inline __m256 Channel(__m256i texels, int c) {
+  const __m256i shifted = _mm256_srl_epi32(texels, _mm_cvtsi32_si128(8 * c));
+  return _mm256_cvtepi32_ps(_mm256_and_si256(shifted, _mm256_set1_epi32(0xff)));
+}
+
+// The texels at (major, minor) of each lane's copy: (x, y) = (minor, major) on copies tilted to
+// V; periodic.
+__attribute__((target("avx2"))) inline __m256i Fetch(const uint8_t* texels, __m256i offset,
+                                                     __m256i log2_w, __m256i wmask, __m256i hmask,
+                                                     __m256i tilt, __m256i mask, __m256i major,
+                                                     __m256i minor) {
+  const __m256i x = _mm256_blendv_epi8(major, minor, tilt);
+  const __m256i y = _mm256_blendv_epi8(minor, major, tilt);
+  const __m256i index = _mm256_add_epi32(
+      offset, _mm256_add_epi32(_mm256_sllv_epi32(_mm256_and_si256(y, hmask), log2_w),
+                               _mm256_and_si256(x, wmask)));
+  return _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(texels),
+                                     index, mask, 4);
+}
+
+struct LaneSums {
+  __m256 c[4];
+};
+
+// One read in each lane of `mask`: the copy `copy` at (u, v) along slope tg (CopySample in
+// aniso_sampler.cc, the same operations), added to the sums with `weight` (the other lanes'
+// sums unchanged; their inputs are never dereferenced).
+__attribute__((target("avx2"))) inline void AddRead(const uint8_t* texels, const int32_t* offsets,
+                                                    const int32_t* shapes, __m256i copy,
+                                                    __m256 mask, __m256 u, __m256 v, __m256 tg,
+                                                    __m256 weight, LaneSums& sums) {
+  const __m256i imask = _mm256_castps_si256(mask);
+  const __m256i zero = _mm256_setzero_si256(), ione = _mm256_set1_epi32(1);
+  // Neighbouring samples mostly read the same copy: then one load each, not a gather.
+  __m256i shape, offset;
+  const int first_copy = _mm256_cvtsi256_si32(copy);
+  if (_mm256_movemask_epi8(_mm256_cmpeq_epi32(copy, _mm256_set1_epi32(first_copy))) == -1) {
+    shape = _mm256_set1_epi32(shapes[first_copy]);
+    offset = _mm256_set1_epi32(offsets[first_copy]);
+  } else {
+    shape = _mm256_mask_i32gather_epi32(zero, shapes, copy, imask, 4);
+    offset = _mm256_mask_i32gather_epi32(zero, offsets, copy, imask, 4);
+  }
+  const __m256i nibble = _mm256_set1_epi32(15);
+  const __m256i log2_w = _mm256_and_si256(shape, nibble);
+  const __m256i log2_h = _mm256_and_si256(_mm256_srli_epi32(shape, 4), nibble);
+  const __m256i tilt = _mm256_cmpeq_epi32(_mm256_and_si256(shape, _mm256_set1_epi32(kTiltV)),
+                                          _mm256_set1_epi32(kTiltV));
+  const __m256 tilt_f = _mm256_castsi256_ps(tilt);
+  const __m256i tilted = _mm256_cmpeq_epi32(_mm256_and_si256(shape, _mm256_set1_epi32(kTilted)),
+                                            _mm256_set1_epi32(kTilted));
+  const __m256 lambda = _mm256_and_ps(
+      _mm256_castsi256_ps(tilted),
+      PowerOfTwo(_mm256_and_si256(_mm256_srli_epi32(shape, 9), _mm256_set1_epi32(31))));
+  const __m256i wmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, log2_w), ione);
+  const __m256i hmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, log2_h), ione);
+  // Texel centres at +0.5 (DESIGN.md); major coordinate M along the tilt axis, minor m.
+  const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
+  const __m256 X = _mm256_sub_ps(_mm256_mul_ps(u, PowerOfTwo(log2_w)), half);
+  const __m256 Y = _mm256_sub_ps(_mm256_mul_ps(v, PowerOfTwo(log2_h)), half);
+  const __m256 M = _mm256_blendv_ps(X, Y, tilt_f), m = _mm256_blendv_ps(Y, X, tilt_f);
+  const __m256 shift = _mm256_mul_ps(lambda, tg);
+  const __m256 M0 = _mm256_floor_ps(M), fM = _mm256_sub_ps(M, M0);
+  // seed 000, eq. 6 / 7: the minor coordinate on both neighbouring major lines.
+  const __m256 m1 = _mm256_sub_ps(m, _mm256_mul_ps(fM, shift));
+  const __m256 m2 = _mm256_add_ps(m, _mm256_mul_ps(_mm256_sub_ps(one, fM), shift));
+  const __m256 m1f = _mm256_floor_ps(m1), m2f = _mm256_floor_ps(m2);
+  const __m256i a = _mm256_cvttps_epi32(M0), b1 = _mm256_cvttps_epi32(m1f),
+                b2 = _mm256_cvttps_epi32(m2f);
+  const __m256i a1 = _mm256_add_epi32(a, ione);
+  const __m256i t00 = Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a, b1);
+  const __m256i t01 =
+      Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a, _mm256_add_epi32(b1, ione));
+  const __m256i t10 = Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a1, b2);
+  const __m256i t11 =
+      Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a1, _mm256_add_epi32(b2, ione));
+  const __m256 w1 = _mm256_sub_ps(m1, m1f), w2 = _mm256_sub_ps(m2, m2f);
+  // seed 000, eq. 8 / 9, then the weighted sum.
+  for (int c = 0; c < 4; ++c) {
+    const __m256 r = Mix(Mix(Channel(t00, c), Channel(t01, c), w1),
+                         Mix(Channel(t10, c), Channel(t11, c), w2), fM);
+    sums.c[c] =
+        _mm256_blendv_ps(sums.c[c], _mm256_add_ps(sums.c[c], _mm256_mul_ps(r, weight)), mask);
+  }
+}
+
+__attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels, const int32_t* offsets,
+                                                   const int32_t* shapes, float inv_size,
+                                                   const SelectionLanes& s, const double* u_in,
+                                                   const double* v_in, int n, Rgba* out) {
+  constexpr int kLanes = SelectionLanes::kLanes;
+  alignas(32) float u_lanes[kLanes] = {}, v_lanes[kLanes] = {};
+  alignas(32) int32_t live_lanes[kLanes] = {};
+  for (int i = 0; i < n; ++i) {
+    u_lanes[i] = static_cast<float>(u_in[i]), v_lanes[i] = static_cast<float>(v_in[i]);
+    live_lanes[i] = -1;
+  }
+  const __m256 u = _mm256_load_ps(u_lanes), v = _mm256_load_ps(v_lanes);
+  const __m256 live = _mm256_load_ps(reinterpret_cast<const float*>(live_lanes));
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256i izero = _mm256_setzero_si256();
+  LaneSums sums = {{zero, zero, zero, zero}};
+  const __m256 read[2] = {
+      _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[0]), zero, _CMP_GT_OQ)),
+      _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[1]), zero, _CMP_GT_OQ))};
+  // Degenerate derivatives (neither reading): the base, bilinear.
+  const __m256 degenerate = _mm256_andnot_ps(_mm256_or_ps(read[0], read[1]), live);
+  if (_mm256_movemask_ps(degenerate) != 0)
+    AddRead(texels, offsets, shapes, izero, degenerate, u, v, zero, _mm256_set1_ps(1.0f / 255.0f),
+            sums);
+  for (int r = 0; r < 2; ++r) {
+    if (_mm256_movemask_ps(read[r]) == 0) continue;
+    // Lanes not read hold anything: their inputs are masked to harmless values.
+    const __m256 scale = _mm256_and_ps(
+        read[r], _mm256_div_ps(_mm256_load_ps(s.reading_weight[r]), _mm256_set1_ps(255.0f)));
+    const __m256 tg = _mm256_and_ps(read[r], _mm256_load_ps(s.tg[r]));
+    // The base probes (ForEachBaseProbe in aniso_sampler.cc, the same operations).
+    const __m256i probes =
+        _mm256_and_si256(_mm256_castps_si256(read[r]),
+                         _mm256_load_si256(reinterpret_cast<const __m256i*>(s.probes[r])));
+    int most = 0;
+    for (int i = 0; i < n; ++i)
+      most = std::max(most, s.probes[r][i] * (s.reading_weight[r][i] > 0));
+    if (most > 0) {
+      // The probe fields are only set where there are probes (a stale denormal would cost a
+      // microcode assist): masked before any arithmetic.
+      const __m256 has = _mm256_castsi256_ps(_mm256_cmpgt_epi32(probes, izero));
+      const __m256 step = _mm256_mul_ps(_mm256_and_ps(has, _mm256_loadu_ps(s.probe_step[r])),
+                                        _mm256_set1_ps(inv_size));
+      const __m256 first = _mm256_mul_ps(
+          _mm256_mul_ps(_mm256_set1_ps(-0.5f),
+                        _mm256_cvtepi32_ps(_mm256_sub_epi32(probes, _mm256_set1_epi32(1)))),
+          step);
+      const __m256 w = _mm256_mul_ps(_mm256_and_ps(has, _mm256_loadu_ps(s.probe_weight[r])), scale);
+      const __m256 w_end =
+          _mm256_mul_ps(_mm256_and_ps(has, _mm256_loadu_ps(s.probe_end_weight[r])), scale);
+      const __m256 along_v = _mm256_castsi256_ps(_mm256_cmpgt_epi32(
+          _mm256_load_si256(reinterpret_cast<const __m256i*>(s.along_v[r])), izero));
+      const __m256i last = _mm256_sub_epi32(probes, _mm256_set1_epi32(1));
+      for (int k = 0; k < most; ++k) {
+        const __m256i kk = _mm256_set1_epi32(k);
+        const __m256 mask = _mm256_castsi256_ps(_mm256_cmpgt_epi32(probes, kk));
+        const __m256 major =
+            _mm256_add_ps(first, _mm256_mul_ps(_mm256_set1_ps(static_cast<float>(k)), step));
+        const __m256 minor = _mm256_mul_ps(major, tg);
+        const __m256 pu = _mm256_add_ps(u, _mm256_blendv_ps(major, minor, along_v));
+        const __m256 pv = _mm256_add_ps(v, _mm256_blendv_ps(minor, major, along_v));
+        const __m256 end = _mm256_castsi256_ps(
+            _mm256_or_si256(_mm256_cmpeq_epi32(kk, izero), _mm256_cmpeq_epi32(kk, last)));
+        AddRead(texels, offsets, shapes, izero, mask, pu, pv, zero, _mm256_blendv_ps(w, w_end, end),
+                sums);
+      }
+    }
+    // The table copies: the sample's own tangent (the skew interpolates between tilts).
+    for (int slot = 0; slot < SelectionLanes::kSlots; ++slot) {
+      const __m256 weight = _mm256_load_ps(s.weight[r][slot]);
+      const __m256 mask = _mm256_and_ps(read[r], _mm256_cmp_ps(weight, zero, _CMP_GT_OQ));
+      if (_mm256_movemask_ps(mask) == 0) continue;
+      const __m256i copy =
+          _mm256_and_si256(_mm256_castps_si256(mask),
+                           _mm256_load_si256(reinterpret_cast<const __m256i*>(s.copy[r][slot])));
+      AddRead(texels, offsets, shapes, copy, mask, u, v, tg,
+              _mm256_and_ps(mask, _mm256_mul_ps(weight, scale)), sums);
+    }
+  }
+  alignas(32) float channels[4][kLanes];
+  for (int c = 0; c < 4; ++c) _mm256_store_ps(channels[c], sums.c[c]);
+  for (int i = 0; i < n; ++i)
+    out[i] = {channels[0][i], channels[1][i], channels[2][i], channels[3][i]};
+}
+
+}  // namespace
+#endif
+
+std::optional<LaneReader> LaneReader::For(const PrefilteredTable& table) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (!__builtin_cpu_supports("avx2")) return std::nullopt;
+  LaneReader reader;
+  reader.texels_ = table.texels(table.base());
+  reader.inv_size_ = 1.0f / static_cast<float>(table.size());
+  const uint64_t base = table.base().offset;
+  for (const CopyEntry& e : table.directory()) {
+    const uint64_t bytes = e.offset - base;
+    const uint64_t last = bytes / 4 + uint64_t{e.width} * e.height;
+    const bool power_of_two = std::has_single_bit(e.width) && std::has_single_bit(e.height) &&
+                              (e.axis == TiltAxis::kNone || std::has_single_bit(e.lambda));
+    if (e.offset < base || bytes % 4 != 0 || last >= (uint64_t{1} << 31) || !power_of_two ||
+        e.width > (1u << 15) || e.height > (1u << 15) || e.lambda > (1u << 31))
+      return std::nullopt;
+    int32_t shape = std::countr_zero(e.width) | std::countr_zero(e.height) << 4;
+    if (e.axis == TiltAxis::kV) shape |= kTiltV;
+    if (e.axis != TiltAxis::kNone) shape |= std::countr_zero(e.lambda) << 9 | kTilted;
+    reader.offset_.push_back(static_cast<int32_t>(bytes / 4));
+    reader.shape_.push_back(shape);
+  }
+  return reader;
+#else
+  (void)table;
+  return std::nullopt;
+#endif
+}
+
+void LaneReader::Read(const SelectionLanes& s, const double* u, const double* v, int n,
+                      Rgba* out) const {
+#if defined(__x86_64__) && defined(__GNUC__)
+  ReadLanesAvx2(texels_, offset_.data(), shape_.data(), inv_size_, s, u, v, n, out);
+#else
+  (void)s, (void)u, (void)v, (void)n, (void)out;
+#endif
+}
+
+}  // namespace aperture

@@ -1,0 +1,36 @@
+// The copy reads of eight aniso samples at once: AnisoSampler::Blend's reads (the base probes,
+// then the table copies of each reading, seed 000, eq. 6-9 inside each copy) with one sample
+// per vector lane, the texels fetched by AVX2 gathers. The same float operations in the same
+// order per sample as Blend, so the sums are equal bit for bit (tests/texture/
+// aniso_sampler_test.cc compares them).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "base/image.h"
+#include "texture/aniso_selection.h"
+#include "texture/prefiltered_table.h"
+
+namespace aperture {
+
+class LaneReader {
+ public:
+  // Empty when the processor has no AVX2 or the table does not fit the kernel's 32-bit texel
+  // indices (every table up to kTableMaxLog2Size does; the check guards the format).
+  static std::optional<LaneReader> For(const PrefilteredTable& table);
+
+  // out[0, n) for lanes [0, n) of a selection (n <= 8) at texture coordinates u, v (repeats).
+  void Read(const SelectionLanes& s, const double* u, const double* v, int n, Rgba* out) const;
+
+ private:
+  const uint8_t* texels_ = nullptr;  // the base copy's first texel
+  float inv_size_ = 0;               // 1 / 2^n: one base texel in repeats
+  // Per directory entry: its first texel counted from texels_, and its shape packed in bits
+  // (log2 width 0-3, log2 height 4-7, tilted to V 8, log2 lambda 9-13, lambda > 0 14).
+  std::vector<int32_t> offset_;
+  std::vector<int32_t> shape_;
+};
+
+}  // namespace aperture
