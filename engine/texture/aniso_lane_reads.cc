@@ -30,17 +30,40 @@ __attribute__((target("avx2"))) inline __m256 Channel(__m256i texels, int c) {
   return _mm256_cvtepi32_ps(_mm256_and_si256(shifted, _mm256_set1_epi32(0xff)));
 }
 
+// Eight lanes' copies: the fields CopySample reads (texture/aniso_sampler.cc), as vectors.
+struct LaneCopies {
+  __m256 width, height, lambda;  // lambda 0 when untilted
+  __m256i log2_w, wmask, hmask, offset;
+  __m256i tilt;  // all ones where the copy is tilted to V (used when the lanes' tilts differ)
+};
+
+// Which axis is major: the same for all lanes (read as a constant), or per lane.
+enum class Tilt { kU, kV, kPerLane };
+
+template <Tilt kTilt>
+__attribute__((target("avx2"))) inline __m256 Pick(__m256 u_major, __m256 v_major, __m256 tilt) {
+  if constexpr (kTilt == Tilt::kU) return u_major;
+  if constexpr (kTilt == Tilt::kV) return v_major;
+  return _mm256_blendv_ps(u_major, v_major, tilt);
+}
+template <Tilt kTilt>
+__attribute__((target("avx2"))) inline __m256i Pick(__m256i u_major, __m256i v_major,
+                                                    __m256i tilt) {
+  if constexpr (kTilt == Tilt::kU) return u_major;
+  if constexpr (kTilt == Tilt::kV) return v_major;
+  return _mm256_blendv_epi8(u_major, v_major, tilt);
+}
+
 // The texels at (major, minor) of each lane's copy: (x, y) = (minor, major) on copies tilted to
 // V; periodic.
-__attribute__((target("avx2"))) inline __m256i Fetch(const uint8_t* texels, __m256i offset,
-                                                     __m256i log2_w, __m256i wmask, __m256i hmask,
-                                                     __m256i tilt, __m256i mask, __m256i major,
-                                                     __m256i minor) {
-  const __m256i x = _mm256_blendv_epi8(major, minor, tilt);
-  const __m256i y = _mm256_blendv_epi8(minor, major, tilt);
+template <Tilt kTilt>
+__attribute__((target("avx2"))) inline __m256i Fetch(const uint8_t* texels, const LaneCopies& c,
+                                                     __m256i mask, __m256i major, __m256i minor) {
+  const __m256i x = Pick<kTilt>(major, minor, c.tilt);
+  const __m256i y = Pick<kTilt>(minor, major, c.tilt);
   const __m256i index = _mm256_add_epi32(
-      offset, _mm256_add_epi32(_mm256_sllv_epi32(_mm256_and_si256(y, hmask), log2_w),
-                               _mm256_and_si256(x, wmask)));
+      c.offset, _mm256_add_epi32(_mm256_sllv_epi32(_mm256_and_si256(y, c.hmask), c.log2_w),
+                                 _mm256_and_si256(x, c.wmask)));
   return _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(texels),
                                      index, mask, 4);
 }
@@ -49,44 +72,21 @@ struct LaneSums {
   __m256 c[4];
 };
 
-// One read in each lane of `mask`: the copy `copy` at (u, v) along slope tg (CopySample in
+// One read in each lane of `mask`: the lane's copy at (u, v) along slope tg (CopySample in
 // aniso_sampler.cc, the same operations), added to the sums with `weight` (the other lanes'
 // sums unchanged; their inputs are never dereferenced).
-__attribute__((target("avx2"))) inline void AddRead(const uint8_t* texels, const int32_t* offsets,
-                                                    const int32_t* shapes, __m256i copy,
-                                                    __m256 mask, __m256 u, __m256 v, __m256 tg,
-                                                    __m256 weight, LaneSums& sums) {
-  const __m256i imask = _mm256_castps_si256(mask);
-  const __m256i zero = _mm256_setzero_si256(), ione = _mm256_set1_epi32(1);
-  // Neighbouring samples mostly read the same copy: then one load each, not a gather.
-  __m256i shape, offset;
-  const int first_copy = _mm256_cvtsi256_si32(copy);
-  if (_mm256_movemask_epi8(_mm256_cmpeq_epi32(copy, _mm256_set1_epi32(first_copy))) == -1) {
-    shape = _mm256_set1_epi32(shapes[first_copy]);
-    offset = _mm256_set1_epi32(offsets[first_copy]);
-  } else {
-    shape = _mm256_mask_i32gather_epi32(zero, shapes, copy, imask, 4);
-    offset = _mm256_mask_i32gather_epi32(zero, offsets, copy, imask, 4);
-  }
-  const __m256i nibble = _mm256_set1_epi32(15);
-  const __m256i log2_w = _mm256_and_si256(shape, nibble);
-  const __m256i log2_h = _mm256_and_si256(_mm256_srli_epi32(shape, 4), nibble);
-  const __m256i tilt = _mm256_cmpeq_epi32(_mm256_and_si256(shape, _mm256_set1_epi32(kTiltV)),
-                                          _mm256_set1_epi32(kTiltV));
-  const __m256 tilt_f = _mm256_castsi256_ps(tilt);
-  const __m256i tilted = _mm256_cmpeq_epi32(_mm256_and_si256(shape, _mm256_set1_epi32(kTilted)),
-                                            _mm256_set1_epi32(kTilted));
-  const __m256 lambda = _mm256_and_ps(
-      _mm256_castsi256_ps(tilted),
-      PowerOfTwo(_mm256_and_si256(_mm256_srli_epi32(shape, 9), _mm256_set1_epi32(31))));
-  const __m256i wmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, log2_w), ione);
-  const __m256i hmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, log2_h), ione);
+template <Tilt kTilt>
+__attribute__((target("avx2"))) inline void AddCopyRead(const uint8_t* texels, const LaneCopies& c,
+                                                        __m256 mask, __m256 u, __m256 v, __m256 tg,
+                                                        __m256 weight, LaneSums& sums) {
+  const __m256i imask = _mm256_castps_si256(mask), ione = _mm256_set1_epi32(1);
+  const __m256 tilt_f = _mm256_castsi256_ps(c.tilt);
   // Texel centres at +0.5 (DESIGN.md); major coordinate M along the tilt axis, minor m.
   const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
-  const __m256 X = _mm256_sub_ps(_mm256_mul_ps(u, PowerOfTwo(log2_w)), half);
-  const __m256 Y = _mm256_sub_ps(_mm256_mul_ps(v, PowerOfTwo(log2_h)), half);
-  const __m256 M = _mm256_blendv_ps(X, Y, tilt_f), m = _mm256_blendv_ps(Y, X, tilt_f);
-  const __m256 shift = _mm256_mul_ps(lambda, tg);
+  const __m256 X = _mm256_sub_ps(_mm256_mul_ps(u, c.width), half);
+  const __m256 Y = _mm256_sub_ps(_mm256_mul_ps(v, c.height), half);
+  const __m256 M = Pick<kTilt>(X, Y, tilt_f), m = Pick<kTilt>(Y, X, tilt_f);
+  const __m256 shift = _mm256_mul_ps(c.lambda, tg);
   const __m256 M0 = _mm256_floor_ps(M), fM = _mm256_sub_ps(M, M0);
   // seed 000, eq. 6 / 7: the minor coordinate on both neighbouring major lines.
   const __m256 m1 = _mm256_sub_ps(m, _mm256_mul_ps(fM, shift));
@@ -95,26 +95,70 @@ __attribute__((target("avx2"))) inline void AddRead(const uint8_t* texels, const
   const __m256i a = _mm256_cvttps_epi32(M0), b1 = _mm256_cvttps_epi32(m1f),
                 b2 = _mm256_cvttps_epi32(m2f);
   const __m256i a1 = _mm256_add_epi32(a, ione);
-  const __m256i t00 = Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a, b1);
-  const __m256i t01 =
-      Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a, _mm256_add_epi32(b1, ione));
-  const __m256i t10 = Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a1, b2);
-  const __m256i t11 =
-      Fetch(texels, offset, log2_w, wmask, hmask, tilt, imask, a1, _mm256_add_epi32(b2, ione));
+  const __m256i t00 = Fetch<kTilt>(texels, c, imask, a, b1);
+  const __m256i t01 = Fetch<kTilt>(texels, c, imask, a, _mm256_add_epi32(b1, ione));
+  const __m256i t10 = Fetch<kTilt>(texels, c, imask, a1, b2);
+  const __m256i t11 = Fetch<kTilt>(texels, c, imask, a1, _mm256_add_epi32(b2, ione));
   const __m256 w1 = _mm256_sub_ps(m1, m1f), w2 = _mm256_sub_ps(m2, m2f);
   // seed 000, eq. 8 / 9, then the weighted sum.
-  for (int c = 0; c < 4; ++c) {
-    const __m256 r = Mix(Mix(Channel(t00, c), Channel(t01, c), w1),
-                         Mix(Channel(t10, c), Channel(t11, c), w2), fM);
-    sums.c[c] =
-        _mm256_blendv_ps(sums.c[c], _mm256_add_ps(sums.c[c], _mm256_mul_ps(r, weight)), mask);
+  for (int k = 0; k < 4; ++k) {
+    const __m256 r = Mix(Mix(Channel(t00, k), Channel(t01, k), w1),
+                         Mix(Channel(t10, k), Channel(t11, k), w2), fM);
+    sums.c[k] =
+        _mm256_blendv_ps(sums.c[k], _mm256_add_ps(sums.c[k], _mm256_mul_ps(r, weight)), mask);
   }
 }
 
-__attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels, const int32_t* offsets,
-                                                   const int32_t* shapes, float inv_size,
-                                                   const SelectionLanes& s, const double* u_in,
-                                                   const double* v_in, int n, Rgba* out) {
+// A copy read of eight lanes, `copy` the lanes' directory indices. Neighbouring samples mostly
+// read the same copy: then its fields are broadcast and its axis is a constant; else they are
+// gathered and decoded from the packed shapes.
+__attribute__((target("avx2"))) inline void AddRead(const uint8_t* texels,
+                                                    const LaneReader::Copy* copies,
+                                                    const int32_t* offsets, const int32_t* shapes,
+                                                    __m256i copy, __m256 mask, __m256 u, __m256 v,
+                                                    __m256 tg, __m256 weight, LaneSums& sums) {
+  const int first = _mm256_cvtsi256_si32(copy);
+  if (_mm256_movemask_epi8(_mm256_cmpeq_epi32(copy, _mm256_set1_epi32(first))) == -1) {
+    const LaneReader::Copy& one = copies[first];
+    LaneCopies c;
+    c.width = _mm256_set1_ps(one.width), c.height = _mm256_set1_ps(one.height);
+    c.lambda = _mm256_set1_ps(one.lambda);
+    c.log2_w = _mm256_set1_epi32(one.log2_width), c.wmask = _mm256_set1_epi32(one.width_mask);
+    c.hmask = _mm256_set1_epi32(one.height_mask), c.offset = _mm256_set1_epi32(one.offset);
+    c.tilt = _mm256_setzero_si256();
+    if (one.tilt_v)
+      AddCopyRead<Tilt::kV>(texels, c, mask, u, v, tg, weight, sums);
+    else
+      AddCopyRead<Tilt::kU>(texels, c, mask, u, v, tg, weight, sums);
+    return;
+  }
+  const __m256i imask = _mm256_castps_si256(mask);
+  const __m256i zero = _mm256_setzero_si256(), ione = _mm256_set1_epi32(1);
+  const __m256i shape = _mm256_mask_i32gather_epi32(zero, shapes, copy, imask, 4);
+  const __m256i nibble = _mm256_set1_epi32(15);
+  LaneCopies c;
+  c.offset = _mm256_mask_i32gather_epi32(zero, offsets, copy, imask, 4);
+  c.log2_w = _mm256_and_si256(shape, nibble);
+  const __m256i log2_h = _mm256_and_si256(_mm256_srli_epi32(shape, 4), nibble);
+  c.tilt = _mm256_cmpeq_epi32(_mm256_and_si256(shape, _mm256_set1_epi32(kTiltV)),
+                              _mm256_set1_epi32(kTiltV));
+  const __m256i tilted = _mm256_cmpeq_epi32(_mm256_and_si256(shape, _mm256_set1_epi32(kTilted)),
+                                            _mm256_set1_epi32(kTilted));
+  c.lambda = _mm256_and_ps(
+      _mm256_castsi256_ps(tilted),
+      PowerOfTwo(_mm256_and_si256(_mm256_srli_epi32(shape, 9), _mm256_set1_epi32(31))));
+  c.wmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, c.log2_w), ione);
+  c.hmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, log2_h), ione);
+  c.width = PowerOfTwo(c.log2_w), c.height = PowerOfTwo(log2_h);
+  AddCopyRead<Tilt::kPerLane>(texels, c, mask, u, v, tg, weight, sums);
+}
+
+__attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels,
+                                                   const LaneReader::Copy* copies,
+                                                   const int32_t* offsets, const int32_t* shapes,
+                                                   float inv_size, const SelectionLanes& s,
+                                                   const double* u_in, const double* v_in, int n,
+                                                   Rgba* out) {
   constexpr int kLanes = SelectionLanes::kLanes;
   alignas(32) float u_lanes[kLanes] = {}, v_lanes[kLanes] = {};
   alignas(32) int32_t live_lanes[kLanes] = {};
@@ -133,8 +177,8 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels, const 
   // Degenerate derivatives (neither reading): the base, bilinear.
   const __m256 degenerate = _mm256_andnot_ps(_mm256_or_ps(read[0], read[1]), live);
   if (_mm256_movemask_ps(degenerate) != 0)
-    AddRead(texels, offsets, shapes, izero, degenerate, u, v, zero, _mm256_set1_ps(1.0f / 255.0f),
-            sums);
+    AddRead(texels, copies, offsets, shapes, izero, degenerate, u, v, zero,
+            _mm256_set1_ps(1.0f / 255.0f), sums);
   for (int r = 0; r < 2; ++r) {
     if (_mm256_movemask_ps(read[r]) == 0) continue;
     // Lanes not read hold anything: their inputs are masked to harmless values.
@@ -174,8 +218,8 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels, const 
         const __m256 pv = _mm256_add_ps(v, _mm256_blendv_ps(minor, major, along_v));
         const __m256 end = _mm256_castsi256_ps(
             _mm256_or_si256(_mm256_cmpeq_epi32(kk, izero), _mm256_cmpeq_epi32(kk, last)));
-        AddRead(texels, offsets, shapes, izero, mask, pu, pv, zero, _mm256_blendv_ps(w, w_end, end),
-                sums);
+        AddRead(texels, copies, offsets, shapes, izero, mask, pu, pv, zero,
+                _mm256_blendv_ps(w, w_end, end), sums);
       }
     }
     // The table copies: the sample's own tangent (the skew interpolates between tilts).
@@ -186,7 +230,7 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels, const 
       const __m256i copy =
           _mm256_and_si256(_mm256_castps_si256(mask),
                            _mm256_load_si256(reinterpret_cast<const __m256i*>(s.copy[r][slot])));
-      AddRead(texels, offsets, shapes, copy, mask, u, v, tg,
+      AddRead(texels, copies, offsets, shapes, copy, mask, u, v, tg,
               _mm256_and_ps(mask, _mm256_mul_ps(weight, scale)), sums);
     }
   }
@@ -218,6 +262,12 @@ std::optional<LaneReader> LaneReader::For(const PrefilteredTable& table) {
     if (e.axis == TiltAxis::kV) shape |= kTiltV;
     if (e.axis != TiltAxis::kNone) shape |= std::countr_zero(e.lambda) << 9 | kTilted;
     reader.offset_.push_back(static_cast<int32_t>(bytes / 4));
+    const bool tilted = e.axis != TiltAxis::kNone;
+    reader.copies_.push_back({static_cast<float>(e.width), static_cast<float>(e.height),
+                              tilted ? static_cast<float>(e.lambda) : 0.0f,
+                              std::countr_zero(e.width), static_cast<int32_t>(e.width - 1),
+                              static_cast<int32_t>(e.height - 1), static_cast<int32_t>(bytes / 4),
+                              e.axis == TiltAxis::kV});
     reader.shape_.push_back(shape);
   }
   return reader;
@@ -230,7 +280,7 @@ std::optional<LaneReader> LaneReader::For(const PrefilteredTable& table) {
 void LaneReader::Read(const SelectionLanes& s, const double* u, const double* v, int n,
                       Rgba* out) const {
 #if defined(__x86_64__) && defined(__GNUC__)
-  ReadLanesAvx2(texels_, offset_.data(), shape_.data(), inv_size_, s, u, v, n, out);
+  ReadLanesAvx2(texels_, copies_.data(), offset_.data(), shape_.data(), inv_size_, s, u, v, n, out);
 #else
   (void)s, (void)u, (void)v, (void)n, (void)out;
 #endif

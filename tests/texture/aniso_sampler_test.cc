@@ -509,6 +509,18 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
     const float p = 7.99f * 2 / kN, q = 0.02f * 2 / kN;  // half-steps (p, p), (-q, q); a = 2
     in.push_back({pos(rng), pos(rng), p, p, -q, q});
   }
+  // And whole groups of eight that share their derivatives (so mostly their copies: the reads
+  // take each copy's fields once, its axis a constant), of every shape above, both axes.
+  const TextureFootprint most_reads = in.back();
+  in.resize((in.size() + 7) / 8 * 8, in.front());
+  for (int g = 0; g < 64; ++g) {
+    TextureFootprint shared = {0, 0, d(), d(), d(), d()};
+    if (g % 2 == 1) std::swap(shared.dudx, shared.dvdx), std::swap(shared.dudy, shared.dvdy);
+    for (int lane = 0; lane < 8; ++lane) {
+      shared.u = pos(rng), shared.v = pos(rng);
+      in.push_back(shared);
+    }
+  }
   std::vector<Rgba> out(in.size());
   sampler.SampleMany(in.data(), out.data(), static_cast<int>(in.size()));
   // And through the renderer's batches (footprint arrays of up to 64).
@@ -529,7 +541,7 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
   EXPECT_EQ(differing, 0);
   EXPECT_EQ(differing_batched, 0);
   EXPECT_GT(probed, 50);  // the base probes of thin apertures are among the reads compared
-  const ApertureReadings most = ReadingsOfFootprint(in.back(), kN);
+  const ApertureReadings most = ReadingsOfFootprint(most_reads, kN);
   ASSERT_EQ(most.count, 2);
   EXPECT_EQ(SelectCopies(*table_, most.shape[0]).probes, 18);
   EXPECT_EQ(SelectCopies(*table_, most.shape[1]).probes, 18);
