@@ -387,13 +387,17 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
     // and nearly round (16 sqrt(T) - 1 <= 0), the same operations.
     const __m256 magnify = _mm256_cmp_ps(H, one, _CMP_LT_OQ);
     const __m256 Lmin = _mm256_min_ps(L, H);
-    const __m256 Lmin2 = _mm256_mul_ps(Lmin, Lmin);
-    const __m256 T = _mm256_div_ps(_mm256_sub_ps(_mm256_mul_ps(H, H), Lmin2),
-                                   _mm256_mul_ps(_mm256_set1_ps(3.0f), _mm256_sub_ps(one, Lmin2)));
-    const __m256 round = _mm256_and_ps(
-        magnify,
-        _mm256_cmp_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(16.0f), _mm256_sqrt_ps(T)), one),
-                      zero, _CMP_LE_OQ));
+    __m256 round = zero;
+    if (_mm256_movemask_ps(magnify) != 0) {  // only magnified lanes can be nearly round
+      const __m256 Lmin2 = _mm256_mul_ps(Lmin, Lmin);
+      const __m256 T =
+          _mm256_div_ps(_mm256_sub_ps(_mm256_mul_ps(H, H), Lmin2),
+                        _mm256_mul_ps(_mm256_set1_ps(3.0f), _mm256_sub_ps(one, Lmin2)));
+      round = _mm256_and_ps(
+          magnify,
+          _mm256_cmp_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(16.0f), _mm256_sqrt_ps(T)), one),
+                        zero, _CMP_LE_OQ));
+    }
     const __m256 thin = _mm256_andnot_ps(
         round,
         _mm256_and_ps(_mm256_and_ps(read[r], _mm256_cmp_ps(Lmin, one, _CMP_LT_OQ)),
@@ -455,10 +459,16 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
     weights[2] = _mm256_andnot_ps(_mm256_castsi256_ps(whole), weights[2]);
     const __m256 tilt_position = _mm256_mul_ps(_mm256_add_ps(tg, one), half);
     for (int c = 0; c < 3; ++c) {
-      const __m256i halves = _mm256_i32gather_epi32(cell_half, cells[c], 4);
-      const __m256i firsts = _mm256_add_epi32(
-          _mm256_i32gather_epi32(reinterpret_cast<const int*>(cell_first), cells[c], 4),
-          _mm256_mullo_epi32(along_v[r], halves));
+      // Neighbouring samples mostly share the cell: then two loads, not two gathers.
+      const int cell = _mm256_cvtsi256_si32(cells[c]);
+      const bool shared =
+          _mm256_movemask_epi8(_mm256_cmpeq_epi32(cells[c], _mm256_set1_epi32(cell))) == -1;
+      const __m256i halves = shared ? _mm256_set1_epi32(cell_half[cell])
+                                    : _mm256_i32gather_epi32(cell_half, cells[c], 4);
+      const __m256i cell_firsts =
+          shared ? _mm256_set1_epi32(static_cast<int>(cell_first[cell]))
+                 : _mm256_i32gather_epi32(reinterpret_cast<const int*>(cell_first), cells[c], 4);
+      const __m256i firsts = _mm256_add_epi32(cell_firsts, _mm256_mullo_epi32(along_v[r], halves));
       const __m256 halff = _mm256_cvtepi32_ps(halves);
       // std::clamp(x, 0, half - 1).
       const __m256 x = _mm256_sub_ps(_mm256_mul_ps(tilt_position, halff), half);
