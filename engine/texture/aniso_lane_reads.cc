@@ -38,8 +38,8 @@ __attribute__((target("avx2"))) inline __m256 Channel(__m256i texels, int c) {
     const char b = static_cast<char>(c), b4 = static_cast<char>(c + 4),
                b8 = static_cast<char>(c + 8), b12 = static_cast<char>(c + 12);
     bytes = _mm256_shuffle_epi8(
-        texels, _mm256_setr_epi8(b, z, z, z, b4, z, z, z, b8, z, z, z, b12, z, z, z, b, z, z, z,
-                                 b4, z, z, z, b8, z, z, z, b12, z, z, z));
+        texels, _mm256_setr_epi8(b, z, z, z, b4, z, z, z, b8, z, z, z, b12, z, z, z, b, z, z, z, b4,
+                                 z, z, z, b8, z, z, z, b12, z, z, z));
   }
   return _mm256_cvtepi32_ps(bytes);
 }
@@ -68,32 +68,39 @@ __attribute__((target("avx2"))) inline __m256i Pick(__m256i u_major, __m256i v_m
   return _mm256_blendv_epi8(u_major, v_major, tilt);
 }
 
-// The texels at (major, minor) of each lane's copy: (x, y) = (minor, major) on copies tilted to
-// V; periodic.
+// A texel's index in its copy, at (major, minor) of each lane: (x, y) = (minor, major) on
+// copies tilted to V; periodic. The copy's first texel is added by Gather.
 template <Tilt kTilt>
-__attribute__((target("avx2"))) inline __m256i Fetch(const uint8_t* texels, const LaneCopies& c,
-                                                     __m256i mask, __m256i major, __m256i minor) {
+__attribute__((target("avx2"))) inline __m256i IndexInCopy(const LaneCopies& c, __m256i major,
+                                                           __m256i minor) {
   const __m256i x = Pick<kTilt>(major, minor, c.tilt);
   const __m256i y = Pick<kTilt>(minor, major, c.tilt);
-  const __m256i index = _mm256_add_epi32(
-      c.offset, _mm256_add_epi32(_mm256_sllv_epi32(_mm256_and_si256(y, c.hmask), c.log2_w),
-                                 _mm256_and_si256(x, c.wmask)));
+  return _mm256_add_epi32(_mm256_sllv_epi32(_mm256_and_si256(y, c.hmask), c.log2_w),
+                          _mm256_and_si256(x, c.wmask));
+}
+
+__attribute__((target("avx2"))) inline __m256i Gather(const uint8_t* texels, __m256i offset,
+                                                      __m256i index, __m256i mask) {
   return _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(texels),
-                                     index, mask, 4);
+                                     _mm256_add_epi32(offset, index), mask, 4);
 }
 
 struct LaneSums {
   __m256 c[4];
 };
 
-// One read in each lane of `mask`: the lane's copy at (u, v) along slope tg (CopySample in
-// aniso_sampler.cc, the same operations), added to the sums with `weight` (the other lanes'
-// sums unchanged; their inputs are never dereferenced).
+// Where one copy read of eight lanes takes its texels: the four texel indices inside the copy
+// and the three interpolation weights (CopySample in aniso_sampler.cc, the same operations).
+// They depend on the copy's shape only, so the two tilts of a cell share them.
+struct ReadPlace {
+  __m256i i00, i01, i10, i11;
+  __m256 w1, w2, wM;
+};
+
 template <Tilt kTilt>
-__attribute__((target("avx2"))) inline void AddCopyRead(const uint8_t* texels, const LaneCopies& c,
-                                                        __m256 mask, __m256 u, __m256 v, __m256 tg,
-                                                        __m256 weight, LaneSums& sums) {
-  const __m256i imask = _mm256_castps_si256(mask), ione = _mm256_set1_epi32(1);
+__attribute__((target("avx2"))) inline ReadPlace PlaceRead(const LaneCopies& c, __m256 u, __m256 v,
+                                                           __m256 tg) {
+  const __m256i ione = _mm256_set1_epi32(1);
   const __m256 tilt_f = _mm256_castsi256_ps(c.tilt);
   // Texel centres at +0.5 (DESIGN.md); major coordinate M along the tilt axis, minor m.
   const __m256 half = _mm256_set1_ps(0.5f), one = _mm256_set1_ps(1.0f);
@@ -109,49 +116,63 @@ __attribute__((target("avx2"))) inline void AddCopyRead(const uint8_t* texels, c
   const __m256i a = _mm256_cvttps_epi32(M0), b1 = _mm256_cvttps_epi32(m1f),
                 b2 = _mm256_cvttps_epi32(m2f);
   const __m256i a1 = _mm256_add_epi32(a, ione);
-  const __m256i t00 = Fetch<kTilt>(texels, c, imask, a, b1);
-  const __m256i t01 = Fetch<kTilt>(texels, c, imask, a, _mm256_add_epi32(b1, ione));
-  const __m256i t10 = Fetch<kTilt>(texels, c, imask, a1, b2);
-  const __m256i t11 = Fetch<kTilt>(texels, c, imask, a1, _mm256_add_epi32(b2, ione));
-  const __m256 w1 = _mm256_sub_ps(m1, m1f), w2 = _mm256_sub_ps(m2, m2f);
+  return {IndexInCopy<kTilt>(c, a, b1),
+          IndexInCopy<kTilt>(c, a, _mm256_add_epi32(b1, ione)),
+          IndexInCopy<kTilt>(c, a1, b2),
+          IndexInCopy<kTilt>(c, a1, _mm256_add_epi32(b2, ione)),
+          _mm256_sub_ps(m1, m1f),
+          _mm256_sub_ps(m2, m2f),
+          fM};
+}
+
+// The read at `place` of the copies starting at `offset`, in each lane of `mask`, added to the
+// sums with `weight` (the other lanes' sums unchanged, their texels never loaded).
+__attribute__((target("avx2"))) inline void AddTexels(const uint8_t* texels, const ReadPlace& p,
+                                                      __m256i offset, __m256 mask, __m256 weight,
+                                                      LaneSums& sums) {
+  const __m256i imask = _mm256_castps_si256(mask);
+  const __m256i t00 = Gather(texels, offset, p.i00, imask);
+  const __m256i t01 = Gather(texels, offset, p.i01, imask);
+  const __m256i t10 = Gather(texels, offset, p.i10, imask);
+  const __m256i t11 = Gather(texels, offset, p.i11, imask);
   // seed 000, eq. 8 / 9, then the weighted sum.
   for (int k = 0; k < 4; ++k) {
-    const __m256 r = Mix(Mix(Channel(t00, k), Channel(t01, k), w1),
-                         Mix(Channel(t10, k), Channel(t11, k), w2), fM);
+    const __m256 r = Mix(Mix(Channel(t00, k), Channel(t01, k), p.w1),
+                         Mix(Channel(t10, k), Channel(t11, k), p.w2), p.wM);
     sums.c[k] =
         _mm256_blendv_ps(sums.c[k], _mm256_add_ps(sums.c[k], _mm256_mul_ps(r, weight)), mask);
   }
 }
 
-// A copy read of eight lanes, `copy` the lanes' directory indices. Neighbouring samples mostly
-// read the same copy: then its fields are broadcast and its axis is a constant; else they are
-// gathered and decoded from the packed shapes.
-__attribute__((target("avx2"))) inline void AddRead(const uint8_t* texels,
-                                                    const LaneReader::Copy* copies,
-                                                    const int32_t* offsets, const int32_t* shapes,
-                                                    __m256i copy, __m256 mask, __m256 u, __m256 v,
-                                                    __m256 tg, __m256 weight, LaneSums& sums) {
-  const int first = _mm256_cvtsi256_si32(copy);
-  if (_mm256_movemask_epi8(_mm256_cmpeq_epi32(copy, _mm256_set1_epi32(first))) == -1) {
-    const LaneReader::Copy& one = copies[first];
-    LaneCopies c;
-    c.width = _mm256_set1_ps(one.width), c.height = _mm256_set1_ps(one.height);
-    c.lambda = _mm256_set1_ps(one.lambda);
-    c.log2_w = _mm256_set1_epi32(one.log2_width), c.wmask = _mm256_set1_epi32(one.width_mask);
-    c.hmask = _mm256_set1_epi32(one.height_mask), c.offset = _mm256_set1_epi32(one.offset);
-    c.tilt = _mm256_setzero_si256();
-    if (one.tilt_v)
-      AddCopyRead<Tilt::kV>(texels, c, mask, u, v, tg, weight, sums);
-    else
-      AddCopyRead<Tilt::kU>(texels, c, mask, u, v, tg, weight, sums);
-    return;
-  }
-  const __m256i imask = _mm256_castps_si256(mask);
-  const __m256i zero = _mm256_setzero_si256(), ione = _mm256_set1_epi32(1);
-  const __m256i shape = _mm256_mask_i32gather_epi32(zero, shapes, copy, imask, 4);
-  const __m256i nibble = _mm256_set1_epi32(15);
+// Copy reads in the lanes of mask_a (the copies of c) and then of mask_b (copies of c's shape
+// starting at offset_b, when kPair).
+template <Tilt kTilt, bool kPair>
+__attribute__((target("avx2"))) inline void AddCopyReads(const uint8_t* texels, const LaneCopies& c,
+                                                         __m256i offset_b, __m256 mask_a,
+                                                         __m256 mask_b, __m256 u, __m256 v,
+                                                         __m256 tg, __m256 weight_a,
+                                                         __m256 weight_b, LaneSums& sums) {
+  const ReadPlace place = PlaceRead<kTilt>(c, u, v, tg);
+  AddTexels(texels, place, c.offset, mask_a, weight_a, sums);
+  if constexpr (kPair) AddTexels(texels, place, offset_b, mask_b, weight_b, sums);
+}
+
+// The fields of one copy, broadcast to the eight lanes.
+__attribute__((target("avx2"))) inline LaneCopies Broadcast(const LaneReader::Copy& one) {
   LaneCopies c;
-  c.offset = _mm256_mask_i32gather_epi32(zero, offsets, copy, imask, 4);
+  c.width = _mm256_set1_ps(one.width), c.height = _mm256_set1_ps(one.height);
+  c.lambda = _mm256_set1_ps(one.lambda);
+  c.log2_w = _mm256_set1_epi32(one.log2_width), c.wmask = _mm256_set1_epi32(one.width_mask);
+  c.hmask = _mm256_set1_epi32(one.height_mask), c.offset = _mm256_set1_epi32(one.offset);
+  c.tilt = _mm256_setzero_si256();
+  return c;
+}
+
+// The lanes' copies from their packed shapes (LaneReader::shape_) and first texels.
+__attribute__((target("avx2"))) inline LaneCopies Decode(__m256i shape, __m256i offset) {
+  const __m256i ione = _mm256_set1_epi32(1), nibble = _mm256_set1_epi32(15);
+  LaneCopies c;
+  c.offset = offset;
   c.log2_w = _mm256_and_si256(shape, nibble);
   const __m256i log2_h = _mm256_and_si256(_mm256_srli_epi32(shape, 4), nibble);
   c.tilt = _mm256_cmpeq_epi32(_mm256_and_si256(shape, _mm256_set1_epi32(kTiltV)),
@@ -164,7 +185,81 @@ __attribute__((target("avx2"))) inline void AddRead(const uint8_t* texels,
   c.wmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, c.log2_w), ione);
   c.hmask = _mm256_sub_epi32(_mm256_sllv_epi32(ione, log2_h), ione);
   c.width = PowerOfTwo(c.log2_w), c.height = PowerOfTwo(log2_h);
-  AddCopyRead<Tilt::kPerLane>(texels, c, mask, u, v, tg, weight, sums);
+  return c;
+}
+
+// The directory index every lane holds, or -1 when they differ.
+__attribute__((target("avx2"))) inline int Shared(__m256i copy) {
+  const int first = _mm256_cvtsi256_si32(copy);
+  return _mm256_movemask_epi8(_mm256_cmpeq_epi32(copy, _mm256_set1_epi32(first))) == -1 ? first
+                                                                                        : -1;
+}
+
+struct CopyTables {
+  const uint8_t* texels;
+  const LaneReader::Copy* copies;
+  const int32_t* offsets;
+  const int32_t* shapes;
+};
+
+// A copy read of eight lanes, `copy` the lanes' directory indices (0 outside `mask`).
+// Neighbouring samples mostly read the same copy: then its fields are broadcast and its axis is
+// a constant; else they are gathered and decoded from the packed shapes.
+__attribute__((target("avx2"))) inline void AddRead(const CopyTables& t, __m256i copy, __m256 mask,
+                                                    __m256 u, __m256 v, __m256 tg, __m256 weight,
+                                                    LaneSums& sums) {
+  const __m256i none = _mm256_setzero_si256();
+  if (const int one = Shared(copy); one >= 0) {
+    const LaneCopies c = Broadcast(t.copies[one]);
+    if (t.copies[one].tilt_v)
+      AddCopyReads<Tilt::kV, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight, sums);
+    else
+      AddCopyReads<Tilt::kU, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight, sums);
+    return;
+  }
+  const __m256i imask = _mm256_castps_si256(mask);
+  const LaneCopies c = Decode(_mm256_mask_i32gather_epi32(none, t.shapes, copy, imask, 4),
+                              _mm256_mask_i32gather_epi32(none, t.offsets, copy, imask, 4));
+  AddCopyReads<Tilt::kPerLane, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight,
+                                      sums);
+}
+
+// The reads of two slots, a then b in each lane: the two tilts of a cell have one shape, so
+// where every lane's two copies do, the texel indices and weights are computed once.
+__attribute__((target("avx2"))) inline void AddReadPair(const CopyTables& t, __m256i copy_a,
+                                                        __m256i copy_b, __m256 mask_a,
+                                                        __m256 mask_b, __m256 u, __m256 v,
+                                                        __m256 tg, __m256 weight_a, __m256 weight_b,
+                                                        LaneSums& sums) {
+  const __m256 both = _mm256_or_ps(mask_a, mask_b);
+  const __m256i iboth = _mm256_castps_si256(both), none = _mm256_setzero_si256();
+  copy_a = _mm256_and_si256(iboth, copy_a), copy_b = _mm256_and_si256(iboth, copy_b);
+  const int one_a = Shared(copy_a), one_b = Shared(copy_b);
+  if (one_a >= 0 && one_b >= 0 && t.shapes[one_a] == t.shapes[one_b]) {
+    const LaneCopies c = Broadcast(t.copies[one_a]);
+    const __m256i offset_b = _mm256_set1_epi32(t.copies[one_b].offset);
+    if (t.copies[one_a].tilt_v)
+      AddCopyReads<Tilt::kV, true>(t.texels, c, offset_b, mask_a, mask_b, u, v, tg, weight_a,
+                                   weight_b, sums);
+    else
+      AddCopyReads<Tilt::kU, true>(t.texels, c, offset_b, mask_a, mask_b, u, v, tg, weight_a,
+                                   weight_b, sums);
+    return;
+  }
+  const __m256i shape_a = _mm256_mask_i32gather_epi32(none, t.shapes, copy_a, iboth, 4);
+  const __m256i shape_b = _mm256_mask_i32gather_epi32(none, t.shapes, copy_b, iboth, 4);
+  if (_mm256_movemask_epi8(_mm256_cmpeq_epi32(shape_a, shape_b)) == -1) {
+    const LaneCopies c =
+        Decode(shape_a, _mm256_mask_i32gather_epi32(none, t.offsets, copy_a, iboth, 4));
+    const __m256i offset_b = _mm256_mask_i32gather_epi32(none, t.offsets, copy_b, iboth, 4);
+    AddCopyReads<Tilt::kPerLane, true>(t.texels, c, offset_b, mask_a, mask_b, u, v, tg, weight_a,
+                                       weight_b, sums);
+    return;
+  }
+  AddRead(t, _mm256_and_si256(_mm256_castps_si256(mask_a), copy_a), mask_a, u, v, tg, weight_a,
+          sums);
+  AddRead(t, _mm256_and_si256(_mm256_castps_si256(mask_b), copy_b), mask_b, u, v, tg, weight_b,
+          sums);
 }
 
 __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels,
@@ -185,14 +280,14 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels,
   const __m256 zero = _mm256_setzero_ps();
   const __m256i izero = _mm256_setzero_si256();
   LaneSums sums = {{zero, zero, zero, zero}};
+  const CopyTables t = {texels, copies, offsets, shapes};
   const __m256 read[2] = {
       _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[0]), zero, _CMP_GT_OQ)),
       _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[1]), zero, _CMP_GT_OQ))};
   // Degenerate derivatives (neither reading): the base, bilinear.
   const __m256 degenerate = _mm256_andnot_ps(_mm256_or_ps(read[0], read[1]), live);
   if (_mm256_movemask_ps(degenerate) != 0)
-    AddRead(texels, copies, offsets, shapes, izero, degenerate, u, v, zero,
-            _mm256_set1_ps(1.0f / 255.0f), sums);
+    AddRead(t, izero, degenerate, u, v, zero, _mm256_set1_ps(1.0f / 255.0f), sums);
   for (int r = 0; r < 2; ++r) {
     if (_mm256_movemask_ps(read[r]) == 0) continue;
     // Lanes not read hold anything: their inputs are masked to harmless values.
@@ -232,20 +327,30 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels,
         const __m256 pv = _mm256_add_ps(v, _mm256_blendv_ps(minor, major, along_v));
         const __m256 end = _mm256_castsi256_ps(
             _mm256_or_si256(_mm256_cmpeq_epi32(kk, izero), _mm256_cmpeq_epi32(kk, last)));
-        AddRead(texels, copies, offsets, shapes, izero, mask, pu, pv, zero,
-                _mm256_blendv_ps(w, w_end, end), sums);
+        AddRead(t, izero, mask, pu, pv, zero, _mm256_blendv_ps(w, w_end, end), sums);
       }
     }
-    // The table copies: the sample's own tangent (the skew interpolates between tilts).
-    for (int slot = 0; slot < SelectionLanes::kSlots; ++slot) {
-      const __m256 weight = _mm256_load_ps(s.weight[r][slot]);
-      const __m256 mask = _mm256_and_ps(read[r], _mm256_cmp_ps(weight, zero, _CMP_GT_OQ));
-      if (_mm256_movemask_ps(mask) == 0) continue;
-      const __m256i copy =
-          _mm256_and_si256(_mm256_castps_si256(mask),
-                           _mm256_load_si256(reinterpret_cast<const __m256i*>(s.copy[r][slot])));
-      AddRead(texels, copies, offsets, shapes, copy, mask, u, v, tg,
-              _mm256_and_ps(mask, _mm256_mul_ps(weight, scale)), sums);
+    // The table copies, a cell's two tilts at a time: the sample's own tangent (the skew
+    // interpolates between tilts).
+    for (int slot = 0; slot < SelectionLanes::kSlots; slot += 2) {
+      const __m256 weight_a = _mm256_load_ps(s.weight[r][slot]);
+      const __m256 weight_b = _mm256_load_ps(s.weight[r][slot + 1]);
+      const __m256 mask_a = _mm256_and_ps(read[r], _mm256_cmp_ps(weight_a, zero, _CMP_GT_OQ));
+      const __m256 mask_b = _mm256_and_ps(read[r], _mm256_cmp_ps(weight_b, zero, _CMP_GT_OQ));
+      const __m256i copy_a = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.copy[r][slot]));
+      const __m256i copy_b =
+          _mm256_load_si256(reinterpret_cast<const __m256i*>(s.copy[r][slot + 1]));
+      const int a = _mm256_movemask_ps(mask_a), b = _mm256_movemask_ps(mask_b);
+      if (a != 0 && b != 0) {
+        AddReadPair(t, copy_a, copy_b, mask_a, mask_b, u, v, tg,
+                    _mm256_and_ps(mask_a, _mm256_mul_ps(weight_a, scale)),
+                    _mm256_and_ps(mask_b, _mm256_mul_ps(weight_b, scale)), sums);
+      } else if (a != 0 || b != 0) {
+        const __m256 mask = a != 0 ? mask_a : mask_b;
+        const __m256 weight = a != 0 ? weight_a : weight_b;
+        AddRead(t, _mm256_and_si256(_mm256_castps_si256(mask), a != 0 ? copy_a : copy_b), mask, u,
+                v, tg, _mm256_and_ps(mask, _mm256_mul_ps(weight, scale)), sums);
+      }
     }
   }
   alignas(32) float channels[4][kLanes];
