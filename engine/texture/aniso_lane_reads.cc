@@ -131,6 +131,9 @@ __attribute__((target("avx2"))) inline void AddTexels(const uint8_t* texels, con
                                                       __m256i offset, __m256 mask, __m256 weight,
                                                       LaneSums& sums) {
   const __m256i imask = _mm256_castps_si256(mask);
+  // Outside the mask the texels are 0 and every coordinate finite, so the term added there is
+  // r 0 = +0: the sums stay as they are, bit for bit.
+  weight = _mm256_and_ps(mask, weight);
   const __m256i t00 = Gather(texels, offset, p.i00, imask);
   const __m256i t01 = Gather(texels, offset, p.i01, imask);
   const __m256i t10 = Gather(texels, offset, p.i10, imask);
@@ -139,8 +142,7 @@ __attribute__((target("avx2"))) inline void AddTexels(const uint8_t* texels, con
   for (int k = 0; k < 4; ++k) {
     const __m256 r = Mix(Mix(Channel(t00, k), Channel(t01, k), p.w1),
                          Mix(Channel(t10, k), Channel(t11, k), p.w2), p.wM);
-    sums.c[k] =
-        _mm256_blendv_ps(sums.c[k], _mm256_add_ps(sums.c[k], _mm256_mul_ps(r, weight)), mask);
+    sums.c[k] = _mm256_add_ps(sums.c[k], _mm256_mul_ps(r, weight));
   }
 }
 
