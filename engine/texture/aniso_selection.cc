@@ -496,6 +496,7 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
       _mm256_store_ps(out.weight[r][2 * c + 1], w1);
     }
     // Magnified lanes: the base and the first copy by H^2.
+    if (_mm256_movemask_ps(magnify) == 0) continue;
     BlendSlot(out, r, 0, magnify, izero, _mm256_sub_ps(one, m));
     BlendSlot(out, r, 1, magnify, _mm256_set1_epi32(static_cast<int>(first_copy)), m);
     for (int slot = 2; slot < SelectionLanes::kSlots; ++slot)
