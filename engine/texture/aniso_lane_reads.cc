@@ -271,14 +271,21 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels,
                                                    const double* u_in, const double* v_in, int n,
                                                    Rgba* out) {
   constexpr int kLanes = SelectionLanes::kLanes;
-  alignas(32) float u_lanes[kLanes] = {}, v_lanes[kLanes] = {};
-  alignas(32) int32_t live_lanes[kLanes] = {};
-  for (int i = 0; i < n; ++i) {
-    u_lanes[i] = static_cast<float>(u_in[i]), v_lanes[i] = static_cast<float>(v_in[i]);
-    live_lanes[i] = -1;
+  // Lanes [0, n) hold samples; the others read 0 and are never written out.
+  const __m256 live = _mm256_castsi256_ps(
+      _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+  __m256 u, v;
+  if (n == kLanes) {
+    u = _mm256_set_m128(_mm256_cvtpd_ps(_mm256_loadu_pd(u_in + 4)),
+                        _mm256_cvtpd_ps(_mm256_loadu_pd(u_in)));
+    v = _mm256_set_m128(_mm256_cvtpd_ps(_mm256_loadu_pd(v_in + 4)),
+                        _mm256_cvtpd_ps(_mm256_loadu_pd(v_in)));
+  } else {
+    alignas(32) float u_lanes[kLanes] = {}, v_lanes[kLanes] = {};
+    for (int i = 0; i < n; ++i)
+      u_lanes[i] = static_cast<float>(u_in[i]), v_lanes[i] = static_cast<float>(v_in[i]);
+    u = _mm256_load_ps(u_lanes), v = _mm256_load_ps(v_lanes);
   }
-  const __m256 u = _mm256_load_ps(u_lanes), v = _mm256_load_ps(v_lanes);
-  const __m256 live = _mm256_load_ps(reinterpret_cast<const float*>(live_lanes));
   const __m256 zero = _mm256_setzero_ps();
   const __m256i izero = _mm256_setzero_si256();
   LaneSums sums = {{zero, zero, zero, zero}};
