@@ -302,6 +302,60 @@ __attribute__((target("avx2"))) inline void BlendSlot(SelectionLanes& out, int r
                   _mm256_blendv_ps(_mm256_load_ps(out.weight[r][slot]), weight, mask));
 }
 
+// Where `lanes` is set, `to` takes `value`.
+__attribute__((target("avx2"))) inline void BlendStore(float* to, __m256 value, __m256 lanes) {
+  _mm256_storeu_ps(to, _mm256_blendv_ps(_mm256_loadu_ps(to), value, lanes));
+}
+
+// AddProbesLane for the lanes of `lanes` (read, thin: L < 1 <= H < 2 kProbeHalfExtent), the
+// same operations: there T = H^2 / 3 >= 1/3 > s^2 / 4, so 2J probes s apart.
+__attribute__((target("avx2"))) void AddLongProbes(SelectionLanes& out, int r, __m256 lanes,
+                                                   __m256 H, __m256 L) {
+  static_assert(kProbeSpacing == 1.0f, "t = T / s^2 = T and the step s are written as 1 below");
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  const __m256 share = _mm256_mul_ps(
+      _mm256_min_ps(
+          _mm256_sub_ps(_mm256_set1_ps(2.0f), _mm256_div_ps(H, _mm256_set1_ps(kProbeHalfExtent))),
+          one),
+      _mm256_sub_ps(one, _mm256_mul_ps(L, L)));
+  const __m256 t = _mm256_mul_ps(_mm256_mul_ps(H, H), _mm256_set1_ps(1.0f / 3.0f));
+  const __m256i J = _mm256_min_epi32(
+      _mm256_max_epi32(
+          _mm256_cvttps_epi32(_mm256_ceil_ps(_mm256_mul_ps(
+              _mm256_set1_ps(0.5f),
+              _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(12.0f), t), one))))),
+          _mm256_set1_epi32(2)),
+      _mm256_set1_epi32(SelectionLanes::kMaxProbes / 2));
+  const __m256 Jf = _mm256_cvtepi32_ps(J);
+  const __m256 J1 = _mm256_sub_ps(Jf, one);
+  const __m256 A =
+      _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(4.0f), J1), J1), one),
+                    _mm256_set1_ps(1.0f / 12.0f));
+  // std::clamp(x, 0, 0.5 / J): x < 0 ? 0 : (0.5 / J < x ? 0.5 / J : x).
+  const __m256 x =
+      _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(t, A)),
+                    _mm256_mul_ps(Jf, _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), Jf), one)));
+  const __m256 top = _mm256_div_ps(_mm256_set1_ps(0.5f), Jf);
+  __m256 e = _mm256_blendv_ps(x, top, _mm256_cmp_ps(top, x, _CMP_LT_OQ));
+  e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
+  const __m256 end_weight = _mm256_mul_ps(e, share);
+  const __m256 weight =
+      _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(_mm256_set1_ps(2.0f), e)),
+                                  _mm256_mul_ps(_mm256_set1_ps(2.0f), J1)),
+                    share);
+  const __m256i ilanes = _mm256_castps_si256(lanes);
+  __m256i* probes = reinterpret_cast<__m256i*>(out.probes[r]);
+  _mm256_store_si256(probes,
+                     _mm256_blendv_epi8(_mm256_load_si256(probes), _mm256_add_epi32(J, J), ilanes));
+  BlendStore(out.probe_step[r], one, lanes);
+  BlendStore(out.probe_end_weight[r], end_weight, lanes);
+  BlendStore(out.probe_weight[r], weight, lanes);
+  const __m256 rest = _mm256_sub_ps(one, share);
+  for (int slot = 0; slot < SelectionLanes::kSlots; ++slot)
+    BlendStore(out.weight[r][slot], _mm256_mul_ps(_mm256_loadu_ps(out.weight[r][slot]), rest),
+               lanes);
+}
+
 // The AVX2 lanes of SelectPortable: ReadLane and TableSlots for eight lanes, the same float
 // operations in the same order. Lanes whose readings are not read compute harmless values
 // (clamped cell indices, finite arithmetic) that are never used; the second reading is skipped
@@ -402,7 +456,9 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
         round,
         _mm256_and_ps(_mm256_and_ps(read[r], _mm256_cmp_ps(Lmin, one, _CMP_LT_OQ)),
                       _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ)));
-    need_probes |= static_cast<uint32_t>(_mm256_movemask_ps(thin)) << (8 * r);
+    // AddProbesLane for the magnified thin lanes (rare); the others by AddLongProbes below.
+    need_probes |= static_cast<uint32_t>(_mm256_movemask_ps(_mm256_and_ps(thin, magnify)))
+                   << (8 * r);
     // TableSlots: magnified lanes the base and the first copy by H^2; the others seed 000's.
     const __m256 m = _mm256_mul_ps(H, H);
     if ((_mm256_movemask_ps(_mm256_andnot_ps(magnify, read[r])) & 0xff) == 0) {
@@ -496,11 +552,14 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
       _mm256_store_ps(out.weight[r][2 * c + 1], w1);
     }
     // Magnified lanes: the base and the first copy by H^2.
-    if (_mm256_movemask_ps(magnify) == 0) continue;
-    BlendSlot(out, r, 0, magnify, izero, _mm256_sub_ps(one, m));
-    BlendSlot(out, r, 1, magnify, _mm256_set1_epi32(static_cast<int>(first_copy)), m);
-    for (int slot = 2; slot < SelectionLanes::kSlots; ++slot)
-      BlendSlot(out, r, slot, magnify, izero, zero);
+    if (_mm256_movemask_ps(magnify) != 0) {
+      BlendSlot(out, r, 0, magnify, izero, _mm256_sub_ps(one, m));
+      BlendSlot(out, r, 1, magnify, _mm256_set1_epi32(static_cast<int>(first_copy)), m);
+      for (int slot = 2; slot < SelectionLanes::kSlots; ++slot)
+        BlendSlot(out, r, slot, magnify, izero, zero);
+    }
+    const __m256 long_thin = _mm256_andnot_ps(magnify, thin);
+    if (_mm256_movemask_ps(long_thin) != 0) AddLongProbes(out, r, long_thin, H, Lmin);
   }
   return need_probes;
 }
