@@ -307,23 +307,36 @@ __attribute__((target("avx2"))) inline void BlendStore(float* to, __m256 value, 
   _mm256_storeu_ps(to, _mm256_blendv_ps(_mm256_loadu_ps(to), value, lanes));
 }
 
-// AddProbesLane for the lanes of `lanes` (read, thin: L < 1 <= H < 2 kProbeHalfExtent), the
-// same operations: there T = H^2 / 3 >= 1/3 > s^2 / 4, so 2J probes s apart.
-__attribute__((target("avx2"))) void AddLongProbes(SelectionLanes& out, int r, __m256 lanes,
-                                                   __m256 H, __m256 L) {
+// AddProbesLane for the lanes of `thin` (read, L < 1, H < 2 kProbeHalfExtent and not nearly
+// round), the same operations; `magnify`: H < 1.
+__attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, __m256 thin,
+                                                   __m256 magnify, __m256 H, __m256 L) {
   static_assert(kProbeSpacing == 1.0f, "t = T / s^2 = T and the step s are written as 1 below");
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  const __m256 half = _mm256_set1_ps(0.5f), two = _mm256_set1_ps(2.0f);
+  const __m256 L2 = _mm256_mul_ps(L, L), H2 = _mm256_mul_ps(H, H);
   const __m256 share = _mm256_mul_ps(
-      _mm256_min_ps(
-          _mm256_sub_ps(_mm256_set1_ps(2.0f), _mm256_div_ps(H, _mm256_set1_ps(kProbeHalfExtent))),
-          one),
-      _mm256_sub_ps(one, _mm256_mul_ps(L, L)));
-  const __m256 t = _mm256_mul_ps(_mm256_mul_ps(H, H), _mm256_set1_ps(1.0f / 3.0f));
+      _mm256_min_ps(_mm256_sub_ps(two, _mm256_div_ps(H, _mm256_set1_ps(kProbeHalfExtent))), one),
+      _mm256_sub_ps(one, L2));
+  const __m256 T =
+      _mm256_blendv_ps(_mm256_mul_ps(H2, _mm256_set1_ps(1.0f / 3.0f)),
+                       _mm256_div_ps(_mm256_sub_ps(H2, L2),
+                                     _mm256_mul_ps(_mm256_set1_ps(3.0f), _mm256_sub_ps(one, L2))),
+                       magnify);
+  const __m256 root = _mm256_sqrt_ps(T);
+  // Magnified: the fade into the two-read blend while p = clamp(16 sqrt(T) - 1, 0, 1) < 1.
+  const __m256 x = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(16.0f), root), one);
+  __m256 p = _mm256_blendv_ps(x, one, _mm256_cmp_ps(one, x, _CMP_LT_OQ));
+  p = _mm256_blendv_ps(p, zero, _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
+  const __m256 fade =
+      _mm256_and_ps(_mm256_and_ps(thin, magnify), _mm256_cmp_ps(p, one, _CMP_LT_OQ));
+  const __m256 probed = _mm256_andnot_ps(fade, thin);  // the layouts below, then the scaling
+  // Two probes at +-sqrt(T) where T <= s^2 / 4 (only magnified lanes), else 2J probes s apart.
+  const __m256 two_probes = _mm256_cmp_ps(T, _mm256_set1_ps(0.25f), _CMP_LE_OQ);
   const __m256i J = _mm256_min_epi32(
       _mm256_max_epi32(
           _mm256_cvttps_epi32(_mm256_ceil_ps(_mm256_mul_ps(
-              _mm256_set1_ps(0.5f),
-              _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(12.0f), t), one))))),
+              half, _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(12.0f), T), one))))),
           _mm256_set1_epi32(2)),
       _mm256_set1_epi32(SelectionLanes::kMaxProbes / 2));
   const __m256 Jf = _mm256_cvtepi32_ps(J);
@@ -331,41 +344,62 @@ __attribute__((target("avx2"))) void AddLongProbes(SelectionLanes& out, int r, _
   const __m256 A =
       _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(4.0f), J1), J1), one),
                     _mm256_set1_ps(1.0f / 12.0f));
-  // std::clamp(x, 0, 0.5 / J): x < 0 ? 0 : (0.5 / J < x ? 0.5 / J : x).
-  const __m256 x =
-      _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(t, A)),
-                    _mm256_mul_ps(Jf, _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), Jf), one)));
-  const __m256 top = _mm256_div_ps(_mm256_set1_ps(0.5f), Jf);
-  __m256 e = _mm256_blendv_ps(x, top, _mm256_cmp_ps(top, x, _CMP_LT_OQ));
-  e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
-  const __m256 end_weight = _mm256_mul_ps(e, share);
-  const __m256 weight =
-      _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(_mm256_set1_ps(2.0f), e)),
-                                  _mm256_mul_ps(_mm256_set1_ps(2.0f), J1)),
-                    share);
-  const __m256i ilanes = _mm256_castps_si256(lanes);
-  __m256i* probes = reinterpret_cast<__m256i*>(out.probes[r]);
-  _mm256_store_si256(probes,
-                     _mm256_blendv_epi8(_mm256_load_si256(probes), _mm256_add_epi32(J, J), ilanes));
-  BlendStore(out.probe_step[r], one, lanes);
-  BlendStore(out.probe_end_weight[r], end_weight, lanes);
-  BlendStore(out.probe_weight[r], weight, lanes);
+  // std::clamp(y, 0, 0.5 / J): y < 0 ? 0 : (0.5 / J < y ? 0.5 / J : y).
+  const __m256 y = _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(T, A)),
+                                 _mm256_mul_ps(Jf, _mm256_sub_ps(_mm256_mul_ps(two, Jf), one)));
+  const __m256 top = _mm256_div_ps(half, Jf);
+  __m256 e = _mm256_blendv_ps(y, top, _mm256_cmp_ps(top, y, _CMP_LT_OQ));
+  e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
+  __m256i probes = _mm256_blendv_epi8(_mm256_add_epi32(J, J), _mm256_set1_epi32(2),
+                                      _mm256_castps_si256(two_probes));
+  __m256 step = _mm256_blendv_ps(one, _mm256_mul_ps(two, root), two_probes);
+  __m256 weight = _mm256_blendv_ps(
+      _mm256_mul_ps(
+          _mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(two, e)), _mm256_mul_ps(two, J1)), share),
+      zero, two_probes);
+  __m256 end_weight =
+      _mm256_blendv_ps(_mm256_mul_ps(e, share), _mm256_mul_ps(half, share), two_probes);
+  // The fading lanes: two probes at +-sqrt(T) of weight p / 2 share, the blend's two reads.
+  probes = _mm256_blendv_epi8(probes, _mm256_set1_epi32(2), _mm256_castps_si256(fade));
+  step = _mm256_blendv_ps(step, _mm256_mul_ps(two, root), fade);
+  weight = _mm256_blendv_ps(weight, zero, fade);
+  end_weight = _mm256_blendv_ps(end_weight, _mm256_mul_ps(_mm256_mul_ps(p, half), share), fade);
+  const __m256 q = _mm256_sub_ps(one, p);
+  BlendStore(out.weight[r][0], _mm256_mul_ps(q, _mm256_sub_ps(one, H2)), fade);
+  BlendStore(out.weight[r][1], _mm256_add_ps(_mm256_mul_ps(p, L2), _mm256_mul_ps(q, H2)), fade);
+  __m256i* lane_probes = reinterpret_cast<__m256i*>(out.probes[r]);
+  _mm256_store_si256(lane_probes, _mm256_blendv_epi8(_mm256_load_si256(lane_probes), probes,
+                                                     _mm256_castps_si256(thin)));
+  BlendStore(out.probe_step[r], step, thin);
+  BlendStore(out.probe_end_weight[r], end_weight, thin);
+  BlendStore(out.probe_weight[r], weight, thin);
+  // The magnified lanes past the fade: the first copy alone (slot 1's copy in slot 0).
+  const __m256 first_alone = _mm256_and_ps(probed, magnify);
+  if (_mm256_movemask_ps(first_alone) != 0) {
+    __m256i* copy0 = reinterpret_cast<__m256i*>(out.copy[r][0]);
+    _mm256_store_si256(
+        copy0,
+        _mm256_blendv_epi8(_mm256_load_si256(copy0),
+                           _mm256_load_si256(reinterpret_cast<const __m256i*>(out.copy[r][1])),
+                           _mm256_castps_si256(first_alone)));
+    BlendStore(out.weight[r][0], one, first_alone);
+    BlendStore(out.weight[r][1], zero, first_alone);
+  }
   const __m256 rest = _mm256_sub_ps(one, share);
   for (int slot = 0; slot < SelectionLanes::kSlots; ++slot)
     BlendStore(out.weight[r][slot], _mm256_mul_ps(_mm256_loadu_ps(out.weight[r][slot]), rest),
-               lanes);
+               probed);
 }
 
 // The AVX2 lanes of SelectPortable: ReadLane and TableSlots for eight lanes, the same float
 // operations in the same order. Lanes whose readings are not read compute harmless values
 // (clamped cell indices, finite arithmetic) that are never used; the second reading is skipped
-// when no lane is near a diagonal. Returns the readings that need AddProbesLane, bit
-// 8 r + lane (the others' probe counts are set to 0 here).
-__attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const float* dvdx,
-                                                    const float* dudy, const float* dvdy,
-                                                    float half_size, int n_log2,
-                                                    uint32_t first_copy, const uint32_t* cell_first,
-                                                    const int32_t* cell_half, SelectionLanes& out) {
+// when no lane is near a diagonal; the base probes by AddProbesAvx2.
+__attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* dvdx,
+                                                const float* dudy, const float* dvdy,
+                                                float half_size, int n_log2, uint32_t first_copy,
+                                                const uint32_t* cell_first,
+                                                const int32_t* cell_half, SelectionLanes& out) {
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
   const __m256 max_texels = _mm256_set1_ps(kMaxTexels);
   const __m256 min_texels = _mm256_set1_ps(-kMaxTexels);
@@ -426,7 +460,6 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
   const __m256i along_v[2] = {v_first, v_second};
   const __m256 read[2] = {_mm256_cmp_ps(first, zero, _CMP_GT_OQ),
                           _mm256_cmp_ps(second, zero, _CMP_GT_OQ)};
-  uint32_t need_probes = 0;
   for (int r = 0; r < 2; ++r) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.probes[r]), _mm256_setzero_si256());
     if (_mm256_movemask_ps(read[r]) == 0) continue;
@@ -456,9 +489,6 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
         round,
         _mm256_and_ps(_mm256_and_ps(read[r], _mm256_cmp_ps(Lmin, one, _CMP_LT_OQ)),
                       _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ)));
-    // AddProbesLane for the magnified thin lanes (rare); the others by AddLongProbes below.
-    need_probes |= static_cast<uint32_t>(_mm256_movemask_ps(_mm256_and_ps(thin, magnify)))
-                   << (8 * r);
     // TableSlots: magnified lanes the base and the first copy by H^2; the others seed 000's.
     const __m256 m = _mm256_mul_ps(H, H);
     if ((_mm256_movemask_ps(_mm256_andnot_ps(magnify, read[r])) & 0xff) == 0) {
@@ -471,6 +501,7 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
         _mm256_store_si256(reinterpret_cast<__m256i*>(out.copy[r][slot]), izero);
         _mm256_store_ps(out.weight[r][slot], zero);
       }
+      if (_mm256_movemask_ps(thin) != 0) AddProbesAvx2(out, r, thin, magnify, H, Lmin);
       continue;
     }
     const __m256 Hc = _mm256_min_ps(H, max_h);
@@ -558,10 +589,8 @@ __attribute__((target("avx2"))) uint32_t SelectAvx2(const float* dudx, const flo
       for (int slot = 2; slot < SelectionLanes::kSlots; ++slot)
         BlendSlot(out, r, slot, magnify, izero, zero);
     }
-    const __m256 long_thin = _mm256_andnot_ps(magnify, thin);
-    if (_mm256_movemask_ps(long_thin) != 0) AddLongProbes(out, r, long_thin, H, Lmin);
+    if (_mm256_movemask_ps(thin) != 0) AddProbesAvx2(out, r, thin, magnify, H, Lmin);
   }
-  return need_probes;
 }
 
 }  // namespace
@@ -571,12 +600,8 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
                           const float* dvdy, int n, SelectionLanes& out) const {
 #if defined(__x86_64__) && defined(__GNUC__)
   if (kernel_ && n == SelectionLanes::kLanes) {
-    for (uint32_t thin = SelectAvx2(dudx, dvdx, dudy, dvdy, half_size_, log2_size_, first_copy_,
-                                    first_.data(), half_.data(), out);
-         thin != 0; thin &= thin - 1) {
-      const int bit = std::countr_zero(thin);
-      AddProbesLane(out, bit / SelectionLanes::kLanes, bit % SelectionLanes::kLanes);
-    }
+    SelectAvx2(dudx, dvdx, dudy, dvdy, half_size_, log2_size_, first_copy_, first_.data(),
+               half_.data(), out);
     return;
   }
 #endif
