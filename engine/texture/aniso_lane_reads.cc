@@ -52,18 +52,19 @@ struct LaneCopies {
 };
 
 // Which axis is major: the same for all lanes (read as a constant), or per lane.
-enum class Tilt { kU, kV, kPerLane };
+// kBase: the untilted base, major axis U, read without skew (plain bilinear).
+enum class Tilt { kU, kV, kPerLane, kBase };
 
 template <Tilt kTilt>
 __attribute__((target("avx2"))) inline __m256 Pick(__m256 u_major, __m256 v_major, __m256 tilt) {
-  if constexpr (kTilt == Tilt::kU) return u_major;
+  if constexpr (kTilt == Tilt::kU || kTilt == Tilt::kBase) return u_major;
   if constexpr (kTilt == Tilt::kV) return v_major;
   return _mm256_blendv_ps(u_major, v_major, tilt);
 }
 template <Tilt kTilt>
 __attribute__((target("avx2"))) inline __m256i Pick(__m256i u_major, __m256i v_major,
                                                     __m256i tilt) {
-  if constexpr (kTilt == Tilt::kU) return u_major;
+  if constexpr (kTilt == Tilt::kU || kTilt == Tilt::kBase) return u_major;
   if constexpr (kTilt == Tilt::kV) return v_major;
   return _mm256_blendv_epi8(u_major, v_major, tilt);
 }
@@ -107,6 +108,21 @@ __attribute__((target("avx2"))) inline ReadPlace PlaceRead(const LaneCopies& c, 
   const __m256 X = _mm256_sub_ps(_mm256_mul_ps(u, c.width), half);
   const __m256 Y = _mm256_sub_ps(_mm256_mul_ps(v, c.height), half);
   const __m256 M = Pick<kTilt>(X, Y, tilt_f), m = Pick<kTilt>(Y, X, tilt_f);
+  if constexpr (kTilt == Tilt::kBase) {
+    // lambda = 0: both minor coordinates below are m (up to the sign of a zero m, which
+    // gives the same texels and weight), so they are computed once.
+    const __m256 M0 = _mm256_floor_ps(M), mf = _mm256_floor_ps(m);
+    const __m256i a = _mm256_cvttps_epi32(M0), b = _mm256_cvttps_epi32(mf);
+    const __m256i a1 = _mm256_add_epi32(a, ione), b1 = _mm256_add_epi32(b, ione);
+    const __m256 w = _mm256_sub_ps(m, mf);
+    return {IndexInCopy<kTilt>(c, a, b),
+            IndexInCopy<kTilt>(c, a, b1),
+            IndexInCopy<kTilt>(c, a1, b),
+            IndexInCopy<kTilt>(c, a1, b1),
+            w,
+            w,
+            _mm256_sub_ps(M, M0)};
+  }
   const __m256 shift = _mm256_mul_ps(c.lambda, tg);
   const __m256 M0 = _mm256_floor_ps(M), fM = _mm256_sub_ps(M, M0);
   // seed 000, eq. 6 / 7: the minor coordinate on both neighbouring major lines.
@@ -215,6 +231,9 @@ __attribute__((target("avx2"))) inline void AddRead(const CopyTables& t, __m256i
     const LaneCopies c = Broadcast(t.copies[one]);
     if (t.copies[one].tilt_v)
       AddCopyReads<Tilt::kV, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight, sums);
+    else if (t.copies[one].lambda == 0.0f)
+      AddCopyReads<Tilt::kBase, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight,
+                                       sums);
     else
       AddCopyReads<Tilt::kU, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight, sums);
     return;
