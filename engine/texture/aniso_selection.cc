@@ -307,6 +307,24 @@ __attribute__((target("avx2"))) inline void BlendStore(float* to, __m256 value, 
   _mm256_storeu_ps(to, _mm256_blendv_ps(_mm256_loadu_ps(to), value, lanes));
 }
 
+// For J = 2..9 (index J - 2): AddProbesLane's A, J - 1, J (2J - 1) and 0.5 / J.
+struct ProbeTable {
+  alignas(32) float A[8], J1[8], denominator[8], top[8];
+};
+constexpr ProbeTable MakeProbeTable() {
+  ProbeTable t{};
+  for (int i = 0; i < 8; ++i) {
+    const float Jf = static_cast<float>(i + 2);
+    t.A[i] = (4.0f * (Jf - 1.0f) * (Jf - 1.0f) - 1.0f) * (1.0f / 12.0f);
+    t.J1[i] = Jf - 1.0f;
+    t.denominator[i] = Jf * (2.0f * Jf - 1.0f);
+    t.top[i] = 0.5f / Jf;
+  }
+  return t;
+}
+constexpr ProbeTable kProbeTable = MakeProbeTable();
+static_assert(SelectionLanes::kMaxProbes / 2 - 2 < 8, "J - 2 indexes eight entries");
+
 // AddProbesLane for the lanes of `thin` (read, L < 1, H < 2 kProbeHalfExtent and not nearly
 // round), the same operations; `magnify`: H < 1.
 __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, __m256 thin,
@@ -316,13 +334,16 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
   const __m256 half = _mm256_set1_ps(0.5f), two = _mm256_set1_ps(2.0f);
   const __m256 L2 = _mm256_mul_ps(L, L), H2 = _mm256_mul_ps(H, H);
   const __m256 share = _mm256_mul_ps(
-      _mm256_min_ps(_mm256_sub_ps(two, _mm256_div_ps(H, _mm256_set1_ps(kProbeHalfExtent))), one),
+      // H / kProbeHalfExtent, a power of two: the same float as the division.
+      _mm256_min_ps(_mm256_sub_ps(two, _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
+                    one),
       _mm256_sub_ps(one, L2));
-  const __m256 T =
-      _mm256_blendv_ps(_mm256_mul_ps(H2, _mm256_set1_ps(1.0f / 3.0f)),
-                       _mm256_div_ps(_mm256_sub_ps(H2, L2),
-                                     _mm256_mul_ps(_mm256_set1_ps(3.0f), _mm256_sub_ps(one, L2))),
-                       magnify);
+  __m256 T = _mm256_mul_ps(H2, _mm256_set1_ps(1.0f / 3.0f));
+  if (_mm256_movemask_ps(_mm256_and_ps(thin, magnify)) != 0)
+    T = _mm256_blendv_ps(T,
+                         _mm256_div_ps(_mm256_sub_ps(H2, L2),
+                                       _mm256_mul_ps(_mm256_set1_ps(3.0f), _mm256_sub_ps(one, L2))),
+                         magnify);
   const __m256 root = _mm256_sqrt_ps(T);
   // Magnified: the fade into the two-read blend while p = clamp(16 sqrt(T) - 1, 0, 1) < 1.
   const __m256 x = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(16.0f), root), one);
@@ -339,15 +360,15 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
               half, _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(12.0f), T), one))))),
           _mm256_set1_epi32(2)),
       _mm256_set1_epi32(SelectionLanes::kMaxProbes / 2));
-  const __m256 Jf = _mm256_cvtepi32_ps(J);
-  const __m256 J1 = _mm256_sub_ps(Jf, one);
-  const __m256 A =
-      _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(4.0f), J1), J1), one),
-                    _mm256_set1_ps(1.0f / 12.0f));
+  // AddProbesLane's functions of J (2..9), looked up: the same floats.
+  const __m256i row = _mm256_sub_epi32(J, _mm256_set1_epi32(2));
+  const __m256 A = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.A), row);
+  const __m256 J1 = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.J1), row);
   // std::clamp(y, 0, 0.5 / J): y < 0 ? 0 : (0.5 / J < y ? 0.5 / J : y).
-  const __m256 y = _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(T, A)),
-                                 _mm256_mul_ps(Jf, _mm256_sub_ps(_mm256_mul_ps(two, Jf), one)));
-  const __m256 top = _mm256_div_ps(half, Jf);
+  const __m256 y =
+      _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(T, A)),
+                    _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.denominator), row));
+  const __m256 top = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.top), row);
   __m256 e = _mm256_blendv_ps(y, top, _mm256_cmp_ps(top, y, _CMP_LT_OQ));
   e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
   __m256i probes = _mm256_blendv_epi8(_mm256_add_epi32(J, J), _mm256_set1_epi32(2),
