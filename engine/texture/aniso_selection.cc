@@ -354,32 +354,36 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
   const __m256 probed = _mm256_andnot_ps(fade, thin);  // the layouts below, then the scaling
   // Two probes at +-sqrt(T) where T <= s^2 / 4 (only magnified lanes), else 2J probes s apart.
   const __m256 two_probes = _mm256_cmp_ps(T, _mm256_set1_ps(0.25f), _CMP_LE_OQ);
-  const __m256i J = _mm256_min_epi32(
-      _mm256_max_epi32(
-          _mm256_cvttps_epi32(_mm256_ceil_ps(_mm256_mul_ps(
-              half, _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(12.0f), T), one))))),
-          _mm256_set1_epi32(2)),
-      _mm256_set1_epi32(SelectionLanes::kMaxProbes / 2));
-  // AddProbesLane's functions of J (2..9), looked up: the same floats.
-  const __m256i row = _mm256_sub_epi32(J, _mm256_set1_epi32(2));
-  const __m256 A = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.A), row);
-  const __m256 J1 = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.J1), row);
-  // std::clamp(y, 0, 0.5 / J): y < 0 ? 0 : (0.5 / J < y ? 0.5 / J : y).
-  const __m256 y =
-      _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(T, A)),
-                    _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.denominator), row));
-  const __m256 top = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.top), row);
-  __m256 e = _mm256_blendv_ps(y, top, _mm256_cmp_ps(top, y, _CMP_LT_OQ));
-  e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
-  __m256i probes = _mm256_blendv_epi8(_mm256_add_epi32(J, J), _mm256_set1_epi32(2),
-                                      _mm256_castps_si256(two_probes));
-  __m256 step = _mm256_blendv_ps(one, _mm256_mul_ps(two, root), two_probes);
-  __m256 weight = _mm256_blendv_ps(
-      _mm256_mul_ps(
-          _mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(two, e)), _mm256_mul_ps(two, J1)), share),
-      zero, two_probes);
-  __m256 end_weight =
-      _mm256_blendv_ps(_mm256_mul_ps(e, share), _mm256_mul_ps(half, share), two_probes);
+  __m256i probes = _mm256_set1_epi32(2);
+  __m256 step = _mm256_mul_ps(two, root), weight = zero, end_weight = _mm256_mul_ps(half, share);
+  const __m256 spread = _mm256_andnot_ps(two_probes, thin);
+  if (_mm256_movemask_ps(spread) != 0) {  // 2J probes (never where a lane fades: T < 1 / 64)
+    const __m256i J = _mm256_min_epi32(
+        _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_ceil_ps(_mm256_mul_ps(
+                             half, _mm256_sqrt_ps(_mm256_add_ps(
+                                       _mm256_mul_ps(_mm256_set1_ps(12.0f), T), one))))),
+                         _mm256_set1_epi32(2)),
+        _mm256_set1_epi32(SelectionLanes::kMaxProbes / 2));
+    // AddProbesLane's functions of J (2..9), looked up: the same floats.
+    const __m256i row = _mm256_sub_epi32(J, _mm256_set1_epi32(2));
+    const __m256 A = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.A), row);
+    const __m256 J1 = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.J1), row);
+    // std::clamp(y, 0, 0.5 / J): y < 0 ? 0 : (0.5 / J < y ? 0.5 / J : y).
+    const __m256 y =
+        _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(T, A)),
+                      _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.denominator), row));
+    const __m256 top = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.top), row);
+    __m256 e = _mm256_blendv_ps(y, top, _mm256_cmp_ps(top, y, _CMP_LT_OQ));
+    e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
+    probes = _mm256_blendv_epi8(probes, _mm256_add_epi32(J, J), _mm256_castps_si256(spread));
+    step = _mm256_blendv_ps(step, one, spread);
+    weight = _mm256_blendv_ps(weight,
+                              _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(two, e)),
+                                                          _mm256_mul_ps(two, J1)),
+                                            share),
+                              spread);
+    end_weight = _mm256_blendv_ps(end_weight, _mm256_mul_ps(e, share), spread);
+  }
   // The fading lanes: two probes at +-sqrt(T) of weight p / 2 share, the blend's two reads.
   probes = _mm256_blendv_epi8(probes, _mm256_set1_epi32(2), _mm256_castps_si256(fade));
   step = _mm256_blendv_ps(step, _mm256_mul_ps(two, root), fade);
