@@ -219,9 +219,10 @@ void CopySelector::TableSlots(float H, float L, float tg, bool along_v, Selectio
     return;
   }
   const int n = log2_size_;
-  // L between 1 (the thinnest copy) and H; raised to H / 2^(n-1) where lambda is frozen.
-  const float Hc = std::min(H, PowerOfTwo(3 * n));
-  const float Lc = std::clamp(L, std::max(1.0f, Hc * PowerOfTwo(1 - n)), Hc);
+  // The copies' extents (CopyExtent); L between 1 (the thinnest copy) and H, raised to
+  // H / 2^(n-1) where lambda is frozen.
+  const float Hc = std::min(CopyExtent(H), PowerOfTwo(3 * n));
+  const float Lc = std::clamp(CopyExtent(L), std::max(1.0f, Hc * PowerOfTwo(1 - n)), Hc);
   // seed 000, eq. 5: H = 2^eH (1 + M_H), L = 2^eL (1 + M_L).
   const auto [eH, mH] = SplitPowerOfTwo(Hc);
   const auto [eL, mL] = SplitPowerOfTwo(Lc);
@@ -529,11 +530,18 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
       if (_mm256_movemask_ps(thin) != 0) AddProbesAvx2(out, r, thin, magnify, H, Lmin);
       continue;
     }
-    const __m256 Hc = _mm256_min_ps(H, max_h);
-    // std::clamp(L, lo, hi): L < lo ? lo : (hi < L ? hi : L).
+    // CopyExtent of H and L.
+    const __m256 scale = _mm256_set1_ps(kCopyExtentScale),
+                 rest = _mm256_set1_ps(1.0f - kCopyExtentScale);
+    const __m256 He =
+        _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(scale, H), H), rest));
+    const __m256 Le =
+        _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(scale, L), L), rest));
+    const __m256 Hc = _mm256_min_ps(He, max_h);
+    // std::clamp(Le, lo, hi): Le < lo ? lo : (hi < Le ? hi : Le).
     const __m256 lo = _mm256_max_ps(one, _mm256_mul_ps(Hc, frozen_ratio));
-    __m256 Lc = _mm256_blendv_ps(L, Hc, _mm256_cmp_ps(Hc, L, _CMP_LT_OQ));
-    Lc = _mm256_blendv_ps(Lc, lo, _mm256_cmp_ps(L, lo, _CMP_LT_OQ));
+    __m256 Lc = _mm256_blendv_ps(Le, Hc, _mm256_cmp_ps(Hc, Le, _CMP_LT_OQ));
+    Lc = _mm256_blendv_ps(Lc, lo, _mm256_cmp_ps(Le, lo, _CMP_LT_OQ));
     // Lanes that are not read may hold anything: keep their splits in range.
     const __m256 Hs = _mm256_blendv_ps(Hc, one, magnify), Ls = _mm256_blendv_ps(Lc, one, magnify);
     const __m256i hbits = _mm256_castps_si256(Hs), lbits = _mm256_castps_si256(Ls);

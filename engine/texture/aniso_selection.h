@@ -6,6 +6,7 @@
 // aniso_selection_test.cc checks it bit for bit).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +40,26 @@ ApertureReadings ReadingsOfFootprint(const TextureFootprint& f, int texture_size
 // The first reading: seed 000, eq. 2-4 read as the parallelogram with the pixel's second
 // moments (rotation-invariant), along the axis of the larger moment.
 ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size);
+
+// The extents of the copies read for an aperture of half-extent x texels (H or L; a deviation
+// from seed 000, eq. 5, which reads the copies of extent x). A copy of half-extent c is read by
+// a bilinear interpolation between its texels, which are c apart, so along that axis its
+// kernel is the box of half-width c convolved with a tent of half-width c. The pixel's box on
+// the bilinear base is the box of half-width x convolved with a tent of one texel. At
+// c = x = 1 these are the same kernel; for longer apertures the copy's tent outgrows the
+// base's, and c = x blurs: the copy's variance is x^2 / 2 against x^2 / 3 + 1 / 6. For a long
+// aperture (the base's tent negligible) the copy nearest the box in L2, in one dimension, has
+// c = 0.90 x on white noise and c = 0.85-0.86 x on an edge (a step's spectrum). Its L2
+// distances to the box are 0.0430 and 0.00134, against 0.0500 and 0.00397 at c = x and 0.0473
+// and 0.00163 at the variance-matched c = 0.816 x (x = 1, the box of height 1/2). The extent
+// c^2 = 0.8 x^2 + 0.2 is 1 at x = 1 (continuous with the magnification blend below it),
+// 0.92 x at x = 2 and tends to 0.89 x. Measured in docs/BENCHMARKS.md (issue 22, session 32):
+// +1.3 dB on the checkerboard at pitches 3-20, the photos within 0.1 dB. Below x = 1
+// (magnification, or the thin side, which the base probes filter) the extent is x.
+inline constexpr float kCopyExtentScale = 0.8f;
+inline float CopyExtent(float x) {
+  return x < 1.0f ? x : std::sqrt(kCopyExtentScale * x * x + (1.0f - kCopyExtentScale));
+}
 
 // The copies one reading reads and their weights: seed 000, eq. 5 across cells, and between the
 // two tilts of a cell nearest the reading's tangent (a continuous extension: the paper takes the

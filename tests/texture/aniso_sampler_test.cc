@@ -130,8 +130,39 @@ std::map<uint32_t, float> WeightsByCopy(const CopyBlend& b) {
   return out;
 }
 
+// An aperture extent whose copies have extent c exactly (CopyExtent(x) == c in float; not every
+// c has one: 6, 7 and 12 do not).
+float ApertureOfCopy(float c) {
+  float x = std::sqrt((c * c - (1.0f - kCopyExtentScale)) / kCopyExtentScale);
+  for (int step = 0; step < 64 && CopyExtent(x) != c; ++step)
+    x = std::nextafter(x, CopyExtent(x) < c ? INFINITY : 0.0f);
+  EXPECT_EQ(CopyExtent(x), c);
+  return x;
+}
+
+TEST(AnisoCopyExtent, TheCopiesAreShorterThanTheApertureByTheirTent) {
+  // Below one texel the aperture's own extent; 1 at 1; then c^2 = 0.8 x^2 + 0.2: increasing,
+  // under x, the ratio falling from 1 towards sqrt(0.8).
+  EXPECT_EQ(CopyExtent(0.25f), 0.25f);
+  EXPECT_EQ(CopyExtent(1.0f), 1.0f);
+  float last = 1.0f, last_ratio = 1.0f;
+  for (float x = 1.125f; x < 1e6f; x *= 1.125f) {
+    const float c = CopyExtent(x);
+    EXPECT_GT(c, last);
+    EXPECT_LT(c, x);
+    EXPECT_LE(c / x, last_ratio * (1 + 1e-6f));  // falling, up to rounding
+    EXPECT_GT(c / x, std::sqrt(0.8f) * (1 - 1e-6f));
+    EXPECT_NEAR(c * c, 0.8f * x * x + 0.2f, 1e-6f * x * x);
+    last = c, last_ratio = c / x;
+  }
+  EXPECT_NEAR(CopyExtent(2.0f) / 2.0f, 0.922, 0.001);
+}
+
 TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   Build(Image(kN, kN));
+  // The apertures below are given by their copies' extents (CopyExtent): eq. 5 in those.
+  const float c8 = ApertureOfCopy(8), c55 = ApertureOfCopy(5.5f), c5 = ApertureOfCopy(5);
+  const float c25 = ApertureOfCopy(2.5f), c175 = ApertureOfCopy(1.75f), c256 = ApertureOfCopy(256);
   // The blend's weight by cell (log2 L, log2 H) and by tilt tangent.
   auto by_cell = [&](const CopyBlend& b) {
     std::map<std::pair<int, int>, float> out;
@@ -149,7 +180,7 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   using Tilts = std::map<float, float>;
   // H = 8, L = 1 exactly: R1 alone, cell (j = 0, i = 3), lambda 8: U tilts -0.75, -0.25, 0.25,
   // 0.75. Near a tilt's centre (within a quarter of the spacing) that tilt alone.
-  ApertureShape s{TiltAxis::kU, 8, 1, 0.3};
+  ApertureShape s{TiltAxis::kU, c8, 1, 0.3};
   CopyBlend b = SelectCopies(*table_, s);
   ASSERT_FALSE(b.magnify);
   ASSERT_EQ(b.count, 1);
@@ -162,12 +193,12 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   // Between two tilts' centres, the two (issue 22, part 3): tg = 0.45 sits 0.4 of the way from
   // tilt 0.25 to tilt 0.75, and the blend, which runs over the middle half between two centres,
   // gives the second 2 x 0.4 - 0.5 = 0.3.
-  const Tilts between = by_tilt(SelectCopies(*table_, {TiltAxis::kU, 8, 1, 0.45}));
+  const Tilts between = by_tilt(SelectCopies(*table_, {TiltAxis::kU, c8, 1, 0.45}));
   ASSERT_EQ(between.size(), 2u);
   EXPECT_NEAR(between.at(0.25f), 0.7f, 1e-6);
   EXPECT_NEAR(between.at(0.75f), 0.3f, 1e-6);
   // Along the texture axis (tg = 0) both tilts nearest 0, evenly: symmetric about the axis.
-  EXPECT_EQ(by_tilt(SelectCopies(*table_, {TiltAxis::kU, 8, 1, 0.0})),
+  EXPECT_EQ(by_tilt(SelectCopies(*table_, {TiltAxis::kU, c8, 1, 0.0})),
             (Tilts{{-0.25f, 0.5f}, {0.25f, 0.5f}}));
   // Mirrored: -0.3 picks -0.25; along V, the V copies.
   s.tg = -0.3;
@@ -185,12 +216,13 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   s.tg = 1.1;  // the second reading near a diagonal may pass 1
   EXPECT_EQ(by_tilt(SelectCopies(*table_, s)), (Tilts{{0.75f, 1.0f}}));
 
-  // eq. 5, M_H = 0.5 >= M_L = 0.25: R1 (2^2, 2^1) 0.5, R3 (2^3, 2^1) 0.25, R2 (2^3, 2^2) 0.25.
+  // eq. 5, M_H = 0.375 >= M_L = 0.25: R1 (2^2, 2^1) 0.625, R3 (2^3, 2^1) 0.125, R2 (2^3, 2^2)
+  // 0.25.
   using Cells = std::map<std::pair<int, int>, float>;  // (log2 L, log2 H)
-  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, 6, 2.5, 0})),
-            (Cells{{{1, 2}, 0.5f}, {{1, 3}, 0.25f}, {{2, 3}, 0.25f}}));
+  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, c55, c25, 0})),
+            (Cells{{{1, 2}, 0.625f}, {{1, 3}, 0.125f}, {{2, 3}, 0.25f}}));
   // M_H = 0.25 < M_L = 0.75: R1 0.25, R4 (2^2, 2^1) 0.5, R2 0.25.
-  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, 5, 1.75, 0})),
+  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, c5, c175, 0})),
             (Cells{{{0, 2}, 0.25f}, {{1, 2}, 0.5f}, {{1, 3}, 0.25f}}));
   // Magnification and the frozen region (H / L above 2^(n-1): L raised).
   EXPECT_TRUE(SelectCopies(*table_, {TiltAxis::kNone, 0, 0, 0}).magnify);
@@ -200,7 +232,7 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   EXPECT_EQ(b.copy[0], 0u);
   EXPECT_FLOAT_EQ(b.weight[0], 0.4375f);
   EXPECT_EQ(by_cell(b)[std::make_pair(0, 0)], 0.5625f);
-  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, 256, 1, 0})), (Cells{{{3, 8}, 1.0f}}));
+  EXPECT_EQ(by_cell(SelectCopies(*table_, {TiltAxis::kU, c256, 1, 0})), (Cells{{{3, 8}, 1.0f}}));
   // Beyond two periods both ways: the single mean texel.
   b = SelectCopies(*table_, {TiltAxis::kU, 1e9, 1e8, 0});
   ASSERT_EQ(b.count, 1);
