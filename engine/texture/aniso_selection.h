@@ -50,12 +50,13 @@ ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size)
 // base's, and c = x blurs: the copy's variance is x^2 / 2 against x^2 / 3 + 1 / 6. For a long
 // aperture (the base's tent negligible) the copy nearest the box in L2, in one dimension, has
 // c = 0.90 x on white noise and c = 0.85-0.86 x on an edge (a step's spectrum). Its L2
-// distances to the box are 0.0430 and 0.00134, against 0.0500 and 0.00397 at c = x and 0.0473
-// and 0.00163 at the variance-matched c = 0.816 x (x = 1, the box of height 1/2). The extent
-// c^2 = 0.8 x^2 + 0.2 is 1 at x = 1 (continuous with the magnification blend below it),
-// 0.92 x at x = 2 and tends to 0.89 x. Measured in docs/BENCHMARKS.md (issue 22, session 32):
-// +1.3 dB on the checkerboard at pitches 3-20, the photos within 0.1 dB. Below x = 1
-// (magnification, or the thin side, which the base probes filter) the extent is x.
+// distances to the box are 0.0430 and 0.00134, against 0.0500 and 0.00397 at c = x and 0.0472
+// and 0.00163 at the variance-matched c = 0.816 x (x = 1, the box of height 1/2;
+// scripts/copy-kernel-l2.py). The extent c^2 = 0.8 x^2 + 0.2 is 1 at x = 1 (continuous with
+// the magnification blend below it), 0.92 x at x = 2 and tends to 0.89 x: between the two
+// optima. Measured in docs/BENCHMARKS.md (issue 22, session 32): +1.4 dB on the checkerboard
+// at pitches 3-20, the photos within 0.1 dB. Below x = 1 (magnification, or the thin side,
+// which the base probes filter) the extent is x.
 inline constexpr float kCopyExtentScale = 0.8f;
 inline float CopyExtent(float x) {
   return x < 1.0f ? x : std::sqrt(kCopyExtentScale * x * x + (1.0f - kCopyExtentScale));
