@@ -186,7 +186,7 @@ __attribute__((target("avx2"))) inline LaneCopies Broadcast(const LaneReader::Co
   return c;
 }
 
-// The lanes' copies from their packed shapes (LaneReader::shape_) and first texels.
+// The lanes' copies from their packed shapes (LaneReader::Copy::shape) and first texels.
 __attribute__((target("avx2"))) inline LaneCopies Decode(__m256i shape, __m256i offset) {
   const __m256i ione = _mm256_set1_epi32(1), nibble = _mm256_set1_epi32(15);
   LaneCopies c;
@@ -216,9 +216,16 @@ __attribute__((target("avx2"))) inline int Shared(__m256i copy) {
 struct CopyTables {
   const uint8_t* texels;
   const LaneReader::Copy* copies;
-  const int32_t* offsets;
-  const int32_t* shapes;
 };
+
+// Field `field` (LaneReader::Copy::offset or ::shape) of each lane's copy in `mask` (0 elsewhere).
+__attribute__((target("avx2"))) inline __m256i GatherField(const CopyTables& t,
+                                                           int32_t LaneReader::Copy::*field,
+                                                           __m256i copy, __m256i mask) {
+  static_assert(sizeof(LaneReader::Copy) == 8 * sizeof(int32_t), "a record is 8 words: index << 3");
+  return _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), &(t.copies->*field),
+                                     _mm256_slli_epi32(copy, 3), mask, 4);
+}
 
 // A copy read of eight lanes, `copy` the lanes' directory indices (0 outside `mask`).
 // Neighbouring samples mostly read the same copy: then its fields are broadcast and its axis is
@@ -229,7 +236,7 @@ __attribute__((target("avx2"))) inline void AddRead(const CopyTables& t, __m256i
   const __m256i none = _mm256_setzero_si256();
   if (const int one = Shared(copy); one >= 0) {
     const LaneCopies c = Broadcast(t.copies[one]);
-    if (t.copies[one].tilt_v)
+    if (t.copies[one].shape & kTiltV)
       AddCopyReads<Tilt::kV, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight, sums);
     else if (t.copies[one].lambda == 0.0f)
       AddCopyReads<Tilt::kBase, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight,
@@ -239,8 +246,8 @@ __attribute__((target("avx2"))) inline void AddRead(const CopyTables& t, __m256i
     return;
   }
   const __m256i imask = _mm256_castps_si256(mask);
-  const LaneCopies c = Decode(_mm256_mask_i32gather_epi32(none, t.shapes, copy, imask, 4),
-                              _mm256_mask_i32gather_epi32(none, t.offsets, copy, imask, 4));
+  const LaneCopies c = Decode(GatherField(t, &LaneReader::Copy::shape, copy, imask),
+                              GatherField(t, &LaneReader::Copy::offset, copy, imask));
   AddCopyReads<Tilt::kPerLane, false>(t.texels, c, none, mask, mask, u, v, tg, weight, weight,
                                       sums);
 }
@@ -253,13 +260,13 @@ __attribute__((target("avx2"))) inline void AddReadPair(const CopyTables& t, __m
                                                         __m256 tg, __m256 weight_a, __m256 weight_b,
                                                         LaneSums& sums) {
   const __m256 both = _mm256_or_ps(mask_a, mask_b);
-  const __m256i iboth = _mm256_castps_si256(both), none = _mm256_setzero_si256();
+  const __m256i iboth = _mm256_castps_si256(both);
   copy_a = _mm256_and_si256(iboth, copy_a), copy_b = _mm256_and_si256(iboth, copy_b);
   const int one_a = Shared(copy_a), one_b = Shared(copy_b);
-  if (one_a >= 0 && one_b >= 0 && t.shapes[one_a] == t.shapes[one_b]) {
+  if (one_a >= 0 && one_b >= 0 && t.copies[one_a].shape == t.copies[one_b].shape) {
     const LaneCopies c = Broadcast(t.copies[one_a]);
     const __m256i offset_b = _mm256_set1_epi32(t.copies[one_b].offset);
-    if (t.copies[one_a].tilt_v)
+    if (t.copies[one_a].shape & kTiltV)
       AddCopyReads<Tilt::kV, true>(t.texels, c, offset_b, mask_a, mask_b, u, v, tg, weight_a,
                                    weight_b, sums);
     else
@@ -267,12 +274,11 @@ __attribute__((target("avx2"))) inline void AddReadPair(const CopyTables& t, __m
                                    weight_b, sums);
     return;
   }
-  const __m256i shape_a = _mm256_mask_i32gather_epi32(none, t.shapes, copy_a, iboth, 4);
-  const __m256i shape_b = _mm256_mask_i32gather_epi32(none, t.shapes, copy_b, iboth, 4);
+  const __m256i shape_a = GatherField(t, &LaneReader::Copy::shape, copy_a, iboth);
+  const __m256i shape_b = GatherField(t, &LaneReader::Copy::shape, copy_b, iboth);
   if (_mm256_movemask_epi8(_mm256_cmpeq_epi32(shape_a, shape_b)) == -1) {
-    const LaneCopies c =
-        Decode(shape_a, _mm256_mask_i32gather_epi32(none, t.offsets, copy_a, iboth, 4));
-    const __m256i offset_b = _mm256_mask_i32gather_epi32(none, t.offsets, copy_b, iboth, 4);
+    const LaneCopies c = Decode(shape_a, GatherField(t, &LaneReader::Copy::offset, copy_a, iboth));
+    const __m256i offset_b = GatherField(t, &LaneReader::Copy::offset, copy_b, iboth);
     AddCopyReads<Tilt::kPerLane, true>(t.texels, c, offset_b, mask_a, mask_b, u, v, tg, weight_a,
                                        weight_b, sums);
     return;
@@ -283,12 +289,9 @@ __attribute__((target("avx2"))) inline void AddReadPair(const CopyTables& t, __m
           sums);
 }
 
-__attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels,
-                                                   const LaneReader::Copy* copies,
-                                                   const int32_t* offsets, const int32_t* shapes,
-                                                   float inv_size, const SelectionLanes& s,
-                                                   const double* u_in, const double* v_in, int n,
-                                                   Rgba* out) {
+__attribute__((target("avx2"))) void ReadLanesAvx2(const CopyTables& t, float inv_size,
+                                                   const SelectionLanes& s, const double* u_in,
+                                                   const double* v_in, int n, Rgba* out) {
   constexpr int kLanes = SelectionLanes::kLanes;
   // Lanes [0, n) hold samples; the others read 0 and are never written out.
   const __m256 live = _mm256_castsi256_ps(
@@ -308,7 +311,6 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const uint8_t* texels,
   const __m256 zero = _mm256_setzero_ps();
   const __m256i izero = _mm256_setzero_si256();
   LaneSums sums = {{zero, zero, zero, zero}};
-  const CopyTables t = {texels, copies, offsets, shapes};
   const __m256 read[2] = {
       _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[0]), zero, _CMP_GT_OQ)),
       _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[1]), zero, _CMP_GT_OQ))};
@@ -408,14 +410,11 @@ std::optional<LaneReader> LaneReader::For(const PrefilteredTable& table) {
     int32_t shape = std::countr_zero(e.width) | std::countr_zero(e.height) << 4;
     if (e.axis == TiltAxis::kV) shape |= kTiltV;
     if (e.axis != TiltAxis::kNone) shape |= std::countr_zero(e.lambda) << 9 | kTilted;
-    reader.offset_.push_back(static_cast<int32_t>(bytes / 4));
-    const bool tilted = e.axis != TiltAxis::kNone;
     reader.copies_.push_back({static_cast<float>(e.width), static_cast<float>(e.height),
-                              tilted ? static_cast<float>(e.lambda) : 0.0f,
+                              e.axis == TiltAxis::kNone ? 0.0f : static_cast<float>(e.lambda),
                               std::countr_zero(e.width), static_cast<int32_t>(e.width - 1),
                               static_cast<int32_t>(e.height - 1), static_cast<int32_t>(bytes / 4),
-                              e.axis == TiltAxis::kV});
-    reader.shape_.push_back(shape);
+                              shape});
   }
   return reader;
 #else
@@ -427,7 +426,7 @@ std::optional<LaneReader> LaneReader::For(const PrefilteredTable& table) {
 void LaneReader::Read(const SelectionLanes& s, const double* u, const double* v, int n,
                       Rgba* out) const {
 #if defined(__x86_64__) && defined(__GNUC__)
-  ReadLanesAvx2(texels_, copies_.data(), offset_.data(), shape_.data(), inv_size_, s, u, v, n, out);
+  ReadLanesAvx2({texels_, copies_.data()}, inv_size_, s, u, v, n, out);
 #else
   (void)s, (void)u, (void)v, (void)n, (void)out;
 #endif

@@ -24,21 +24,22 @@ class LaneReader {
   // out[0, n) for lanes [0, n) of a selection (n <= 8) at texture coordinates u, v (repeats).
   void Read(const SelectionLanes& s, const double* u, const double* v, int n, Rgba* out) const;
 
-  // A copy's fields as CopySample reads them (broadcast when eight samples read one copy).
+  // A copy's fields as CopySample reads them: broadcast when eight samples read one copy, else
+  // `offset` and `shape` gathered (eight 32-bit words a record) and the rest decoded from
+  // `shape`.
   struct Copy {
     float width, height, lambda;  // lambda 0 when untilted
-    int32_t log2_width, width_mask, height_mask, offset;
-    bool tilt_v;
+    int32_t log2_width, width_mask, height_mask;
+    int32_t offset;  // its first texel, counted from the base's
+    // log2 width in bits 0-3, log2 height 4-7, tilted to V 8, log2 lambda 9-13, lambda > 0 14.
+    int32_t shape;
   };
+  static_assert(sizeof(Copy) == 8 * sizeof(int32_t));
 
  private:
   const uint8_t* texels_ = nullptr;  // the base copy's first texel
   float inv_size_ = 0;               // 1 / 2^n: one base texel in repeats
-  // Per directory entry: its first texel counted from texels_, and its shape packed in bits
-  // (log2 width 0-3, log2 height 4-7, tilted to V 8, log2 lambda 9-13, lambda > 0 14).
-  std::vector<int32_t> offset_;
-  std::vector<int32_t> shape_;
-  std::vector<Copy> copies_;
+  std::vector<Copy> copies_;         // per directory entry
 };
 
 }  // namespace aperture
