@@ -46,11 +46,12 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
     // it is, as ClipToRect does), in two fixed buffers: a crowded frame's planning cut some
     // 60,000 polygons to their windows, each through four vector clips (issue 19).
     std::span<const Vec2> part;
+    size_t n = kClipOverflow;  // kClipOverflow: cut in vectors below
     if (p.vertices.size() + 4 <= kCutBuffer) {
       Vec2* from = cut[0];
       Vec2* to = cut[1];
       std::copy(p.vertices.begin(), p.vertices.end(), from);
-      size_t n = p.vertices.size();
+      n = p.vertices.size();
       const bool crosses[4] = {(p.min_x < x0), (p.max_x > x1), (p.min_y < y0), (p.max_y > y1)};
       const double sides[4][3] = {{1, 0, -x0}, {-1, 0, x1}, {0, 1, -y0}, {0, -1, y1}};
       for (int side = 0; side < 4 && n >= 3 && n != kClipOverflow; ++side) {
@@ -59,14 +60,10 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
                             kCutBuffer);
         std::swap(from, to);
       }
-      if (n == kClipOverflow) {  // (rounding made a cut cross more than twice): in vectors
-        poly.assign(p.vertices.begin(), p.vertices.end());
-        ClipToRect(poly, x0, y0, x1, y1, scratch);
-        part = poly;
-      } else if (n >= 3) {
-        part = {from, n};
-      }
-    } else {
+      if (n != kClipOverflow && n >= 3) part = {from, n};
+    }
+    // Too many vertices for the buffers, or rounding made a cut cross more than twice.
+    if (n == kClipOverflow) {
       poly.assign(p.vertices.begin(), p.vertices.end());
       ClipToRect(poly, x0, y0, x1, y1, scratch);
       part = poly;
