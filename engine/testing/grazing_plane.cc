@@ -206,6 +206,29 @@ void MoveForward(GrazingPlaneView* view, double world_units) {
   view->origin_v -= step * std::cos(yaw);
 }
 
+GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k) {
+  // In texels of a 1024-texel repeat (the benchmark textures'): k (389, 583) whole texels
+  // spread the positions over the repeat, and the R2 sequence's fractions k / g and k / g^2 (g
+  // the plastic number, g^3 = g + 1) spread the phases within a texel. (The R2 sequence alone
+  // over the repeat would not: 1024 / g is within 0.01 of a whole number.)
+  constexpr double kG = 1.32471795724474602596;
+  GrazingPlaneView moved = view;
+  double whole = 0;
+  const double u = 389.0 * k + std::modf(k / kG, &whole);
+  const double v = 583.0 * k + std::modf(k / (kG * kG), &whole);
+  moved.origin_u = view.origin_u + std::modf(u / 1024.0, &whole);
+  moved.origin_v = view.origin_v + std::modf(v / 1024.0, &whole);
+  return moved;
+}
+
+double PooledPsnr(std::span<const double> psnrs) {
+  if (psnrs.empty()) return 0;
+  double mse = 0;
+  for (double p : psnrs) mse += std::pow(10.0, -p / 10.0);  // 0 for an infinite PSNR
+  mse /= static_cast<double>(psnrs.size());
+  return mse == 0 ? INFINITY : 10.0 * std::log10(1.0 / mse);
+}
+
 double Psnr(const Image& a, const Image& b, int first_row) {
   double sum = 0;
   uint64_t count = 0;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "base/image.h"
@@ -56,8 +57,17 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
 // Moves the camera `world_units` forward along its heading (the turned view axis, on the ground):
 // the view's texture origin moves with it (bench-flicker's fly-over).
 void MoveForward(GrazingPlaneView* view, double world_units);
+// The view with the camera moved over the plane to position k (k = 0: the view itself): the
+// texture origins spread over the repeat and, for textures of 1024 texels, their phases within
+// a texel spread by the R2 low-discrepancy sequence. Looking
+// along a texture axis, every pixel row meets the texels and the checkerboard's edges at one
+// phase, so one position scores one phase: bench-filter --positions pools several.
+GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k);
 // PSNR (peak 1) over RGB of rows [first_row, height).
 double Psnr(const Image& a, const Image& b, int first_row);
+// The PSNR of the mean squared error of several measurements of equal pixel counts, given
+// their PSNRs (infinite for no error).
+double PooledPsnr(std::span<const double> psnrs);
 // Mean over rows [first_row, height) and RGB of |a - a_prev|, or with a reference sequence
 // (r, r_prev not null) of |(a - a_prev) - (r - r_prev)|: the change between two frames a filter
 // makes beyond the reference's (bench-flicker's excess flicker).

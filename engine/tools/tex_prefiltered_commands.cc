@@ -116,7 +116,11 @@ absl::StatusOr<Image> CachedReference(const GrazingPlaneView& view, const BenchT
       (std::filesystem::path(cache_dir) /
        absl::StrCat("ref_", texture.name, "_", texture.image.width(), "_p", view.pitch_deg, "_y",
                     view.yaw_deg, "_a", view.aperture, "_d", density, "_m", max_per_side, "_n",
-                    min_per_side, "_", view.width, "x", view.height, ".exr"))
+                    min_per_side, "_", view.width, "x", view.height,
+                    view.origin_u == 0 && view.origin_v == 0
+                        ? ""
+                        : absl::StrFormat("_o%.6f_%.6f", view.origin_u, view.origin_v),
+                    ".exr"))
           .string();
   *cached = std::filesystem::exists(path);
   if (*cached) return LoadImageFile(path);
@@ -131,7 +135,7 @@ int RunBenchFilter(int argc, char** argv) {
   auto args = ParseArgs(
       argc, argv,
       {"--textures", "--data", "--angles", "--apertures", "--out", "--cache", "--ref-density",
-       "--ref-max", "--ref-min", "--timing-rows", "--threads", "--yaws"});
+       "--ref-max", "--ref-min", "--timing-rows", "--threads", "--yaws", "--positions"});
   if (!args.ok()) return Fail("bench-filter", std::string(args.status().message()));
   if (args->help || !args->positional.empty()) {
     std::fprintf(
@@ -139,11 +143,17 @@ int RunBenchFilter(int argc, char** argv) {
         "usage: aperture-tex bench-filter [--textures checker,NAME...] [--data DIR]\n"
         "         [--angles 5,20,60] [--yaws 0] [--apertures 2,1] [--out DIR] [--cache DIR]\n"
         "         [--ref-density D] [--ref-max K] [--ref-min K] [--timing-rows S] [--threads N]\n"
+        "         [--positions P]\n"
         "The grazing-plane benchmark (DESIGN.md): PSNR of trilinear, aniso and oiio against\n"
         "the supersampled reference of the same aperture, and ns per sample single-threaded.\n"
         "--yaws turns the camera about the vertical (0: along the texture's v axis); the\n"
         "reference takes D strata per texel of extent per side, at least --ref-min (2) and at\n"
         "most --ref-max (128).\n"
+        "--positions P (default 1) scores each view from P camera positions over the plane and\n"
+        "pools their squared errors: looking along a texture axis every pixel row meets the\n"
+        "texels and the checkerboard's edges at one phase, so one position scores one phase\n"
+        "(compare yaws with P >= 4). Each position has its own reference; the plots pool\n"
+        "the positions too, the images and timings are the first position's.\n"
         "Writes every image as EXR under --out (default out/bench-filter), and per view a plot\n"
         "of PSNR by row (_rows.png: trilinear blue, aniso red, oiio green; grid every 10 dB,\n"
         "rows from the first measured one, left, to the bottom); references are\n"
@@ -156,15 +166,18 @@ int RunBenchFilter(int argc, char** argv) {
   auto apertures = ParseNumbers(args->Get("--apertures", "2,1"), "--apertures");
   auto density = ParseNumbers(args->Get("--ref-density", "2"), "--ref-density");
   auto yaws = ParseNumbers(args->Get("--yaws", "0"), "--yaws");
-  int ref_max = 0, ref_min = 0, timing_rows = 0, threads = 0;
+  int ref_max = 0, ref_min = 0, timing_rows = 0, threads = 0, positions = 0;
   if (!angles.ok() || !apertures.ok() || !density.ok() || !yaws.ok())
     return Fail("bench-filter", "--angles, --yaws, --apertures and --ref-density take numbers");
   if (!absl::SimpleAtoi(args->Get("--ref-max", "128"), &ref_max) || ref_max < 2 ||
       !absl::SimpleAtoi(args->Get("--ref-min", "2"), &ref_min) || ref_min < 1 ||
       !absl::SimpleAtoi(args->Get("--timing-rows", "4"), &timing_rows) || timing_rows < 1 ||
-      !absl::SimpleAtoi(args->Get("--threads", "0"), &threads) || threads < 0)
+      !absl::SimpleAtoi(args->Get("--threads", "0"), &threads) || threads < 0 ||
+      !absl::SimpleAtoi(args->Get("--positions", "1"), &positions) || positions < 1 ||
+      positions > 64)
     return Fail("bench-filter",
-                "--ref-max >= 2, --ref-min >= 1, --timing-rows >= 1, --threads >= 0");
+                "--ref-max >= 2, --ref-min >= 1, --timing-rows >= 1, --threads >= 0, "
+                "--positions 1..64");
   for (double a : *apertures)
     if (a <= 0 || a > 16) return Fail("bench-filter", "apertures must be in (0, 16]");
   for (double t : *angles)
@@ -211,42 +224,68 @@ int RunBenchFilter(int argc, char** argv) {
           view.yaw_deg = yaw;
           view.aperture = a;
           const int first = FirstMeasuredRow(view);
-          const Stopwatch ref_timer;
-          bool cached = false;
-          auto ref =
-              CachedReference(view, tex, density->front(), ref_max, ref_min, cache_dir, &cached);
-          if (!ref.ok()) return Fail("bench-filter", std::string(ref.status().message()));
-          std::fprintf(stderr, "  theta %g yaw %g a %g: reference %s in %.1f s\n", theta, yaw, a,
-                       cached ? "from cache" : "computed", ref_timer.Seconds());
           const std::string stem =
               absl::StrCat(out_dir, "/", tex.name, "_p", theta, "_y", yaw, "_a", a);
           struct Mode {
             const char* name;
             const TextureSampler* sampler;
-            double psnr = 0, ns = 0;
+            double ns = 0;
+            // Per position: the PSNR, by band and by row.
+            std::vector<double> psnr;
+            std::vector<std::vector<double>> bands, rows;
           };
           Mode modes[] = {{"trilinear", &trilinear}, {"aniso", &aniso}, {"oiio", oiio->get()}};
+          std::vector<uint64_t> pixels;  // per band; the same at every position
+          for (int k = 0; k < positions; ++k) {
+            const GrazingPlaneView at = ViewAtPosition(view, k);
+            const Stopwatch ref_timer;
+            bool cached = false;
+            auto ref =
+                CachedReference(at, tex, density->front(), ref_max, ref_min, cache_dir, &cached);
+            if (!ref.ok()) return Fail("bench-filter", std::string(ref.status().message()));
+            std::fprintf(stderr, "  theta %g yaw %g a %g position %d/%d: reference %s in %.1f s\n",
+                         theta, yaw, a, k + 1, positions, cached ? "from cache" : "computed",
+                         ref_timer.Seconds());
+            for (Mode& m : modes) {
+              const Image img = RenderGroundImage(at, *m.sampler);
+              m.psnr.push_back(Psnr(img, *ref, first));
+              m.rows.push_back(PsnrByRow(img, *ref, first));
+              m.bands.push_back(PsnrByFootprintBand(img, *ref, at, tex.image.width(), first,
+                                                    kBandEdges, &pixels));
+              if (k > 0) continue;
+              m.ns = NanosecondsPerSample(at, *m.sampler, timing_rows);
+              if (auto s = WriteExrFile(img, {}, absl::StrCat(stem, "_", m.name, ".exr")); !s.ok())
+                return Fail("bench-filter", std::string(s.message()));
+            }
+            if (k == 0)
+              if (auto s = WriteExrFile(*ref, {}, absl::StrCat(stem, "_reference.exr")); !s.ok())
+                return Fail("bench-filter", std::string(s.message()));
+            if (positions > 1)
+              std::fprintf(stderr, "    trilinear %.2f aniso %.2f oiio %.2f dB\n",
+                           modes[0].psnr.back(), modes[1].psnr.back(), modes[2].psnr.back());
+          }
+          // Pooled over the positions: the PSNR of the mean squared error.
+          auto pooled = [](const std::vector<std::vector<double>>& per_position, size_t i) {
+            std::vector<double> values;
+            for (const std::vector<double>& p : per_position) values.push_back(p[i]);
+            return std::isnan(values.front()) ? NAN : PooledPsnr(values);
+          };
           std::string band_row = absl::StrCat("| ", tex.name, " | ", theta, " | ", yaw, " | ", a);
           // Per-row PSNR, one line per mode: trilinear blue, aniso red, oiio green.
           const Rgba kColours[] = {
               {0.1f, 0.2f, 0.9f, 1}, {0.9f, 0.1f, 0.1f, 1}, {0.1f, 0.6f, 0.1f, 1}};
           std::vector<PlotSeries> rows;
-          for (Mode& m : modes) {
-            const Image img = RenderGroundImage(view, *m.sampler);
-            m.psnr = Psnr(img, *ref, first);
-            rows.push_back({PsnrByRow(img, *ref, first), kColours[rows.size()]});
-            std::vector<uint64_t> pixels;
-            const std::vector<double> bands =
-                PsnrByFootprintBand(img, *ref, view, tex.image.width(), first, kBandEdges, &pixels);
-            for (size_t k = 0; k < bands.size(); ++k)
-              absl::StrAppend(&band_row, " | ",
-                              pixels[k] == 0 ? "-" : absl::StrFormat("%.2f", bands[k]));
-            m.ns = NanosecondsPerSample(view, *m.sampler, timing_rows);
-            if (auto s = WriteExrFile(img, {}, absl::StrCat(stem, "_", m.name, ".exr")); !s.ok())
-              return Fail("bench-filter", std::string(s.message()));
+          double psnr[3];
+          for (int m = 0; m < 3; ++m) {
+            psnr[m] = PooledPsnr(modes[m].psnr);
+            for (size_t b = 0; b < pixels.size(); ++b)
+              absl::StrAppend(
+                  &band_row, " | ",
+                  pixels[b] == 0 ? "-" : absl::StrFormat("%.2f", pooled(modes[m].bands, b)));
+            std::vector<double> by_row(view.height);
+            for (int j = 0; j < view.height; ++j) by_row[j] = pooled(modes[m].rows, j);
+            rows.push_back({std::move(by_row), kColours[m]});
           }
-          if (auto s = WriteExrFile(*ref, {}, absl::StrCat(stem, "_reference.exr")); !s.ok())
-            return Fail("bench-filter", std::string(s.message()));
           if (auto s =
                   WritePngPreview(PlotRows(rows, first, 800, 300), absl::StrCat(stem, "_rows.png"));
               !s.ok())
@@ -254,9 +293,9 @@ int RunBenchFilter(int argc, char** argv) {
           std::printf(
               "| %s | %g | %g | %g | %d-%d | %.2f | %.2f | %.2f | %+.2f | %+.2f | %.0f | %.0f | "
               "%.0f | %.1fx |\n",
-              tex.name.c_str(), theta, yaw, a, first, view.height - 1, modes[0].psnr, modes[1].psnr,
-              modes[2].psnr, modes[1].psnr - modes[2].psnr, modes[1].psnr - modes[0].psnr,
-              modes[0].ns, modes[1].ns, modes[2].ns, modes[2].ns / modes[1].ns);
+              tex.name.c_str(), theta, yaw, a, first, view.height - 1, psnr[0], psnr[1], psnr[2],
+              psnr[1] - psnr[2], psnr[1] - psnr[0], modes[0].ns, modes[1].ns, modes[2].ns,
+              modes[2].ns / modes[1].ns);
           std::fflush(stdout);
           band_rows.push_back(band_row + " |");
         }

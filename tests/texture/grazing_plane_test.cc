@@ -70,6 +70,70 @@ TEST(GrazingPlane, ReferenceOfAConstantTextureIsTheConstant) {
   EXPECT_TRUE(std::isinf(Psnr(ref, ref, 0)));
 }
 
+TEST(GrazingPlane, PooledPsnrIsThePsnrOfTheMeasurementsTogether) {
+  // Two pairs of images of equal size, scored apart and as one image stacked from both.
+  const int w = 37, h = 11;
+  Image a(w, 2 * h), b(w, 2 * h), a0(w, h), b0(w, h), a1(w, h), b1(w, h);
+  uint32_t state = 12345;
+  auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / 16777216.0f;
+  };
+  for (int j = 0; j < 2 * h; ++j)
+    for (int i = 0; i < w; ++i) {
+      // The second half's errors are ten times the first's: unequal PSNRs.
+      const float scale = j < h ? 0.01f : 0.1f;
+      const Rgba p{next(), next(), next(), 1};
+      const Rgba q{p.r + scale * (next() - 0.5f), p.g + scale * (next() - 0.5f),
+                   p.b + scale * (next() - 0.5f), 1};
+      a.at(i, j) = p, b.at(i, j) = q;
+      (j < h ? a0 : a1).at(i, j % h) = p;
+      (j < h ? b0 : b1).at(i, j % h) = q;
+    }
+  const double apart[] = {Psnr(a0, b0, 0), Psnr(a1, b1, 0)};
+  EXPECT_GT(apart[0] - apart[1], 15.0);
+  EXPECT_NEAR(PooledPsnr(apart), Psnr(a, b, 0), 1e-9);
+  const double one[] = {apart[1]}, exact[] = {INFINITY, INFINITY}, mixed[] = {INFINITY, 20.0};
+  EXPECT_DOUBLE_EQ(PooledPsnr(one), apart[1]);
+  EXPECT_EQ(PooledPsnr(exact), INFINITY);
+  EXPECT_NEAR(PooledPsnr(mixed), 20.0 + 10.0 * std::log10(2.0), 1e-12);  // half the error
+}
+
+TEST(GrazingPlane, PositionsMoveTheGroundByTheirOriginsAndSpreadTheTexelPhases) {
+  GrazingPlaneView view;
+  view.pitch_deg = 5, view.yaw_deg = 30;
+  const GrazingPlaneView same = ViewAtPosition(view, 0);
+  EXPECT_EQ(same.origin_u, view.origin_u);
+  EXPECT_EQ(same.origin_v, view.origin_v);
+  // The positions 0..15 along both axes: every quarter of the repeat and every quarter of a
+  // texel's phase (1024 texels a repeat) is met at least twice.
+  int quarters[2][4] = {}, texel_quarters[2][4] = {};
+  for (int k = 0; k < 16; ++k) {
+    const GrazingPlaneView at = ViewAtPosition(view, k);
+    EXPECT_EQ(at.pitch_deg, view.pitch_deg);
+    EXPECT_EQ(at.yaw_deg, view.yaw_deg);
+    double u0, v0, u1, v1;
+    ASSERT_TRUE(GroundPoint(view, 500.5, 600.5, &u0, &v0));
+    ASSERT_TRUE(GroundPoint(at, 500.5, 600.5, &u1, &v1));
+    EXPECT_NEAR(u1 - u0, at.origin_u, 1e-9);
+    EXPECT_NEAR(v1 - v0, at.origin_v, 1e-9);
+    const double origin[2] = {at.origin_u, at.origin_v};
+    for (int axis = 0; axis < 2; ++axis) {
+      ASSERT_GE(origin[axis], 0.0);
+      ASSERT_LT(origin[axis], 1.0);
+      ++quarters[axis][static_cast<int>(4.0 * origin[axis])];
+      double texels = 0;
+      const double phase = std::modf(1024.0 * origin[axis], &texels);
+      ++texel_quarters[axis][static_cast<int>(4.0 * phase)];
+    }
+  }
+  for (int axis = 0; axis < 2; ++axis)
+    for (int q = 0; q < 4; ++q) {
+      EXPECT_GE(quarters[axis][q], 2) << "axis " << axis << " quarter " << q;
+      EXPECT_GE(texel_quarters[axis][q], 2) << "axis " << axis << " texel quarter " << q;
+    }
+}
+
 TEST(ReferenceSampler, AveragesALinearTextureToItsCentreValue) {
   // r = (x + 0.5) / 64 on a 64-texel period, sampled well inside one period: the average over a
   // symmetric parallelogram of a linear function is its value at the centre.
