@@ -59,9 +59,9 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
 void MoveForward(GrazingPlaneView* view, double world_units);
 // The view with the camera moved over the plane to position k (k = 0: the view itself): the
 // texture origins spread over the repeat and, for textures of 1024 texels, their phases within
-// a texel spread by the R2 low-discrepancy sequence. Looking
-// along a texture axis, every pixel row meets the texels and the checkerboard's edges at one
-// phase, so one position scores one phase: bench-filter --positions pools several.
+// a texel spread by the R2 low-discrepancy sequence. Looking along a texture axis, every pixel
+// row meets the texels and the checkerboard's edges at one phase, so one position scores one
+// phase: bench-filter --positions pools several.
 GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k);
 // PSNR (peak 1) over RGB of rows [first_row, height).
 double Psnr(const Image& a, const Image& b, int first_row);
