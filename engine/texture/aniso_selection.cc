@@ -530,7 +530,8 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
       if (_mm256_movemask_ps(thin) != 0) AddProbesAvx2(out, r, thin, magnify, H, Lmin);
       continue;
     }
-    // CopyExtent of H and L.
+    // CopyExtent of H and L. Its x < 1 branch is not needed here: H >= 1 on these lanes, and
+    // an L under 1 gives an extent under 1 either way, which the clamp below raises to lo >= 1.
     const __m256 scale = _mm256_set1_ps(kCopyExtentScale),
                  rest = _mm256_set1_ps(1.0f - kCopyExtentScale);
     const __m256 He =

@@ -179,10 +179,15 @@ std::map<uint32_t, float> WeightsByCopy(const CopyBlend& b) {
   return out;
 }
 
+// The aperture extent whose copies have extent c >= 1: CopyExtent inverted.
+double InverseCopyExtent(double c) {
+  return std::sqrt((c * c - (1.0 - kCopyExtentScale)) / kCopyExtentScale);
+}
+
 // An aperture extent whose copies have extent c exactly (CopyExtent(x) == c in float; not every
 // c has one: 6, 7 and 12 do not).
 float ApertureOfCopy(float c) {
-  float x = std::sqrt((c * c - (1.0f - kCopyExtentScale)) / kCopyExtentScale);
+  float x = static_cast<float>(InverseCopyExtent(c));
   for (int step = 0; step < 64 && CopyExtent(x) != c; ++step)
     x = std::nextafter(x, CopyExtent(x) < c ? INFINITY : 0.0f);
   EXPECT_EQ(CopyExtent(x), c);
@@ -450,13 +455,6 @@ TEST_F(AnisoSamplerTest, CopiesShorterByTheirTentAreNearerTheBoxThanTheApertures
     AnisoSampler sampler(*table_);
     ReferenceSampler reference(image, 16.0);
     RandomFootprints footprints(4, 80, 2.4, 8);
-    // The aperture whose copies have extent c, by bisection on CopyExtent (increasing).
-    auto aperture_of_copy = [](double c) {
-      double lo = 0, hi = 4 * c;
-      for (int i = 0; i < 60; ++i)
-        (CopyExtent(float(0.5 * (lo + hi))) < c ? lo : hi) = 0.5 * (lo + hi);
-      return 0.5 * (lo + hi);
-    };
     double now = 0, paper = 0;
     const int count = 400;
     for (int k = 0; k < count; ++k) {
@@ -465,7 +463,7 @@ TEST_F(AnisoSamplerTest, CopiesShorterByTheirTentAreNearerTheBoxThanTheApertures
       const ApertureShape shape = ApertureFromFootprint(f, kN);
       EXPECT_EQ(SelectCopies(*table_, shape).probes, 0);  // L >= 1: the table alone
       ApertureShape papers = shape;
-      papers.H = aperture_of_copy(shape.H), papers.L = aperture_of_copy(shape.L);
+      papers.H = InverseCopyExtent(shape.H), papers.L = InverseCopyExtent(shape.L);
       now += std::pow(TableCopiesAlone(sampler, f, shape) - want, 2);
       paper += std::pow(TableCopiesAlone(sampler, f, papers) - want, 2);
     }
