@@ -44,6 +44,21 @@ TEST(Help, TheTextureToolHasItsOwnHelpAndTheVersion) {
   EXPECT_EQ(v.output, std::string("aperture-tex ") + APERTURE_VERSION + "\n");
 }
 
+TEST(Help, TheFilterBenchmarkListsPositionsAndRefusesABadCountNamingIt) {
+  const std::string bench = std::string(APERTURE_TEX_BIN) + " bench-filter";
+  const ProcessResult help = RunProcess(bench + " --help");
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  EXPECT_NE(help.output.find("--positions P"), std::string::npos) << help.output;
+  // Refused before any texture is loaded or directory made.
+  const std::string out = ::testing::TempDir() + "bench_filter_refused";
+  for (const char* bad : {"0", "65", "x"}) {
+    const ProcessResult r = RunProcess(bench + " --positions " + bad + " --out " + out);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--positions 1..64"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(RunProcess("test -e " + out).exit_code, 1) << out << " was made";
+}
+
 TEST(Help, AnUnknownFlagIsAUsageErrorNamingIt) {
   for (const Binary& b : kBinaries) {
     const ProcessResult r = RunProcess(std::string(b.path) + " --frobnicate=3");
