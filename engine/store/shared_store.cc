@@ -78,6 +78,11 @@ void SharedStore::Remember(const std::shared_ptr<const StoreEntry>& entry) const
   mapped_.emplace(entry->key(), entry);
 }
 
+void SharedStore::Forget(const std::string& key) const {
+  std::lock_guard lock(mutex_);
+  mapped_.erase(key);
+}
+
 absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::MapFile(const std::string& path,
                                                                        const std::string& key,
                                                                        EntryKind kind) const {
@@ -113,9 +118,20 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::Attach(const std:
   return *entry;
 }
 
-absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
-    const std::string& key, EntryKind kind, const Builder& build) const {
+absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::AttachValid(
+    const std::string& key, EntryKind kind, const Validator& validate) const {
   auto entry = Attach(key, kind);
+  if (!entry.ok() || !validate) return entry;
+  if (absl::Status valid = validate((*entry)->payload()); !valid.ok()) {
+    Forget(key);
+    return absl::DataLossError(absl::StrCat(EntryPath(key), ": ", valid.message()));
+  }
+  return entry;
+}
+
+absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
+    const std::string& key, EntryKind kind, const Builder& build, const Validator& validate) const {
+  auto entry = AttachValid(key, kind, validate);
   if (entry.ok() || (!absl::IsNotFound(entry.status()) && !absl::IsDataLoss(entry.status())))
     return entry;
 
@@ -123,7 +139,7 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
   auto lock = KeyLock::Acquire((fs::path(directory_) / absl::StrCat(key, ".lock")).string(), true);
   if (!lock.ok()) return lock.status();
   // Another process may have published it while this one waited for the lock.
-  entry = Attach(key, kind);
+  entry = AttachValid(key, kind, validate);
   if (entry.ok() || (!absl::IsNotFound(entry.status()) && !absl::IsDataLoss(entry.status())))
     return entry;
   if (absl::IsDataLoss(entry.status())) {

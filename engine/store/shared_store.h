@@ -76,6 +76,9 @@ struct StoreCounters {
 class SharedStore {
  public:
   using Builder = std::function<absl::StatusOr<std::vector<std::byte>>()>;
+  // The reader's own check of an entry's payload (its format's version and layout): an entry the
+  // store vouches for may still be one an older or foreign build wrote under the same key.
+  using Validator = std::function<absl::Status(std::span<const std::byte>)>;
 
   // Creates the directory if needed and sweeps temporary files left by crashed builders.
   static absl::StatusOr<std::shared_ptr<SharedStore>> Open(const std::string& directory);
@@ -91,10 +94,12 @@ class SharedStore {
                                                            EntryKind kind) const;
 
   // Attaches, or, when the entry is missing or unusable, builds it once for the whole machine
-  // (other processes wanting the same key wait, then attach) and publishes it.
-  absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuild(const std::string& key,
-                                                               EntryKind kind,
-                                                               const Builder& build) const;
+  // (other processes wanting the same key wait, then attach) and publishes it. An entry that
+  // `validate` (when given) refuses is unusable too: it is counted as rejected, deleted and
+  // rebuilt (processes that have it mapped keep their pages).
+  absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuild(
+      const std::string& key, EntryKind kind, const Builder& build,
+      const Validator& validate = nullptr) const;
 
   // Publishes `payload` unless a usable entry exists already.
   absl::StatusOr<std::shared_ptr<const StoreEntry>> Put(const std::string& key, EntryKind kind,
@@ -128,6 +133,11 @@ class SharedStore {
   std::shared_ptr<const StoreEntry> Cached(const std::string& key) const;
   static void MarkUsed(const std::string& path);
   void Remember(const std::shared_ptr<const StoreEntry>& entry) const;
+  void Forget(const std::string& key) const;
+  // Attach, and an attached entry that `validate` refuses as DataLoss (and forgotten).
+  absl::StatusOr<std::shared_ptr<const StoreEntry>> AttachValid(const std::string& key,
+                                                                EntryKind kind,
+                                                                const Validator& validate) const;
 
   std::string directory_;
   mutable std::mutex mutex_;

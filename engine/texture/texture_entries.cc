@@ -47,28 +47,38 @@ std::string PackedTextureKey(std::span<const uint8_t> apv_bytes) {
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
     const SharedStore& store, const Image& base, const std::function<bool()>& stop) {
-  auto entry = store.GetOrBuild(PrefilteredTableKey(base), EntryKind::kPrefilteredTable,
-                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
-                                  TableBuildOptions options;
-                                  options.stop = stop;
-                                  auto block = BuildPrefilteredTable(base, options);
-                                  if (!block.ok()) return block.status();
-                                  return std::move(block->bytes);
-                                });
+  auto entry = store.GetOrBuild(
+      PrefilteredTableKey(base), EntryKind::kPrefilteredTable,
+      [&]() -> absl::StatusOr<std::vector<std::byte>> {
+        TableBuildOptions options;
+        options.stop = stop;
+        auto block = BuildPrefilteredTable(base, options);
+        if (!block.ok()) return block.status();
+        return std::move(block->bytes);
+      },
+      // The store vouches for the bytes; the table's own checks
+      // catch a foreign writer (a build with another layout).
+      [](std::span<const std::byte> payload) { return PrefilteredTable::View(payload).status(); });
   if (!entry.ok()) return entry.status();
-  // The store vouches for the bytes; the table's own checks guard against a foreign writer.
+  // A freshly built table that fails its own checks is a bug: reported, not retried.
   if (auto view = PrefilteredTable::View((*entry)->payload()); !view.ok()) return view.status();
   return entry;
 }
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrDecodePackedTexture(
     const SharedStore& store, std::span<const uint8_t> apv_bytes) {
-  auto entry = store.GetOrBuild(PackedTextureKey(apv_bytes), EntryKind::kPackedTexture,
-                                [&]() -> absl::StatusOr<std::vector<std::byte>> {
-                                  auto texture = packed::DecodeApv(apv_bytes);
-                                  if (!texture.ok()) return texture.status();
-                                  return ToBytes(texture->bytes());
-                                });
+  auto entry = store.GetOrBuild(
+      PackedTextureKey(apv_bytes), EntryKind::kPackedTexture,
+      [&]() -> absl::StatusOr<std::vector<std::byte>> {
+        auto texture = packed::DecodeApv(apv_bytes);
+        if (!texture.ok()) return texture.status();
+        return ToBytes(texture->bytes());
+      },
+      [](std::span<const std::byte> payload) {
+        return packed::PackedTextureView::FromBytes(
+                   {reinterpret_cast<const uint8_t*>(payload.data()), payload.size()})
+            .status();
+      });
   if (!entry.ok()) return entry.status();
   const auto payload = (*entry)->payload();
   auto view = packed::PackedTextureView::FromBytes(

@@ -191,6 +191,39 @@ TEST_F(SharedStoreTest, ACorruptEntryIsDetectedNeverUsedAndRebuilt) {
   EXPECT_TRUE(OpenStore()->Attach("blob", EntryKind::kBlob).ok());
 }
 
+TEST_F(SharedStoreTest, AnEntryTheReaderRefusesIsRebuiltOnceAndTheNewOneKept) {
+  // An older build wrote the key with another layout: whole and checksummed, but its reader's
+  // own check (the validator) refuses it.
+  ASSERT_TRUE(OpenStore()->Put("table-x", EntryKind::kPrefilteredTable, Bytes("layout 1")).ok());
+  auto layout_2 = [](std::span<const std::byte> payload) {
+    return Text(payload) == "layout 2" ? absl::OkStatus()
+                                       : absl::InvalidArgumentError("not layout 2");
+  };
+  int builds = 0;
+  auto builder = [&] {
+    ++builds;
+    return absl::StatusOr<std::vector<std::byte>>(Bytes("layout 2"));
+  };
+  auto store = OpenStore();
+  ASSERT_TRUE(store->Attach("table-x", EntryKind::kPrefilteredTable).ok());  // mapped first
+  auto rebuilt = store->GetOrBuild("table-x", EntryKind::kPrefilteredTable, builder, layout_2);
+  ASSERT_TRUE(rebuilt.ok()) << rebuilt.status();
+  EXPECT_EQ(Text((*rebuilt)->payload()), "layout 2");
+  EXPECT_EQ(builds, 1);
+  EXPECT_EQ(store->counters().rejected, 1u);
+  // Another process attaches the new entry without building.
+  auto other = OpenStore();
+  auto again = other->GetOrBuild("table-x", EntryKind::kPrefilteredTable, builder, layout_2);
+  ASSERT_TRUE(again.ok()) << again.status();
+  EXPECT_EQ(Text((*again)->payload()), "layout 2");
+  EXPECT_EQ(builds, 1);
+  EXPECT_EQ(other->counters().rejected, 0u);
+  // Without a validator the store alone decides: the same entry is used as it is.
+  EXPECT_EQ(
+      Text((*OpenStore()->GetOrBuild("table-x", EntryKind::kPrefilteredTable, builder))->payload()),
+      "layout 2");
+}
+
 TEST_F(SharedStoreTest, ATruncatedEntryIsDetected) {
   ASSERT_TRUE(OpenStore()->Put("blob", EntryKind::kBlob, Bytes(std::string(1000, 'z'))).ok());
   fs::resize_file(EntryFile("blob"), fs::file_size(EntryFile("blob")) - 10);
