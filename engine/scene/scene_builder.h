@@ -29,8 +29,9 @@ struct SceneBuildOptions {
   // the tables of materials filtered `aniso` are prepared while the scene is built.
   std::shared_ptr<const SharedStore> store;
   SceneLimits limits;
-  // Asked between textures, objects and groups of table copies; true: the build stops with
-  // Cancelled (the caller knows whether a deadline or the client stopped it).
+  // Asked between textures, objects and groups of table copies, and from the table builder's
+  // worker threads (TableBuildOptions::stop: thread-safe); true: the build stops with Cancelled
+  // (the caller knows whether a deadline or the client stopped it).
   std::function<bool()> stop;
 };
 

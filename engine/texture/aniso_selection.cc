@@ -47,6 +47,18 @@ inline float NextTiltWeight(float fraction) {
   return std::clamp(2.0f * fraction - 0.5f, 0.0f, 1.0f);
 }
 
+// Where tangent tg falls among a cell's tilts (TiltTangent), as a fractional index: tilt k at k.
+// Seed 000's tilts (indices 1 .. half, half = lambda / 2) lie evenly at x = (tg + 1) half / 2 +
+// 1/2; the ends, -1 at index 0 and +1 at half + 1, are half a spacing beyond the outer ones
+// (x = 1/2 and half + 1/2), so those two intervals are stretched to a whole index.
+// `tilt_position` is (tg + 1) / 2.
+inline float TiltIndex(float tilt_position, float half) {
+  const float x = std::clamp(tilt_position * half + 0.5f, 0.5f, half + 0.5f);
+  if (x < 1.0f) return 2.0f * x - 1.0f;
+  if (half < x) return 2.0f * x - half;
+  return x;
+}
+
 // The readings of one footprint (ReadingsOfFootprint). The table's copies are parallelograms with a
 // pair of sides parallel to a texture axis: half extent H along the major axis with slope tg,
 // half thickness L along the minor one, i.e. {s H (1, tg) + t L (0, 1)} (axes named major,
@@ -193,7 +205,7 @@ CopySelector::CopySelector(const PrefilteredTable& table)
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i < n; ++i) {
       first_.push_back(table.cell(j, i).first);
-      half_.push_back(static_cast<int32_t>(table.cell(j, i).lambda / 2));
+      tilts_.push_back(static_cast<int32_t>(table.cell(j, i).copies / 2));
     }
 #if defined(__x86_64__) && defined(__GNUC__)
   kernel_ = __builtin_cpu_supports("avx2");
@@ -247,22 +259,19 @@ void CopySelector::TableSlots(float H, float L, float tg, bool along_v, Selectio
     weights[1] = std::abs(mh - mL);
     weights[2] = std::min(mh, mL);
   }
-  // Tilt k of a cell of lambda copies, tg_k = (2k + 1) / half - 1 (half = lambda / 2), sits at
-  // k = (tg + 1) half / 2 - 1/2 on the tilt axis; beyond the outer tilts' centres the outer
-  // tilt alone (the skewed read follows tg).
+  // The two tilts around tg (TiltIndex; the skewed read follows tg between them).
   const float tilt_position = (tg + 1.0f) * 0.5f;
   const uint32_t v_offset = along_v ? 1 : 0;
   for (int c = 0; c < 3; ++c) {
-    const int half = half_[cells[c]];
-    const uint32_t first = first_[cells[c]] + v_offset * static_cast<uint32_t>(half);
-    if (half <= 1) {  // one copy per axis
+    const int tilts = tilts_[cells[c]];
+    const uint32_t first = first_[cells[c]] + v_offset * static_cast<uint32_t>(tilts);
+    if (tilts == 0) {  // the one untilted copy
       set(2 * c, first, weights[c]);
       set(2 * c + 1, first, 0.0f);
       continue;
     }
-    const float halff = static_cast<float>(half);
-    const float k = std::clamp(tilt_position * halff - 0.5f, 0.0f, halff - 1.0f);
-    const int k0 = std::min(static_cast<int>(k), half - 2);
+    const float k = TiltIndex(tilt_position, static_cast<float>(tilts - 2));
+    const int k0 = std::min(static_cast<int>(k), tilts - 2);
     const float next = NextTiltWeight(k - static_cast<float>(k0));
     set(2 * c, first + static_cast<uint32_t>(k0), weights[c] * (1.0f - next));
     set(2 * c + 1, first + static_cast<uint32_t>(k0) + 1, weights[c] * next);
@@ -425,7 +434,7 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
                                                 const float* dudy, const float* dvdy,
                                                 float half_size, int n_log2, uint32_t first_copy,
                                                 const uint32_t* cell_first,
-                                                const int32_t* cell_half, SelectionLanes& out) {
+                                                const int32_t* cell_tilts, SelectionLanes& out) {
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
   const __m256 max_texels = _mm256_set1_ps(kMaxTexels);
   const __m256 min_texels = _mm256_set1_ps(-kMaxTexels);
@@ -584,26 +593,31 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
       const int cell = _mm256_cvtsi256_si32(cells[c]);
       const bool shared =
           _mm256_movemask_epi8(_mm256_cmpeq_epi32(cells[c], _mm256_set1_epi32(cell))) == -1;
-      const __m256i halves = shared ? _mm256_set1_epi32(cell_half[cell])
-                                    : _mm256_i32gather_epi32(cell_half, cells[c], 4);
+      const __m256i tilts = shared ? _mm256_set1_epi32(cell_tilts[cell])
+                                   : _mm256_i32gather_epi32(cell_tilts, cells[c], 4);
       const __m256i cell_firsts =
           shared ? _mm256_set1_epi32(static_cast<int>(cell_first[cell]))
                  : _mm256_i32gather_epi32(reinterpret_cast<const int*>(cell_first), cells[c], 4);
-      const __m256i firsts = _mm256_add_epi32(cell_firsts, _mm256_mullo_epi32(along_v[r], halves));
-      const __m256 halff = _mm256_cvtepi32_ps(halves);
-      // std::clamp(x, 0, half - 1).
-      const __m256 x = _mm256_sub_ps(_mm256_mul_ps(tilt_position, halff), half);
-      const __m256 top = _mm256_sub_ps(halff, one);
-      __m256 k = _mm256_blendv_ps(x, top, _mm256_cmp_ps(top, x, _CMP_LT_OQ));
-      k = _mm256_blendv_ps(k, zero, _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
-      const __m256i k0 =
-          _mm256_min_epi32(_mm256_cvttps_epi32(k), _mm256_sub_epi32(halves, _mm256_set1_epi32(2)));
+      const __m256i firsts = _mm256_add_epi32(cell_firsts, _mm256_mullo_epi32(along_v[r], tilts));
+      // TiltIndex, the same operations: x = std::clamp(tilt_position half + 1/2, 1/2, half +
+      // 1/2) with half = tilts - 2, then the stretched end intervals.
+      const __m256i spans = _mm256_sub_epi32(tilts, _mm256_set1_epi32(2));
+      const __m256 halff = _mm256_cvtepi32_ps(spans);
+      const __m256 x0 = _mm256_add_ps(_mm256_mul_ps(tilt_position, halff), half);
+      const __m256 top = _mm256_add_ps(halff, half);
+      __m256 x = _mm256_blendv_ps(x0, top, _mm256_cmp_ps(top, x0, _CMP_LT_OQ));
+      x = _mm256_blendv_ps(x, half, _mm256_cmp_ps(x0, half, _CMP_LT_OQ));
+      const __m256 twice = _mm256_mul_ps(_mm256_set1_ps(2.0f), x);
+      __m256 k =
+          _mm256_blendv_ps(x, _mm256_sub_ps(twice, halff), _mm256_cmp_ps(halff, x, _CMP_LT_OQ));
+      k = _mm256_blendv_ps(k, _mm256_sub_ps(twice, one), _mm256_cmp_ps(x, one, _CMP_LT_OQ));
+      const __m256i k0 = _mm256_min_epi32(_mm256_cvttps_epi32(k), spans);
       // NextTiltWeight: std::clamp(2 f - 0.5, 0, 1).
       const __m256 y = _mm256_sub_ps(
           _mm256_mul_ps(_mm256_set1_ps(2.0f), _mm256_sub_ps(k, _mm256_cvtepi32_ps(k0))), half);
       __m256 next = _mm256_blendv_ps(y, one, _mm256_cmp_ps(one, y, _CMP_LT_OQ));
       next = _mm256_blendv_ps(next, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
-      const __m256i tilted = _mm256_cmpgt_epi32(halves, ione);  // half > 1
+      const __m256i tilted = _mm256_cmpgt_epi32(tilts, izero);  // not the untilted copy
       const __m256i copy0 = _mm256_blendv_epi8(firsts, _mm256_add_epi32(firsts, k0), tilted);
       const __m256i copy1 =
           _mm256_blendv_epi8(firsts, _mm256_add_epi32(_mm256_add_epi32(firsts, k0), ione), tilted);
@@ -635,7 +649,7 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
 #if defined(__x86_64__) && defined(__GNUC__)
   if (kernel_ && n == SelectionLanes::kLanes) {
     SelectAvx2(dudx, dvdx, dudy, dvdy, half_size_, log2_size_, first_copy_, first_.data(),
-               half_.data(), out);
+               tilts_.data(), out);
     return;
   }
 #endif

@@ -65,7 +65,7 @@ inline float CopyExtent(float x) {
 // The copies one reading reads and their weights: seed 000, eq. 5 across cells, and between the
 // two tilts of a cell nearest the reading's tangent (a continuous extension: the paper takes the
 // nearest tilt and leaves the rest to the skewed read, eq. 6-9, which jumps where the nearest
-// changes; docs/ENGINE.md).
+// changes; docs/ENGINE.md). The tilts include the ends tg = +-1 (TiltsPerAxis).
 struct CopyBlend {
   static constexpr int kMaxCopies = 6;  // three cells, two tilts each
   bool magnify = false;                 // degenerate derivatives: bilinear on the unfiltered base
@@ -127,7 +127,7 @@ class CopySelector {
   float half_size_ = 0;  // 2^n / 2: one step of the paper's 2 x 2 aperture, in texels per repeat
   uint32_t first_copy_ = 0;      // cell (0, 0)'s copy, the 2 x 2 box
   std::vector<uint32_t> first_;  // per cell j * n + i: its first directory index
-  std::vector<int32_t> half_;    // per cell: lambda / 2, the tilts per axis (0: untilted)
+  std::vector<int32_t> tilts_;   // per cell: TiltsPerAxis, 0 for the one untilted copy
   bool kernel_ = false;
 };
 

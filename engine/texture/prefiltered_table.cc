@@ -21,14 +21,31 @@ CellShape TableCellShape(int n, int j, int i) {
 
 uint64_t DiagonalTexels(int n) { return ((uint64_t{1} << (2 * (n + 1))) - 1) / 3; }
 
-uint64_t TableTexels(int n) {
-  return static_cast<uint64_t>(n) * DiagonalTexels(n) + (uint64_t{1} << (2 * n));
+uint64_t EndTiltTexels(int n) {
+  uint64_t texels = 0;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const CellShape s = TableCellShape(n, j, i);
+      if (s.lambda >= 2) texels += 4 * uint64_t{s.major} * s.minor;
+    }
+  return texels;
 }
+
+uint64_t TableTexels(int n) {
+  return static_cast<uint64_t>(n) * DiagonalTexels(n) + EndTiltTexels(n) + (uint64_t{1} << (2 * n));
+}
+
+uint32_t TiltsPerAxis(uint32_t lambda) { return lambda < 2 ? 1 : lambda / 2 + 2; }
+
+uint32_t CellCopies(uint32_t lambda) { return lambda < 2 ? 1 : 2 * TiltsPerAxis(lambda); }
 
 float TiltTangent(uint32_t lambda, uint32_t k) {
   if (lambda < 2) return 0.0f;
-  const double half = lambda / 2;
-  return static_cast<float>((2.0 * k + 1.0) / half - 1.0);
+  const uint32_t half = lambda / 2;
+  if (k == 0) return -1.0f;
+  if (k > half) return 1.0f;
+  // seed 000's tilt k - 1.
+  return static_cast<float>((2.0 * (k - 1) + 1.0) / half - 1.0);
 }
 
 absl::StatusOr<PrefilteredTable> PrefilteredTable::View(std::span<const std::byte> block) {
@@ -77,13 +94,14 @@ absl::StatusOr<PrefilteredTable> PrefilteredTable::View(std::span<const std::byt
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i < n; ++i) {
       const CellShape shape = TableCellShape(n, j, i);
-      table.cells_[j * n + i] = {index, shape.lambda};
-      for (uint32_t c = 0; c < shape.lambda; ++c, ++index) {
+      const uint32_t copies = CellCopies(shape.lambda);
+      table.cells_[j * n + i] = {index, copies};
+      for (uint32_t c = 0; c < copies; ++c, ++index) {
         if (index >= h.copy_count) return bad("directory too short");
         const CopyEntry& e = table.directory_[index];
         if (e.log2_l != j || e.log2_ratio != i || e.lambda != shape.lambda)
           return bad(absl::StrCat("copy ", index, " is not of cell (", j, ", ", i, ")"));
-        const bool tilt_u = shape.lambda == 1 || c < shape.lambda / 2;
+        const bool tilt_u = shape.lambda == 1 || c < copies / 2;
         const uint32_t w = tilt_u ? shape.major : shape.minor;
         const uint32_t ht = tilt_u ? shape.minor : shape.major;
         if (auto s = check(e, w, ht); !s.ok()) return s;

@@ -8,11 +8,12 @@
 // (half-extent along the major axis, i = 0..n-1): the paper's table for n = 6 read by columns.
 // Resolution along the minor axis 2^(n-j); along the major axis 2^(n-i-j), never below
 // min(2, minor) (the frozen region 2^(n-1) < H <= 2^(2n-1), where lambda stops growing and L is
-// effectively raised). lambda = minor / major copies: one untilted copy when lambda = 1, else
-// lambda / 2 tilted to U (major axis U, short sides parallel to V) then lambda / 2 tilted to V,
-// tg_k = (2k + 1) / (lambda / 2) - 1. Every cell costs 4^(n-j) texels, so each diagonal i costs
-// S_n = (4^(n+1) - 1) / 3 and the cells n * S_n (seed 000, memory estimate). One extra copy, the
-// unfiltered texture (the "base", used for magnification), comes first: total n * S_n + 4^n.
+// effectively raised). lambda = minor / major. One untilted copy when lambda = 1, else
+// TiltsPerAxis(lambda) tilted to U (major axis U, short sides parallel to V) then as many tilted
+// to V, in the order of TiltTangent. Seed 000's lambda copies cost 4^(n-j) texels a cell, so
+// each diagonal i costs S_n = (4^(n+1) - 1) / 3 and the cells n * S_n (seed 000, memory
+// estimate); the end tilts add four copies to every tilted cell (EndTiltTexels). One extra copy,
+// the unfiltered texture (the "base", used for magnification), comes first.
 #pragma once
 
 #include <cstddef>
@@ -26,9 +27,9 @@
 namespace aperture {
 
 inline constexpr char kTableMagic[8] = {'A', 'P', 'T', 'A', 'B', 'L', 'E', '0'};
-inline constexpr uint32_t kTableVersion = 1;
+inline constexpr uint32_t kTableVersion = 2;  // 2: the end tilts (TiltsPerAxis)
 inline constexpr uint32_t kTexelRgba8 = 1;    // 4 bytes per texel: linear RGBA, unorm 8-bit
-inline constexpr int kTableMaxLog2Size = 13;  // 8192 x 8192: 4.6 GB
+inline constexpr int kTableMaxLog2Size = 13;  // 8192 x 8192: 6.4 GB
 
 // Plain old data at offset 0. All offsets are bytes from the start of the block.
 struct TableHeader {
@@ -54,7 +55,7 @@ struct CopyEntry {
   uint8_t log2_ratio;  // i = log2(H / L) (kBaseCell for the base copy)
   TiltAxis axis;
   uint8_t reserved;
-  uint32_t tilt_index;     // k
+  uint32_t tilt_index;     // k (TiltTangent)
   float tg;                // tangent of the long side to the major axis (0 when untilted)
   uint32_t lambda;         // the cell's lambda = height / width (tilt U) or width / height (tilt V)
   uint32_t width, height;  // texels along U and along V
@@ -64,16 +65,29 @@ static_assert(sizeof(CopyEntry) == 32);
 
 // The table's shape, a pure function of n (used by the builder, the reader and the tests).
 struct CellShape {
-  uint32_t lambda;  // number of copies in the cell
+  uint32_t lambda;  // the resolution ratio minor / major (1: untilted)
   uint32_t major;   // resolution along the major axis (the axis of H)
   uint32_t minor;   // resolution along the minor axis (the axis of L)
 };
 CellShape TableCellShape(int n, int j, int i);
-// seed 000: S_n = (4^(n+1) - 1) / 3 texels per diagonal.
+// seed 000: S_n = (4^(n+1) - 1) / 3 texels per diagonal, for the paper's lambda copies a cell.
 uint64_t DiagonalTexels(int n);
-// Closed form of the whole table: n * S_n + 4^n (the base copy).
+// The texels of the end tilts (four copies a tilted cell) over the whole table.
+uint64_t EndTiltTexels(int n);
+// The whole table: n * S_n + EndTiltTexels(n) + 4^n (the base copy).
 uint64_t TableTexels(int n);
-// tg of tilt k in a cell of `lambda` copies: (2k + 1) / (lambda / 2) - 1 (seed 000, tilt set).
+
+// The tilts of a cell, per axis. Seed 000 tilts a cell of resolution ratio lambda >= 2 by
+// tg_k = (2k + 1) / (lambda / 2) - 1, k = 0 .. lambda / 2 - 1: the centres of lambda / 2 equal
+// parts of [-1, 1]. Our extension (issue 22) adds the two ends, tg = -1 and +1: without them a
+// footprint whose long side is near a diagonal (|tg| near 1) reads a copy sheared by up to half a
+// spacing to one side, and a cell of lambda = 2 has the one tilt tg = 0 for every direction
+// (docs/BENCHMARKS.md, issue 22, session 34: 3-4 dB lost within 8 degrees of the diagonals on
+// the grass photo). So a tilted cell has lambda / 2 + 2 tilts per axis, ascending: -1, the
+// paper's, +1.
+uint32_t TiltsPerAxis(uint32_t lambda);  // 1 when lambda < 2 (the untilted copy)
+uint32_t CellCopies(uint32_t lambda);    // 1 when lambda < 2, else 2 TiltsPerAxis(lambda)
+// tg of tilt k = 0 .. TiltsPerAxis(lambda) - 1 (0 when untilted).
 float TiltTangent(uint32_t lambda, uint32_t k);
 
 // A validated, read-only view of a table block. The block must outlive the view and be aligned
@@ -82,7 +96,7 @@ class PrefilteredTable {
  public:
   struct Cell {
     uint32_t first = 0;   // directory index of the cell's first copy
-    uint32_t lambda = 0;  // copies in the cell
+    uint32_t copies = 0;  // CellCopies of its lambda
   };
 
   // Checks magic, version, sizes, offsets and the directory against the shape of n.

@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <span>
 
 #include "absl/strings/str_cat.h"
@@ -109,6 +111,9 @@ struct CopyJob {
   int L = 1;      // half-thickness (texels)
   double H = 1;   // half-extent along the major axis (texels)
   double tg = 0;  // slope of the long side: d(minor) / d(major)
+  // The line's shift along the minor axis (texels): an end tilt of L = 1 is swept twice, at
+  // -1/4 and +1/4, and the two averaged (WriteCopy).
+  double minor_shift = 0;
   int major = 1;  // resolution along the major axis
   bool transposed = false;
   uint8_t* out = nullptr;  // RGBA8, row-major in (u, v)
@@ -117,7 +122,9 @@ struct CopyJob {
 // Second pass, along the sheared lines (seed 000: the box parallelogram). Output texel (p, q)
 // has its centre at ((p + 0.5) N / major, (q + 0.5) L); all centres lie on the N / L lines
 // minor = (r + 0.5) L + tg (major + 0.5) (tg (p + 0.5) N / major is a multiple of L for every
-// tilt of the table), so per line one running sum over the N columns serves every output on it.
+// tilt of the table: N / major = lambda L, and lambda tg is an even integer, 2 (2k + 1) - lambda
+// for seed 000's tilts and +-lambda for the ends), so per line one running sum over the N
+// columns serves every output on it.
 // The windows [centre - H, centre + H] start and end on multiples of `step` columns, so only
 // those running sums are kept. A line leaving the period at major = N re-enters at major = 0
 // as line r + tg N / L.
@@ -141,7 +148,7 @@ CopySweep PrepareSweep(const CopyJob& job) {
   s.k_base.resize(N);
   s.weight.resize(N);
   for (int c = 0; c < N; ++c) {
-    const double y = 0.5 * L + job.tg * (c + 0.5), fy = std::floor(y);
+    const double y = 0.5 * L + job.tg * (c + 0.5) + job.minor_shift, fy = std::floor(y);
     s.k_base[c] = static_cast<int>(fy);
     s.weight[c] = static_cast<float>(y - fy);
   }
@@ -157,9 +164,16 @@ size_t PrefixSize(const CopySweep& s) {
 // the band's 2048 lines).
 constexpr int kBlock = 512;
 
+// Columns between two stop tests inside a sweep: a group at L = 1 of a 2048 x 2048 table takes
+// a few tenths of a second, more on a loaded machine, and a load's deadline must stop it sooner.
+constexpr int kStopColumns = 256;
+
 // The running sums of several copies with the same L (and axis, so the same g) at once: each
-// column of g is read from memory once for all of them, not once per copy.
-void SweepCopies(std::span<CopySweep> copies, const std::vector<Packed>& g, int N, int L) {
+// column of g is read from memory once for all of them, not once per copy. `stop` (may be empty)
+// is asked by each band every kStopColumns columns; after a yes, `stopped` is set and the sums
+// are left unfinished.
+void SweepCopies(std::span<CopySweep> copies, const std::vector<Packed>& g, int N, int L,
+                 const std::function<bool()>& stop, std::atomic<bool>& stopped) {
   const int rows = N / L;
   // N, L and rows are powers of two: residues and quotients by masks and shifts.
   int log2_l = 0;
@@ -190,6 +204,13 @@ void SweepCopies(std::span<CopySweep> copies, const std::vector<Packed>& g, int 
     };
     ColumnRead reads[kChunk];
     for (int c0 = 0; c0 < N; c0 += kChunk) {
+      if (c0 % kStopColumns == 0 && stop) {
+        if (stopped.load(std::memory_order_relaxed)) return;
+        if (stop()) {
+          stopped.store(true, std::memory_order_relaxed);
+          return;
+        }
+      }
       const int chunk = std::min(kChunk, N - c0);
       for (size_t q = 0; q < copies.size(); ++q) {
         CopySweep& s = copies[q];
@@ -228,20 +249,30 @@ void SweepCopies(std::span<CopySweep> copies, const std::vector<Packed>& g, int 
   });
 }
 
-// The copy's texels from its running sums: each a window of 2H columns along its line.
-void WriteCopy(const CopySweep& s) {
+// Whether a copy is swept twice. The sweep takes each texel column's band at the column's centre
+// (the midpoint rule along the major axis), exact where the band's box sum is linear across the
+// column. Its kinks lie where the band's edges cross texel rows; for L = 1 and tg = +-1 (the end
+// tilts) one always lies mid-column, which misses (g[m-1] - 2 g[m] + g[m+1]) / 8 of the rows'
+// sums. Two sweeps with the line shifted by -1/4 and +1/4 sample each half-column at its centre,
+// where the sum is linear: exact. (For L >= 2 the kinks lie on column edges, and seed 000's tilts
+// move the band by under a row across a column.)
+bool SweptTwice(const CopyEntry& e) { return e.log2_l == 0 && std::abs(e.tg) == 1.0f; }
+
+// The copy's texels from its running sums: each a window of 2H columns along its line, averaged
+// with the same window of `twin` when the copy is swept twice.
+void WriteCopy(const CopySweep& s, const CopySweep* twin) {
   const CopyJob& job = s.job;
   const int N = job.N, L = job.L, rows = N / L, step = s.step;
   const int sx = N / job.major;
   const long wrap = std::lround(job.tg * N / L);
-  const Rgba* prefix = s.prefix;
   // N, rows = N / L and step are powers of two: wrap and divide by masks and shifts.
   int log2_n = 0, log2_step = 0;
   while ((1 << log2_n) < N) ++log2_n;
   while ((1 << log2_step) < step) ++log2_step;
   auto row_of = [&](long r) { return static_cast<int>(r & static_cast<long>(rows - 1)); };
-  // Running sum along the extended line r from column 0 to column c (a multiple of `step`).
-  auto ext = [&](int r, long c, Sum4& acc, double sign) {
+  // Running sum along the extended line r from column 0 to column c (a multiple of `step`), of
+  // each sweep.
+  auto ext_one = [&](const Rgba* prefix, int r, long c, Sum4& acc, double sign) {
     const long k = c >= 0 ? c >> log2_n : -((-c + N - 1) >> log2_n);
     const long cc = c - k * N;
     const size_t last = static_cast<size_t>(N / step);
@@ -249,7 +280,12 @@ void WriteCopy(const CopySweep& s) {
     for (long kk = k; kk < 0; ++kk) acc.Add(prefix[last * rows + row_of(r + kk * wrap)], -sign);
     acc.Add(prefix[static_cast<size_t>(cc >> log2_step) * rows + row_of(r + k * wrap)], sign);
   };
-  const double inv = 1.0 / (2.0 * job.H * 65535.0);  // sums are in units of 1 / 65535
+  auto ext = [&](int r, long c, Sum4& acc, double sign) {
+    ext_one(s.prefix, r, c, acc, sign);
+    if (twin) ext_one(twin->prefix, r, c, acc, sign);
+  };
+  // Sums are in units of 1 / 65535.
+  const double inv = 1.0 / (2.0 * job.H * 65535.0 * (twin ? 2.0 : 1.0));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), [&](const tbb::blocked_range<int>& rr) {
     for (int r = rr.begin(); r != rr.end(); ++r) {
       for (int p = 0; p < job.major; ++p) {
@@ -301,14 +337,15 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i < n; ++i) {
       const CellShape s = TableCellShape(n, j, i);
-      for (uint32_t c = 0; c < s.lambda; ++c) {
+      const uint32_t copies = CellCopies(s.lambda), tilts = TiltsPerAxis(s.lambda);
+      for (uint32_t c = 0; c < copies; ++c) {
         CopyEntry e{};
         e.log2_l = static_cast<uint8_t>(j);
         e.log2_ratio = static_cast<uint8_t>(i);
         e.lambda = s.lambda;
-        const bool tilt_u = s.lambda == 1 || c < s.lambda / 2;
+        const bool tilt_u = s.lambda == 1 || c < tilts;
         e.axis = s.lambda == 1 ? TiltAxis::kNone : (tilt_u ? TiltAxis::kU : TiltAxis::kV);
-        e.tilt_index = s.lambda == 1 ? 0 : c % (s.lambda / 2);
+        e.tilt_index = c % tilts;
         e.tg = TiltTangent(s.lambda, e.tilt_index);
         e.width = tilt_u ? s.major : s.minor;
         e.height = tilt_u ? s.minor : s.major;
@@ -370,7 +407,8 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         filtered_j = j;
       }
       std::vector<CopyJob> jobs;
-      for (; d < dir.size() && jobs.size() < kGroup; ++d) {
+      std::vector<bool> twins;  // jobs[q] and jobs[q + 1] are one copy's two sweeps
+      for (; d < dir.size() && jobs.size() + 2 <= kGroup; ++d) {
         const CopyEntry& e = dir[d];
         if (e.log2_l != first.log2_l || e.log2_ratio != first.log2_ratio || e.axis != first.axis)
           break;
@@ -382,6 +420,14 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         job.transposed = e.axis == TiltAxis::kV;
         job.major = static_cast<int>(job.transposed ? e.height : e.width);
         job.out = texels + e.offset;
+        const bool twice = SweptTwice(e);
+        twins.push_back(twice);
+        if (twice) {
+          job.minor_shift = -0.25;
+          jobs.push_back(job);
+          twins.push_back(false);
+          job.minor_shift = 0.25;
+        }
         jobs.push_back(job);
         work_done += work_of(e);
       }
@@ -403,8 +449,17 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         c.prefix = prefixes.data() + entries;
         entries += PrefixSize(c);
       }
-      SweepCopies(group, first.axis == TiltAxis::kV ? g_v : g_u, N, 1 << j);
-      for (const CopySweep& s : group) WriteCopy(s);
+      std::atomic<bool> sweep_stopped{false};
+      SweepCopies(group, first.axis == TiltAxis::kV ? g_v : g_u, N, 1 << j, options.stop,
+                  sweep_stopped);
+      if (sweep_stopped.load()) {
+        stopped = true;
+        return;
+      }
+      for (size_t q = 0; q < group.size(); ++q) {
+        WriteCopy(group[q], twins[q] ? &group[q + 1] : nullptr);
+        if (twins[q]) ++q;
+      }
       if (options.progress) options.progress(d == dir.size() ? 1.0 : work_done / total_work);
     }
   });

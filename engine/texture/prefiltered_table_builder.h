@@ -19,8 +19,10 @@ struct TableBuildOptions {
   int threads = 0;  // 0: all cores (the caller's task arena otherwise)
   // Called from the building thread with the fraction of the work done, increasing, last 1.
   std::function<void(double)> progress;
-  // Asked between groups of copies (a few per second at most); true: the build stops and
-  // returns Cancelled (a load whose client gave up does not build on for half a minute).
+  // Asked between groups of copies and, inside a group's sweep, by each worker thread every 256
+  // columns (so it must be thread-safe and cheap: a few hundred times a second at most); true:
+  // the build stops and returns Cancelled (a load whose client gave up does not build on for
+  // half a minute).
   std::function<bool()> stop;
 };
 

@@ -97,9 +97,11 @@ int RunInfo(int argc, char** argv) {
               n, h.source_width, h.source_height);
   std::printf("  copies       %zu in %d cells (L = 2^0..2^%d, H / L = 2^0..2^%d) + base\n",
               table->directory().size() - 1, (n + 1) * n, n, n - 1);
-  std::printf("  texels       %llu (closed form n S_n + 4^n = %llu)\n",
+  std::printf("  texels       %llu (n S_n + end tilts + 4^n = %llu + %llu + %llu)\n",
               static_cast<unsigned long long>(texels),
-              static_cast<unsigned long long>(TableTexels(n)));
+              static_cast<unsigned long long>(n * DiagonalTexels(n)),
+              static_cast<unsigned long long>(EndTiltTexels(n)),
+              static_cast<unsigned long long>(uint64_t{1} << (2 * n)));
   std::printf("  bytes        %llu (RGBA8; header and directory %llu)\n",
               static_cast<unsigned long long>(h.total_bytes),
               static_cast<unsigned long long>(h.data_offset));
