@@ -285,17 +285,37 @@ double FootprintLength(const GrazingPlaneView& view, int i, int j, int texture_s
          std::max(std::hypot(f.dudx, f.dvdx), std::hypot(f.dudy, f.dvdy));
 }
 
+double FootprintAngleFromAxis(const GrazingPlaneView& view, int i, int j) {
+  TextureFootprint f;
+  if (!GroundFootprint(view, i, j, &f)) return 0;
+  // The principal axis of X X^T + Y Y^T (X, Y the steps) is at 0.5 atan2(2 M_uv, M_uu - M_vv)
+  // to U.
+  const double uu = double(f.dudx) * f.dudx + double(f.dudy) * f.dudy;
+  const double vv = double(f.dvdx) * f.dvdx + double(f.dvdy) * f.dvdy;
+  const double uv = double(f.dudx) * f.dvdx + double(f.dudy) * f.dvdy;
+  const double to_u = std::abs(0.5 * std::atan2(2 * uv, uu - vv)) * 180 / M_PI;  // 0..90
+  return std::min(to_u, 90 - to_u);
+}
+
 std::vector<double> PsnrByFootprintBand(const Image& a, const Image& b,
                                         const GrazingPlaneView& view, int texture_size,
                                         int first_row, const std::vector<double>& edges,
                                         std::vector<uint64_t>* pixels) {
+  return PsnrByBand(
+      a, b, first_row, [&](int i, int j) { return FootprintLength(view, i, j, texture_size); },
+      edges, pixels);
+}
+
+std::vector<double> PsnrByBand(const Image& a, const Image& b, int first_row,
+                               const std::function<double(int, int)>& measure,
+                               const std::vector<double>& edges, std::vector<uint64_t>* pixels) {
   const size_t bands = edges.size() + 1;
   std::vector<double> sum(bands, 0);
   std::vector<uint64_t> count(bands, 0);
   for (int j = first_row; j < a.height(); ++j)
     for (int i = 0; i < a.width(); ++i) {
-      const double length = FootprintLength(view, i, j, texture_size);
-      const size_t band = std::upper_bound(edges.begin(), edges.end(), length) - edges.begin();
+      const double value = measure(i, j);
+      const size_t band = std::upper_bound(edges.begin(), edges.end(), value) - edges.begin();
       const Rgba &p = a.at(i, j), &q = b.at(i, j);
       sum[band] += double(p.r - q.r) * (p.r - q.r) + double(p.g - q.g) * (p.g - q.g) +
                    double(p.b - q.b) * (p.b - q.b);

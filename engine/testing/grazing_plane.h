@@ -78,8 +78,18 @@ std::vector<double> PsnrByRow(const Image& a, const Image& b, int first_row);
 // The longer of pixel (i, j)'s two one-pixel steps in texels of a texture_size texture (0 above
 // the horizon).
 double FootprintLength(const GrazingPlaneView& view, int i, int j, int texture_size);
-// PSNR of the same rows by band of FootprintLength: band k holds lengths in [edges[k-1],
-// edges[k]) (the first from 0, the last without end); `pixels`: how many each band holds.
+// The angle in degrees, 0..45, between pixel (i, j)'s footprint's long axis (the principal axis
+// of the second moments of its two steps) and the nearest texture axis (0 above the horizon).
+// The table's copies have sides parallel to an axis, so a filter of seed 000 may depend on it.
+double FootprintAngleFromAxis(const GrazingPlaneView& view, int i, int j);
+// PSNR of the same rows by band of a pixel measure: band k holds the pixels whose measure(i, j)
+// lies in [edges[k-1], edges[k]) (the first from -infinity, the last without end); `pixels`:
+// how many each band holds.
+std::vector<double> PsnrByBand(const Image& a, const Image& b, int first_row,
+                               const std::function<double(int, int)>& measure,
+                               const std::vector<double>& edges,
+                               std::vector<uint64_t>* pixels = nullptr);
+// PsnrByBand of FootprintLength.
 std::vector<double> PsnrByFootprintBand(const Image& a, const Image& b,
                                         const GrazingPlaneView& view, int texture_size,
                                         int first_row, const std::vector<double>& edges,

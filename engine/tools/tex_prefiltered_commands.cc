@@ -147,7 +147,9 @@ int RunBenchFilter(int argc, char** argv) {
         "         [--ref-density D] [--ref-max K] [--ref-min K] [--timing-rows S] [--threads N]\n"
         "         [--positions P]\n"
         "The grazing-plane benchmark (DESIGN.md): PSNR of trilinear, aniso and oiio against\n"
-        "the supersampled reference of the same aperture, and ns per sample single-threaded.\n"
+        "the supersampled reference of the same aperture, and ns per sample single-threaded;\n"
+        "then PSNR by band of footprint length and by the footprint's angle from the nearest\n"
+        "texture axis (5-degree bins).\n"
         "--yaws turns the camera about the vertical (0: along the texture's v axis); the\n"
         "reference takes D strata per texel of extent per side, at least --ref-min (2) and at\n"
         "most --ref-max (128).\n"
@@ -204,6 +206,9 @@ int RunBenchFilter(int argc, char** argv) {
   // PSNR by band of footprint length (texels a pixel step spans), printed after the table.
   const std::vector<double> kBandEdges = {2, 4, 16};
   std::vector<std::string> band_rows;
+  // And by the footprint's long axis's angle from the nearest texture axis, 5-degree bins.
+  const std::vector<double> kAngleEdges = {5, 10, 15, 20, 25, 30, 35, 40};
+  std::vector<std::string> angle_rows;
   for (const BenchTexture& tex : *textures) {
     const Stopwatch build_timer;
     auto block = BuildPrefilteredTable(tex.image);
@@ -232,12 +237,13 @@ int RunBenchFilter(int argc, char** argv) {
             const char* name;
             const TextureSampler* sampler;
             double ns = 0;
-            // Per position: the PSNR, by band and by row.
+            // Per position: the PSNR, by band, by angle and by row.
             std::vector<double> psnr;
-            std::vector<std::vector<double>> bands, rows;
+            std::vector<std::vector<double>> bands, angles, rows;
           };
           Mode modes[] = {{"trilinear", &trilinear}, {"aniso", &aniso}, {"oiio", oiio->get()}};
           std::vector<uint64_t> pixels;  // per band; the same at every position
+          std::vector<uint64_t> angle_pixels;
           for (int k = 0; k < positions; ++k) {
             const GrazingPlaneView at = ViewAtPosition(view, k);
             const Stopwatch ref_timer;
@@ -254,6 +260,9 @@ int RunBenchFilter(int argc, char** argv) {
               m.rows.push_back(PsnrByRow(img, *ref, first));
               m.bands.push_back(PsnrByFootprintBand(img, *ref, at, tex.image.width(), first,
                                                     kBandEdges, &pixels));
+              m.angles.push_back(PsnrByBand(
+                  img, *ref, first, [&](int i, int j) { return FootprintAngleFromAxis(at, i, j); },
+                  kAngleEdges, &angle_pixels));
               if (k > 0) continue;
               m.ns = NanosecondsPerSample(at, *m.sampler, timing_rows);
               if (auto s = WriteExrFile(img, {}, absl::StrCat(stem, "_", m.name, ".exr")); !s.ok())
@@ -273,6 +282,12 @@ int RunBenchFilter(int argc, char** argv) {
             return std::isnan(values.front()) ? NAN : PooledPsnr(values);
           };
           std::string band_row = absl::StrCat("| ", tex.name, " | ", theta, " | ", yaw, " | ", a);
+          std::string angle_row = band_row;
+          for (int m : {1, 2})  // aniso, oiio
+            for (size_t b = 0; b < angle_pixels.size(); ++b)
+              absl::StrAppend(
+                  &angle_row, " | ",
+                  angle_pixels[b] == 0 ? "-" : absl::StrFormat("%.2f", pooled(modes[m].angles, b)));
           // Per-row PSNR, one line per mode: trilinear blue, aniso red, oiio green.
           const Rgba kColours[] = {
               {0.1f, 0.2f, 0.9f, 1}, {0.9f, 0.1f, 0.1f, 1}, {0.1f, 0.6f, 0.1f, 1}};
@@ -300,6 +315,7 @@ int RunBenchFilter(int argc, char** argv) {
               modes[2].ns / modes[1].ns);
           std::fflush(stdout);
           band_rows.push_back(band_row + " |");
+          angle_rows.push_back(angle_row + " |");
         }
       }
     }
@@ -310,6 +326,15 @@ int RunBenchFilter(int argc, char** argv) {
       "aniso 2-4 | aniso 4-16 | aniso >= 16 | oiio < 2 | oiio 2-4 | oiio 4-16 | oiio >= 16 |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& row : band_rows) std::printf("%s\n", row.c_str());
+  std::printf(
+      "\nPSNR by the footprint's long axis's angle from the nearest texture axis (degrees), aniso "
+      "/ oiio:\n\n| texture | theta | yaw | a");
+  for (const char* mode : {"aniso", "oiio"})
+    for (int b = 0; b < 9; ++b) std::printf(" | %s %d-%d", mode, 5 * b, 5 * b + 5);
+  std::printf(" |\n|---|---|---|---");
+  for (int b = 0; b < 18; ++b) std::printf("|---");
+  std::printf("|\n");
+  for (const std::string& row : angle_rows) std::printf("%s\n", row.c_str());
   return 0;
 }
 

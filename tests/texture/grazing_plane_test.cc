@@ -100,6 +100,44 @@ TEST(GrazingPlane, PooledPsnrIsThePsnrOfTheMeasurementsTogether) {
   EXPECT_NEAR(PooledPsnr(mixed), 20.0 + 10.0 * std::log10(2.0), 1e-12);  // half the error
 }
 
+TEST(GrazingPlane, TheFootprintsAngleFromTheAxesFollowsTheYawAndBandsPoolToTheWholePsnr) {
+  // Near the horizon in the middle column, the footprint's long axis runs along the line of
+  // sight: at yaw y, y degrees from V, so min(y, 90 - y) from the nearest axis.
+  for (double yaw : {0.0, 10.0, 30.0, 45.0, 60.0, 80.0, 90.0}) {
+    GrazingPlaneView view;
+    view.pitch_deg = 5, view.yaw_deg = yaw;
+    const int row = FirstMeasuredRow(view) + 2;
+    EXPECT_NEAR(FootprintAngleFromAxis(view, view.width / 2, row), std::min(yaw, 90 - yaw), 0.5)
+        << "yaw " << yaw;
+  }
+  GrazingPlaneView view;
+  view.pitch_deg = 5, view.yaw_deg = 30;
+  EXPECT_EQ(FootprintAngleFromAxis(view, view.width / 2, 0), 0.0);  // sky
+  // Left and right of the middle the line of sight turns the other way: angles both sides of 30.
+  const int row = FirstMeasuredRow(view) + 2;
+  EXPECT_LT(FootprintAngleFromAxis(view, view.width / 4, row), 30.0);
+  EXPECT_GT(FootprintAngleFromAxis(view, 3 * view.width / 4, row), 30.0);
+
+  // PsnrByBand: bands of a measure (here the column) pool back to the whole image's PSNR.
+  const int w = 40, h = 8;
+  Image a(w, h), b(w, h);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      a.at(i, j) = {0.5f, 0.5f, 0.5f, 1};
+      const float e = 0.001f * static_cast<float>(1 + i % 7);
+      b.at(i, j) = {0.5f + e, 0.5f - e, 0.5f, 1};
+    }
+  std::vector<uint64_t> pixels;
+  const std::vector<double> bands = PsnrByBand(
+      a, b, 0, [](int i, int) { return static_cast<double>(i); }, {10, 30}, &pixels);
+  ASSERT_EQ(bands.size(), 3u);
+  EXPECT_EQ(pixels, (std::vector<uint64_t>{10 * h, 20 * h, 10 * h}));
+  double mse = 0;
+  for (size_t k = 0; k < 3; ++k)
+    mse += static_cast<double>(pixels[k]) * std::pow(10.0, -bands[k] / 10);
+  EXPECT_NEAR(10 * std::log10(w * h / mse), Psnr(a, b, 0), 1e-9);
+}
+
 TEST(GrazingPlane, PositionsMoveTheGroundByTheirOriginsAndSpreadTheTexelPhases) {
   GrazingPlaneView view;
   view.pitch_deg = 5, view.yaw_deg = 30;
