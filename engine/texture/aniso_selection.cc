@@ -265,7 +265,7 @@ void CopySelector::TableSlots(float H, float L, float tg, bool along_v, Selectio
   for (int c = 0; c < 3; ++c) {
     const int tilts = tilts_[cells[c]];
     const uint32_t first = first_[cells[c]] + v_offset * static_cast<uint32_t>(tilts);
-    if (tilts == 0) {  // the one untilted copy
+    if (tilts <= 1) {  // one copy per axis (0: the one untilted copy)
       set(2 * c, first, weights[c]);
       set(2 * c + 1, first, 0.0f);
       continue;
@@ -617,7 +617,7 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
           _mm256_mul_ps(_mm256_set1_ps(2.0f), _mm256_sub_ps(k, _mm256_cvtepi32_ps(k0))), half);
       __m256 next = _mm256_blendv_ps(y, one, _mm256_cmp_ps(one, y, _CMP_LT_OQ));
       next = _mm256_blendv_ps(next, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
-      const __m256i tilted = _mm256_cmpgt_epi32(tilts, izero);  // not the untilted copy
+      const __m256i tilted = _mm256_cmpgt_epi32(tilts, ione);  // more than one copy per axis
       const __m256i copy0 = _mm256_blendv_epi8(firsts, _mm256_add_epi32(firsts, k0), tilted);
       const __m256i copy1 =
           _mm256_blendv_epi8(firsts, _mm256_add_epi32(_mm256_add_epi32(firsts, k0), ione), tilted);

@@ -12,7 +12,7 @@
 namespace aperture {
 
 // The largest raster texture: 8192 x 8192 texels (1 GiB as float RGBA; its seed 000 table is
-// 6.4 GB). Larger palette maps go in as packed vector textures (.apv, up to 65536 x 65536).
+// 5.6 GB). Larger palette maps go in as packed vector textures (.apv, up to 65536 x 65536).
 inline constexpr int64_t kMaxImageTexels = int64_t{8192} * 8192;
 
 // Reads an image file through OpenImageIO. 8-bit values are taken as linear (value / 255).

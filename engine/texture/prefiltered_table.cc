@@ -26,7 +26,7 @@ uint64_t EndTiltTexels(int n) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i < n; ++i) {
       const CellShape s = TableCellShape(n, j, i);
-      if (s.lambda >= 2) texels += 4 * uint64_t{s.major} * s.minor;
+      if (s.lambda >= 4) texels += 4 * uint64_t{s.major} * s.minor;
     }
   return texels;
 }
@@ -35,12 +35,12 @@ uint64_t TableTexels(int n) {
   return static_cast<uint64_t>(n) * DiagonalTexels(n) + EndTiltTexels(n) + (uint64_t{1} << (2 * n));
 }
 
-uint32_t TiltsPerAxis(uint32_t lambda) { return lambda < 2 ? 1 : lambda / 2 + 2; }
+uint32_t TiltsPerAxis(uint32_t lambda) { return lambda < 4 ? 1 : lambda / 2 + 2; }
 
 uint32_t CellCopies(uint32_t lambda) { return lambda < 2 ? 1 : 2 * TiltsPerAxis(lambda); }
 
 float TiltTangent(uint32_t lambda, uint32_t k) {
-  if (lambda < 2) return 0.0f;
+  if (lambda < 4) return 0.0f;  // untilted, or seed 000's one tilt of lambda = 2
   const uint32_t half = lambda / 2;
   if (k == 0) return -1.0f;
   if (k > half) return 1.0f;

@@ -12,7 +12,8 @@
 // TiltsPerAxis(lambda) tilted to U (major axis U, short sides parallel to V) then as many tilted
 // to V, in the order of TiltTangent. Seed 000's lambda copies cost 4^(n-j) texels a cell, so
 // each diagonal i costs S_n = (4^(n+1) - 1) / 3 and the cells n * S_n (seed 000, memory
-// estimate); the end tilts add four copies to every tilted cell (EndTiltTexels). One extra copy,
+// estimate); the end tilts add four copies to every cell of lambda >= 4 (EndTiltTexels). One
+// extra copy,
 // the unfiltered texture (the "base", used for magnification), comes first.
 #pragma once
 
@@ -27,9 +28,9 @@
 namespace aperture {
 
 inline constexpr char kTableMagic[8] = {'A', 'P', 'T', 'A', 'B', 'L', 'E', '0'};
-inline constexpr uint32_t kTableVersion = 2;  // 2: the end tilts (TiltsPerAxis)
+inline constexpr uint32_t kTableVersion = 3;  // 3: the end tilts (TiltsPerAxis)
 inline constexpr uint32_t kTexelRgba8 = 1;    // 4 bytes per texel: linear RGBA, unorm 8-bit
-inline constexpr int kTableMaxLog2Size = 13;  // 8192 x 8192: 6.4 GB
+inline constexpr int kTableMaxLog2Size = 13;  // 8192 x 8192: 5.6 GB
 
 // Plain old data at offset 0. All offsets are bytes from the start of the block.
 struct TableHeader {
@@ -72,20 +73,21 @@ struct CellShape {
 CellShape TableCellShape(int n, int j, int i);
 // seed 000: S_n = (4^(n+1) - 1) / 3 texels per diagonal, for the paper's lambda copies a cell.
 uint64_t DiagonalTexels(int n);
-// The texels of the end tilts (four copies a tilted cell) over the whole table.
+// The texels of the end tilts (four copies a cell of lambda >= 4) over the whole table.
 uint64_t EndTiltTexels(int n);
 // The whole table: n * S_n + EndTiltTexels(n) + 4^n (the base copy).
 uint64_t TableTexels(int n);
 
 // The tilts of a cell, per axis. Seed 000 tilts a cell of resolution ratio lambda >= 2 by
 // tg_k = (2k + 1) / (lambda / 2) - 1, k = 0 .. lambda / 2 - 1: the centres of lambda / 2 equal
-// parts of [-1, 1]. Our extension (issue 22) adds the two ends, tg = -1 and +1: without them a
-// footprint whose long side is near a diagonal (|tg| near 1) reads a copy sheared by up to half a
-// spacing to one side, and a cell of lambda = 2 has the one tilt tg = 0 for every direction
-// (docs/BENCHMARKS.md, issue 22, session 34: 3-4 dB lost within 8 degrees of the diagonals on
-// the grass photo). So a tilted cell has lambda / 2 + 2 tilts per axis, ascending: -1, the
-// paper's, +1.
-uint32_t TiltsPerAxis(uint32_t lambda);  // 1 when lambda < 2 (the untilted copy)
+// parts of [-1, 1]. Our extension (issue 22) adds the two ends, tg = -1 and +1, to every cell of
+// lambda >= 4: without them a footprint whose long side is near a diagonal (|tg| near 1) reads
+// a copy sheared by up to half a spacing to one side (docs/BENCHMARKS.md, issue 22, session 34:
+// 3-4 dB lost within 8 degrees of the diagonals on the grass photo). Such a cell has lambda / 2
+// + 2 tilts per axis, ascending: -1, the paper's, +1. A cell of lambda = 2 keeps the paper's one
+// tilt, tg = 0 (its ends gained on the photos but lost 0.3-0.4 dB on the checkerboard's short
+// footprints at a = 2, for 18 % more table).
+uint32_t TiltsPerAxis(uint32_t lambda);  // 1 when lambda < 4 (untilted, or lambda = 2's tg = 0)
 uint32_t CellCopies(uint32_t lambda);    // 1 when lambda < 2, else 2 TiltsPerAxis(lambda)
 // tg of tilt k = 0 .. TiltsPerAxis(lambda) - 1 (0 when untilted).
 float TiltTangent(uint32_t lambda, uint32_t k);
