@@ -329,10 +329,13 @@ int RunBenchFilter(int argc, char** argv) {
   std::printf(
       "\nPSNR by the footprint's long axis's angle from the nearest texture axis (degrees), aniso "
       "/ oiio:\n\n| texture | theta | yaw | a");
+  const size_t angle_bins = kAngleEdges.size() + 1;  // the last runs to 45 degrees
   for (const char* mode : {"aniso", "oiio"})
-    for (int b = 0; b < 9; ++b) std::printf(" | %s %d-%d", mode, 5 * b, 5 * b + 5);
+    for (size_t b = 0; b < angle_bins; ++b)
+      std::printf(" | %s %g-%g", mode, b == 0 ? 0.0 : kAngleEdges[b - 1],
+                  b + 1 < angle_bins ? kAngleEdges[b] : 45.0);
   std::printf(" |\n|---|---|---|---");
-  for (int b = 0; b < 18; ++b) std::printf("|---");
+  for (size_t b = 0; b < 2 * angle_bins; ++b) std::printf("|---");
   std::printf("|\n");
   for (const std::string& row : angle_rows) std::printf("%s\n", row.c_str());
   return 0;
