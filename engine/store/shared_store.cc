@@ -176,6 +176,9 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
   MarkUsed(path);
   built_.fetch_add(1, std::memory_order_relaxed);
   Remember(*published);
+  // A freshly built entry its reader refuses is a bug of the builder: reported, not rebuilt.
+  if (validate)
+    if (absl::Status valid = validate((*published)->payload()); !valid.ok()) return valid;
   return *published;
 }
 

@@ -96,7 +96,8 @@ class SharedStore {
   // Attaches, or, when the entry is missing or unusable, builds it once for the whole machine
   // (other processes wanting the same key wait, then attach) and publishes it. An entry that
   // `validate` (when given) refuses is unusable too: it is counted as rejected, deleted and
-  // rebuilt (processes that have it mapped keep their pages).
+  // rebuilt (processes that have it mapped keep their pages). Every entry returned has passed
+  // `validate`; one this call built and `validate` refuses is returned as validate's error.
   absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuild(
       const std::string& key, EntryKind kind, const Builder& build,
       const Validator& validate = nullptr) const;

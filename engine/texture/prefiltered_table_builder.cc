@@ -407,7 +407,6 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         filtered_j = j;
       }
       std::vector<CopyJob> jobs;
-      std::vector<bool> twins;  // jobs[q] and jobs[q + 1] are one copy's two sweeps
       for (; d < dir.size() && jobs.size() + 2 <= kGroup; ++d) {
         const CopyEntry& e = dir[d];
         if (e.log2_l != first.log2_l || e.log2_ratio != first.log2_ratio || e.axis != first.axis)
@@ -420,12 +419,9 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         job.transposed = e.axis == TiltAxis::kV;
         job.major = static_cast<int>(job.transposed ? e.height : e.width);
         job.out = texels + e.offset;
-        const bool twice = SweptTwice(e);
-        twins.push_back(twice);
-        if (twice) {
+        if (SweptTwice(e)) {  // this sweep, then its twin at +1/4 next in the group
           job.minor_shift = -0.25;
           jobs.push_back(job);
-          twins.push_back(false);
           job.minor_shift = 0.25;
         }
         jobs.push_back(job);
@@ -457,8 +453,9 @@ absl::StatusOr<TableBlock> BuildPrefilteredTable(const Image& image,
         return;
       }
       for (size_t q = 0; q < group.size(); ++q) {
-        WriteCopy(group[q], twins[q] ? &group[q + 1] : nullptr);
-        if (twins[q]) ++q;
+        const bool twice = group[q].job.minor_shift < 0;  // its twin follows it
+        WriteCopy(group[q], twice ? &group[q + 1] : nullptr);
+        if (twice) ++q;
       }
       if (options.progress) options.progress(d == dir.size() ? 1.0 : work_done / total_work);
     }

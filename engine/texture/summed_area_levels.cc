@@ -103,15 +103,12 @@ std::string SummedAreaTableKey(const MipPyramid& pyramid, int channels) {
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTables(
     const SharedStore& store, const MipPyramid& pyramid, int channels) {
-  auto entry = store.GetOrBuild(
+  return store.GetOrBuild(
       SummedAreaTableKey(pyramid, channels), EntryKind::kSummedAreaTable,
       [&]() -> absl::StatusOr<std::vector<std::byte>> {
         return SummedAreaLevelsToBytes(pyramid, channels);
       },
       [](std::span<const std::byte> payload) { return ViewSummedAreaLevels(payload).status(); });
-  if (!entry.ok()) return entry.status();
-  if (auto view = ViewSummedAreaLevels((*entry)->payload()); !view.ok()) return view.status();
-  return entry;
 }
 
 }  // namespace aperture

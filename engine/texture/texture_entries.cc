@@ -47,7 +47,7 @@ std::string PackedTextureKey(std::span<const uint8_t> apv_bytes) {
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
     const SharedStore& store, const Image& base, const std::function<bool()>& stop) {
-  auto entry = store.GetOrBuild(
+  return store.GetOrBuild(
       PrefilteredTableKey(base), EntryKind::kPrefilteredTable,
       [&]() -> absl::StatusOr<std::vector<std::byte>> {
         TableBuildOptions options;
@@ -56,18 +56,14 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildPrefilteredTable(
         if (!block.ok()) return block.status();
         return std::move(block->bytes);
       },
-      // The store vouches for the bytes; the table's own checks
-      // catch a foreign writer (a build with another layout).
+      // The store vouches for the bytes; the table's own checks catch a foreign writer (a build
+      // with another layout).
       [](std::span<const std::byte> payload) { return PrefilteredTable::View(payload).status(); });
-  if (!entry.ok()) return entry.status();
-  // A freshly built table that fails its own checks is a bug: reported, not retried.
-  if (auto view = PrefilteredTable::View((*entry)->payload()); !view.ok()) return view.status();
-  return entry;
 }
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrDecodePackedTexture(
     const SharedStore& store, std::span<const uint8_t> apv_bytes) {
-  auto entry = store.GetOrBuild(
+  return store.GetOrBuild(
       PackedTextureKey(apv_bytes), EntryKind::kPackedTexture,
       [&]() -> absl::StatusOr<std::vector<std::byte>> {
         auto texture = packed::DecodeApv(apv_bytes);
@@ -79,12 +75,6 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrDecodePackedTexture(
                    {reinterpret_cast<const uint8_t*>(payload.data()), payload.size()})
             .status();
       });
-  if (!entry.ok()) return entry.status();
-  const auto payload = (*entry)->payload();
-  auto view = packed::PackedTextureView::FromBytes(
-      {reinterpret_cast<const uint8_t*>(payload.data()), payload.size()});
-  if (!view.ok()) return view.status();
-  return entry;
 }
 
 }  // namespace aperture
