@@ -221,6 +221,15 @@ GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k) {
   return moved;
 }
 
+YawSpread SpreadAcrossYaws(std::span<const double> yaws, std::span<const double> psnrs) {
+  YawSpread out;
+  if (psnrs.empty() || yaws.size() != psnrs.size()) return out;
+  const auto [lowest, highest] = std::minmax_element(psnrs.begin(), psnrs.end());
+  out.spread = *highest - *lowest;
+  out.lowest_yaw = yaws[static_cast<size_t>(lowest - psnrs.begin())];
+  return out;
+}
+
 double PooledPsnr(std::span<const double> psnrs) {
   if (psnrs.empty()) return 0;
   double mse = 0;

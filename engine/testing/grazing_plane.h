@@ -5,6 +5,7 @@
 // bilinear texture over each pixel's a x a screen square by stratified supersampling.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -63,6 +64,14 @@ void MoveForward(GrazingPlaneView* view, double world_units);
 // row meets the texels and the checkerboard's edges at one phase, so one position scores one
 // phase: bench-filter --positions pools several.
 GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k);
+// The spread of one view's PSNR across yaws (issue 22's bar on aniso): the highest minus the
+// lowest, and the yaw of the lowest (the first where two tie). Empty or unequal spans: spread 0,
+// yaw NaN.
+struct YawSpread {
+  double spread = 0;
+  double lowest_yaw = NAN;
+};
+YawSpread SpreadAcrossYaws(std::span<const double> yaws, std::span<const double> psnrs);
 // PSNR (peak 1) over RGB of rows [first_row, height).
 double Psnr(const Image& a, const Image& b, int first_row);
 // The PSNR of the mean squared error of several measurements of equal pixel counts, given

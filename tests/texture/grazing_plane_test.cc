@@ -100,6 +100,20 @@ TEST(GrazingPlane, PooledPsnrIsThePsnrOfTheMeasurementsTogether) {
   EXPECT_NEAR(PooledPsnr(mixed), 20.0 + 10.0 * std::log10(2.0), 1e-12);  // half the error
 }
 
+TEST(GrazingPlane, TheSpreadAcrossYawsIsTheHighestLessTheLowestAtTheLowestsYaw) {
+  const double yaws[] = {0, 15, 30, 45, 60, 90};
+  const double psnrs[] = {40.85, 40.72, 40.91, 41.09, 40.46, 40.86};
+  const YawSpread s = SpreadAcrossYaws(yaws, psnrs);
+  EXPECT_NEAR(s.spread, 41.09 - 40.46, 1e-12);
+  EXPECT_EQ(s.lowest_yaw, 60);
+  // A tie: the first lowest; one view: no spread; unequal or empty spans: nothing to compare.
+  const double tied[] = {30, 31, 30, 32, 33, 34};
+  EXPECT_EQ(SpreadAcrossYaws(yaws, tied).lowest_yaw, 0);
+  EXPECT_EQ(SpreadAcrossYaws(std::span(yaws, 1), std::span(psnrs, 1)).spread, 0);
+  EXPECT_TRUE(std::isnan(SpreadAcrossYaws(yaws, std::span(psnrs, 5)).lowest_yaw));
+  EXPECT_TRUE(std::isnan(SpreadAcrossYaws({}, {}).lowest_yaw));
+}
+
 TEST(GrazingPlane, TheFootprintsAngleFromTheAxesFollowsTheYawAndBandsPoolToTheWholePsnr) {
   // Near the horizon in the middle column, the footprint's long axis runs along the line of
   // sight: at yaw y, y degrees from V, so min(y, 90 - y) from the nearest axis.
