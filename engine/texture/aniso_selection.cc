@@ -121,6 +121,36 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
   return out;
 }
 
+// A magnified reading (H < 1) in the footprint's principal axes (issue 22, session 35). The
+// magnification blend (TableSlots, AddProbesLane) reads the base and the first copy, the 2 x 2
+// box, neither of them sheared, and puts its probes along (1, tg). With the parallelogram's
+// (H, L, tg) its covariance is L^2 / 3 I + (H^2 - L^2) / 3 (1, tg)(1, tg)^T, short of the
+// footprint's by L^2 tg / 3 in the cross term and L^2 tg^2 / 3 in the minor one: a turned
+// footprint was filtered as if it were turned less. The same blend built from the principal moments
+// lambda_1 >= lambda_2 (H'^2 = lambda_1, L'^2 = lambda_2 = H^2 L^2 / lambda_1) with its probes
+// along the principal axis, slope tp to the major axis, has the footprint's covariance exactly:
+// L'^2 / 3 I
+// + (H'^2 - L'^2) / 3 e e^T. The probes' layout is computed along the major axis, so their
+// positions are scaled by cos = 1 / sqrt(1 + tp^2). Towards H = 1, where the table's copies take
+// over with the parallelogram's values, the principal values are blended back by beta = min(1,
+// (1 - H^2) / (2 (H'^2 - H^2))), which also keeps the blended H under 1.
+void MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
+  const float major = H * H, L2 = L * L;
+  const float cross = tg * major, minor = L2 + tg * cross;
+  const float half_difference = 0.5f * (major - minor);
+  const float lambda1 =
+      0.5f * (major + minor) + std::sqrt(half_difference * half_difference + cross * cross);
+  const float excess = lambda1 - major, room = 0.5f * (1.0f - major);
+  const float beta = excess <= room ? 1.0f : room / excess;
+  const float gap = lambda1 - minor;
+  const float tp = gap > 0.0f ? cross / gap : 0.0f;
+  const float lambda2 = major * L2 / lambda1;
+  H = std::sqrt(major + beta * excess);
+  L = std::sqrt(L2 + beta * (lambda2 - L2));
+  tg = tg + beta * (tp - tg);
+  scale = 1.0f + beta * (1.0f / std::sqrt(1.0f + tp * tp) - 1.0f);
+}
+
 // Below L = 1 the table's thinnest copies are up to twice too thick across the long side: the
 // paper's table stops there. This mixes in bilinear probes of the base, spread along the long
 // side, so that the blend's variances are the aperture's own (box of half-sides H and L on the
@@ -137,7 +167,7 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
 // probes s apart, the outer two of weight e growing from 0 (where they appear) to the others'
 // (where the next pair appears), e set so that the variance is T. The probes fade out between
 // kProbeHalfExtent and twice it. This sets the probes of reading r of a lane when it is read and
-// thin.
+// thin; their positions are scaled by the lane's probe_scale (MagnifiedInPrincipalAxes).
 void AddProbesLane(SelectionLanes& out, int r, int lane) {
   out.probes[r][lane] = 0;
   if (!(out.reading_weight[r][lane] > 0.0f)) return;
@@ -160,7 +190,7 @@ void AddProbesLane(SelectionLanes& out, int r, int lane) {
       out.weight[r][0][lane] = (1.0f - probes) * (1.0f - H * H);  // the base at the centre
       out.weight[r][1][lane] = probes * (L * L) + (1.0f - probes) * (H * H);  // the first copy
       out.probes[r][lane] = 2;
-      out.probe_step[r][lane] = 2.0f * d;
+      out.probe_step[r][lane] = 2.0f * d * out.probe_scale[r][lane];
       out.probe_weight[r][lane] = 0.0f;
       out.probe_end_weight[r][lane] = probes * 0.5f * share;
       return;
@@ -172,7 +202,7 @@ void AddProbesLane(SelectionLanes& out, int r, int lane) {
   constexpr float s2 = kProbeSpacing * kProbeSpacing;
   if (T <= 0.25f * s2) {
     out.probes[r][lane] = 2;
-    out.probe_step[r][lane] = 2.0f * std::sqrt(T);
+    out.probe_step[r][lane] = 2.0f * std::sqrt(T) * out.probe_scale[r][lane];
     out.probe_weight[r][lane] = 0.0f;
     out.probe_end_weight[r][lane] = 0.5f * share;
   } else {
@@ -188,7 +218,7 @@ void AddProbesLane(SelectionLanes& out, int r, int lane) {
     const float A = (4.0f * (Jf - 1.0f) * (Jf - 1.0f) - 1.0f) * (1.0f / 12.0f);
     const float e = std::clamp(1.5f * (t - A) / (Jf * (2.0f * Jf - 1.0f)), 0.0f, 0.5f / Jf);
     out.probes[r][lane] = 2 * J;
-    out.probe_step[r][lane] = kProbeSpacing;
+    out.probe_step[r][lane] = kProbeSpacing * out.probe_scale[r][lane];
     out.probe_end_weight[r][lane] = e * share;
     out.probe_weight[r][lane] = (1.0f - 2.0f * e) / (2.0f * (Jf - 1.0f)) * share;
   }
@@ -287,9 +317,12 @@ void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const fl
     out.along_v[0][lane] = r.u_major ? 0 : 1;
     out.along_v[1][lane] = r.u_major ? 1 : 0;
     for (int k = 0; k < 2; ++k) {
-      out.H[k][lane] = r.H[k], out.L[k][lane] = r.L[k], out.tg[k][lane] = r.tg[k];
-      if (out.reading_weight[k][lane] > 0.0f)
-        TableSlots(r.H[k], r.L[k], r.tg[k], out.along_v[k][lane] != 0, out, k, lane);
+      float H = r.H[k], L = r.L[k], tg = r.tg[k], scale = 1.0f;
+      const bool read = out.reading_weight[k][lane] > 0.0f;
+      if (read && H < 1.0f) MagnifiedInPrincipalAxes(H, L, tg, scale);
+      out.H[k][lane] = H, out.L[k][lane] = L, out.tg[k][lane] = tg;
+      out.probe_scale[k][lane] = scale;
+      if (read) TableSlots(H, L, tg, out.along_v[k][lane] != 0, out, k, lane);
     }
   }
   for (int lane = 0; lane < n; ++lane)
@@ -315,6 +348,37 @@ __attribute__((target("avx2"))) inline void BlendSlot(SelectionLanes& out, int r
 // Where `lanes` is set, `to` takes `value`.
 __attribute__((target("avx2"))) inline void BlendStore(float* to, __m256 value, __m256 lanes) {
   _mm256_storeu_ps(to, _mm256_blendv_ps(_mm256_loadu_ps(to), value, lanes));
+}
+
+// MagnifiedInPrincipalAxes for the lanes of `lanes`, the same operations; scale is 1 elsewhere.
+__attribute__((target("avx2"))) void MagnifiedInPrincipalAxesAvx2(__m256 lanes, __m256& H,
+                                                                  __m256& L, __m256& tg,
+                                                                  __m256& scale) {
+  const __m256 one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 major = _mm256_mul_ps(H, H), L2 = _mm256_mul_ps(L, L);
+  const __m256 cross = _mm256_mul_ps(tg, major);
+  const __m256 minor = _mm256_add_ps(L2, _mm256_mul_ps(tg, cross));
+  const __m256 half_difference = _mm256_mul_ps(half, _mm256_sub_ps(major, minor));
+  const __m256 lambda1 =
+      _mm256_add_ps(_mm256_mul_ps(half, _mm256_add_ps(major, minor)),
+                    _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(half_difference, half_difference),
+                                                 _mm256_mul_ps(cross, cross))));
+  const __m256 excess = _mm256_sub_ps(lambda1, major);
+  const __m256 room = _mm256_mul_ps(half, _mm256_sub_ps(one, major));
+  const __m256 beta =
+      _mm256_blendv_ps(_mm256_div_ps(room, excess), one, _mm256_cmp_ps(excess, room, _CMP_LE_OQ));
+  const __m256 gap = _mm256_sub_ps(lambda1, minor);
+  const __m256 tp = _mm256_and_ps(_mm256_cmp_ps(gap, zero, _CMP_GT_OQ), _mm256_div_ps(cross, gap));
+  const __m256 lambda2 = _mm256_div_ps(_mm256_mul_ps(major, L2), lambda1);
+  H = _mm256_blendv_ps(H, _mm256_sqrt_ps(_mm256_add_ps(major, _mm256_mul_ps(beta, excess))), lanes);
+  L = _mm256_blendv_ps(
+      L, _mm256_sqrt_ps(_mm256_add_ps(L2, _mm256_mul_ps(beta, _mm256_sub_ps(lambda2, L2)))), lanes);
+  tg = _mm256_blendv_ps(tg, _mm256_add_ps(tg, _mm256_mul_ps(beta, _mm256_sub_ps(tp, tg))), lanes);
+  const __m256 cosine =
+      _mm256_div_ps(one, _mm256_sqrt_ps(_mm256_add_ps(one, _mm256_mul_ps(tp, tp))));
+  scale = _mm256_blendv_ps(one, _mm256_add_ps(one, _mm256_mul_ps(beta, _mm256_sub_ps(cosine, one))),
+                           lanes);
 }
 
 // For J = 2..9 (index J - 2): AddProbesLane's A, J - 1, J (2J - 1) and 0.5 / J.
@@ -405,7 +469,7 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
   __m256i* lane_probes = reinterpret_cast<__m256i*>(out.probes[r]);
   _mm256_store_si256(lane_probes, _mm256_blendv_epi8(_mm256_load_si256(lane_probes), probes,
                                                      _mm256_castps_si256(thin)));
-  BlendStore(out.probe_step[r], step, thin);
+  BlendStore(out.probe_step[r], _mm256_mul_ps(step, _mm256_load_ps(out.probe_scale[r])), thin);
   BlendStore(out.probe_end_weight[r], end_weight, thin);
   BlendStore(out.probe_weight[r], weight, thin);
   // The magnified lanes past the fade: the first copy alone (slot 1's copy in slot 0).
@@ -498,16 +562,21 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
   for (int r = 0; r < 2; ++r) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.probes[r]), _mm256_setzero_si256());
     if (_mm256_movemask_ps(read[r]) == 0) continue;
-    const __m256 H = _mm256_sqrt_ps(majors[r]);
+    __m256 H = _mm256_sqrt_ps(majors[r]);
     const __m256 inv_h = _mm256_div_ps(one, H);
-    const __m256 tg = _mm256_mul_ps(_mm256_mul_ps(uv, inv_h), inv_h);
-    const __m256 L = _mm256_mul_ps(area, inv_h);
+    __m256 tg = _mm256_mul_ps(_mm256_mul_ps(uv, inv_h), inv_h);
+    __m256 L = _mm256_mul_ps(area, inv_h);
+    // Magnified readings in the principal axes (MagnifiedInPrincipalAxes); H stays under 1.
+    const __m256 magnify = _mm256_cmp_ps(H, one, _CMP_LT_OQ);
+    __m256 probe_scale = one;
+    if (_mm256_movemask_ps(_mm256_and_ps(magnify, read[r])) != 0)
+      MagnifiedInPrincipalAxesAvx2(magnify, H, L, tg, probe_scale);
     _mm256_store_ps(out.H[r], H);
     _mm256_store_ps(out.tg[r], tg);
     _mm256_store_ps(out.L[r], L);
+    _mm256_store_ps(out.probe_scale[r], probe_scale);
     // AddProbesLane's tests: read, min(L, H) < 1 and H < 2 kProbeHalfExtent; and not magnified
     // and nearly round (16 sqrt(T) - 1 <= 0), the same operations.
-    const __m256 magnify = _mm256_cmp_ps(H, one, _CMP_LT_OQ);
     const __m256 Lmin = _mm256_min_ps(L, H);
     __m256 round = zero;
     if (_mm256_movemask_ps(magnify) != 0) {  // only magnified lanes can be nearly round
@@ -696,6 +765,7 @@ CopyBlend BlendOf(const PrefilteredTable& table, const ApertureShape& shape, boo
   CopySelector(table).TableSlots(lanes.H[0][0], lanes.L[0][0], lanes.tg[0][0],
                                  shape.axis == TiltAxis::kV, lanes, 0, 0);
   lanes.probes[0][0] = 0;
+  lanes.probe_scale[0][0] = 1.0f;  // the given shape as it is (no principal axes)
   if (probes) AddProbesLane(lanes, 0, 0);
   for (int s = 0; s < SelectionLanes::kSlots; ++s) {
     if (!(lanes.weight[0][s][0] > 0.0f)) continue;

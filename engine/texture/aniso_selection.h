@@ -103,6 +103,9 @@ struct SelectionLanes {
   float probe_step[2][kLanes];
   float probe_weight[2][kLanes];
   float probe_end_weight[2][kLanes];
+  // The probes' positions are scaled by this (1 but for magnified readings, whose probes lie
+  // along the footprint's principal axis: see MagnifiedInPrincipalAxes in the .cc).
+  alignas(32) float probe_scale[2][kLanes];
 };
 
 class CopySelector {
