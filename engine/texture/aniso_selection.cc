@@ -134,7 +134,8 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
 // positions are scaled by cos = 1 / sqrt(1 + tp^2). Towards H = 1, where the table's copies take
 // over with the parallelogram's values, the principal values are blended back by beta = min(1,
 // (1 - H^2) / (2 (H'^2 - H^2))), which also keeps the blended H under 1.
-void MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
+// Returns whether the reading is wholly in the principal axes (beta = 1).
+bool MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
   const float major = H * H, L2 = L * L;
   const float cross = tg * major, minor = L2 + tg * cross;
   const float half_difference = 0.5f * (major - minor);
@@ -149,6 +150,7 @@ void MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
   L = std::sqrt(L2 + beta * (lambda2 - L2));
   tg = tg + beta * (tp - tg);
   scale = 1.0f + beta * (1.0f / std::sqrt(1.0f + tp * tp) - 1.0f);
+  return beta == 1.0f;
 }
 
 // Below L = 1 the table's thinnest copies are up to twice too thick across the long side: the
@@ -316,13 +318,22 @@ void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const fl
     out.reading_weight[1][lane] = r.valid ? 1.0f - r.first : 0.0f;
     out.along_v[0][lane] = r.u_major ? 0 : 1;
     out.along_v[1][lane] = r.u_major ? 1 : 0;
+    float H[2], L[2], tg[2], scale[2];
+    bool principal[2] = {false, false};
     for (int k = 0; k < 2; ++k) {
-      float H = r.H[k], L = r.L[k], tg = r.tg[k], scale = 1.0f;
-      const bool read = out.reading_weight[k][lane] > 0.0f;
-      if (read && H < 1.0f) MagnifiedInPrincipalAxes(H, L, tg, scale);
-      out.H[k][lane] = H, out.L[k][lane] = L, out.tg[k][lane] = tg;
-      out.probe_scale[k][lane] = scale;
-      if (read) TableSlots(H, L, tg, out.along_v[k][lane] != 0, out, k, lane);
+      H[k] = r.H[k], L[k] = r.L[k], tg[k] = r.tg[k], scale[k] = 1.0f;
+      if (out.reading_weight[k][lane] > 0.0f && H[k] < 1.0f)
+        principal[k] = MagnifiedInPrincipalAxes(H[k], L[k], tg[k], scale[k]);
+    }
+    // Two readings wholly in the principal axes blend the same reads (the same untilted copies,
+    // the probes along the same axis at the same distances): the first alone is read.
+    if (principal[0] && principal[1])
+      out.reading_weight[0][lane] = 1.0f, out.reading_weight[1][lane] = 0.0f;
+    for (int k = 0; k < 2; ++k) {
+      out.H[k][lane] = H[k], out.L[k][lane] = L[k], out.tg[k][lane] = tg[k];
+      out.probe_scale[k][lane] = scale[k];
+      if (out.reading_weight[k][lane] > 0.0f)
+        TableSlots(H[k], L[k], tg[k], out.along_v[k][lane] != 0, out, k, lane);
     }
   }
   for (int lane = 0; lane < n; ++lane)
@@ -351,9 +362,10 @@ __attribute__((target("avx2"))) inline void BlendStore(float* to, __m256 value, 
 }
 
 // MagnifiedInPrincipalAxes for the lanes of `lanes`, the same operations; scale is 1 elsewhere.
-__attribute__((target("avx2"))) void MagnifiedInPrincipalAxesAvx2(__m256 lanes, __m256& H,
-                                                                  __m256& L, __m256& tg,
-                                                                  __m256& scale) {
+// Returns the lanes wholly in the principal axes (beta = 1) among `lanes`.
+__attribute__((target("avx2"))) __m256 MagnifiedInPrincipalAxesAvx2(__m256 lanes, __m256& H,
+                                                                    __m256& L, __m256& tg,
+                                                                    __m256& scale) {
   const __m256 one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
   const __m256 zero = _mm256_setzero_ps();
   const __m256 major = _mm256_mul_ps(H, H), L2 = _mm256_mul_ps(L, L);
@@ -379,6 +391,7 @@ __attribute__((target("avx2"))) void MagnifiedInPrincipalAxesAvx2(__m256 lanes, 
       _mm256_div_ps(one, _mm256_sqrt_ps(_mm256_add_ps(one, _mm256_mul_ps(tp, tp))));
   scale = _mm256_blendv_ps(one, _mm256_add_ps(one, _mm256_mul_ps(beta, _mm256_sub_ps(cosine, one))),
                            lanes);
+  return _mm256_and_ps(lanes, _mm256_cmp_ps(beta, one, _CMP_EQ_OQ));
 }
 
 // For J = 2..9 (index J - 2): AddProbesLane's A, J - 1, J (2J - 1) and 0.5 / J.
@@ -540,10 +553,8 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
   const __m256i v_first = _mm256_andnot_si256(_mm256_castps_si256(u_major), _mm256_set1_epi32(1));
   const __m256i v_second = _mm256_and_si256(_mm256_castps_si256(u_major), _mm256_set1_epi32(1));
   // Invalid lanes: both weights 0 (a valid lane's 1 - first is computed as in the lane code).
-  const __m256 second = _mm256_and_ps(valid, _mm256_sub_ps(one, first));
+  __m256 second = _mm256_and_ps(valid, _mm256_sub_ps(one, first));
   first = _mm256_and_ps(valid, first);
-  _mm256_store_ps(out.reading_weight[0], first);
-  _mm256_store_ps(out.reading_weight[1], second);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.along_v[0]), v_first);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.along_v[1]), v_second);
 
@@ -557,24 +568,41 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
                 one_bits = _mm256_set1_epi32(0x3f800000);
   const __m256 majors[2] = {major, second_major};
   const __m256i along_v[2] = {v_first, v_second};
-  const __m256 read[2] = {_mm256_cmp_ps(first, zero, _CMP_GT_OQ),
-                          _mm256_cmp_ps(second, zero, _CMP_GT_OQ)};
+  __m256 read[2] = {_mm256_cmp_ps(first, zero, _CMP_GT_OQ),
+                    _mm256_cmp_ps(second, zero, _CMP_GT_OQ)};
+  // Both readings' shapes; magnified ones in the principal axes (MagnifiedInPrincipalAxes), and
+  // where both are wholly so the first alone is read (as in SelectPortable).
+  __m256 shape_h[2] = {one, one}, shape_l[2] = {one, one}, shape_tg[2] = {zero, zero};
+  __m256 principal[2] = {zero, zero};
+  for (int r = 0; r < 2; ++r) {
+    if (_mm256_movemask_ps(read[r]) == 0) continue;
+    shape_h[r] = _mm256_sqrt_ps(majors[r]);
+    const __m256 inv_h = _mm256_div_ps(one, shape_h[r]);
+    shape_tg[r] = _mm256_mul_ps(_mm256_mul_ps(uv, inv_h), inv_h);
+    shape_l[r] = _mm256_mul_ps(area, inv_h);
+    const __m256 magnify = _mm256_cmp_ps(shape_h[r], one, _CMP_LT_OQ);
+    __m256 probe_scale = one;
+    if (_mm256_movemask_ps(_mm256_and_ps(magnify, read[r])) != 0)
+      principal[r] = _mm256_and_ps(
+          read[r],
+          MagnifiedInPrincipalAxesAvx2(magnify, shape_h[r], shape_l[r], shape_tg[r], probe_scale));
+    _mm256_store_ps(out.probe_scale[r], probe_scale);
+  }
+  const __m256 one_reading = _mm256_and_ps(principal[0], principal[1]);
+  first = _mm256_blendv_ps(first, one, one_reading);
+  second = _mm256_andnot_ps(one_reading, second);
+  read[1] = _mm256_andnot_ps(one_reading, read[1]);
+  _mm256_store_ps(out.reading_weight[0], first);
+  _mm256_store_ps(out.reading_weight[1], second);
   for (int r = 0; r < 2; ++r) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.probes[r]), _mm256_setzero_si256());
     if (_mm256_movemask_ps(read[r]) == 0) continue;
-    __m256 H = _mm256_sqrt_ps(majors[r]);
-    const __m256 inv_h = _mm256_div_ps(one, H);
-    __m256 tg = _mm256_mul_ps(_mm256_mul_ps(uv, inv_h), inv_h);
-    __m256 L = _mm256_mul_ps(area, inv_h);
-    // Magnified readings in the principal axes (MagnifiedInPrincipalAxes); H stays under 1.
+    const __m256 H = shape_h[r], L = shape_l[r], tg = shape_tg[r];
+    // Magnified: H under 1 (the principal axes' H, blended, stays under 1 where the axis one is).
     const __m256 magnify = _mm256_cmp_ps(H, one, _CMP_LT_OQ);
-    __m256 probe_scale = one;
-    if (_mm256_movemask_ps(_mm256_and_ps(magnify, read[r])) != 0)
-      MagnifiedInPrincipalAxesAvx2(magnify, H, L, tg, probe_scale);
     _mm256_store_ps(out.H[r], H);
     _mm256_store_ps(out.tg[r], tg);
     _mm256_store_ps(out.L[r], L);
-    _mm256_store_ps(out.probe_scale[r], probe_scale);
     // AddProbesLane's tests: read, min(L, H) < 1 and H < 2 kProbeHalfExtent; and not magnified
     // and nearly round (16 sqrt(T) - 1 <= 0), the same operations.
     const __m256 Lmin = _mm256_min_ps(L, H);

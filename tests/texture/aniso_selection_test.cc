@@ -64,6 +64,7 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   if (!selector.has_kernel()) GTEST_SKIP() << "no AVX2 on this processor: one code path only";
   const auto footprints = Footprints(8000, 5);
   int compared = 0, second_readings = 0, probed = 0, magnified = 0, degenerate = 0;
+  int one_of_two = 0;  // magnified near a diagonal: both readings in the principal axes, one read
   for (size_t first = 0; first + 8 <= footprints.size(); first += 8) {
     float d[4][8];
     for (int lane = 0; lane < 8; ++lane)
@@ -105,6 +106,8 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
         }
       }
       degenerate += !any;
+      const TextureFootprint f{0, 0, d[0][lane], d[1][lane], d[2][lane], d[3][lane]};
+      one_of_two += ReadingsOfFootprint(f, kN).count == 2 && portable.reading_weight[0][lane] == 1;
       ++compared;
     }
   }
@@ -114,6 +117,7 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   EXPECT_GT(probed, 300);
   EXPECT_GT(magnified, 100);
   EXPECT_GT(degenerate, 300);
+  EXPECT_GT(one_of_two, 50);
 }
 
 }  // namespace
