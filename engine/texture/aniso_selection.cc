@@ -126,15 +126,14 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
 // box, neither of them sheared, and puts its probes along (1, tg). With the parallelogram's
 // (H, L, tg) its covariance is L^2 / 3 I + (H^2 - L^2) / 3 (1, tg)(1, tg)^T, short of the
 // footprint's by L^2 tg / 3 in the cross term and L^2 tg^2 / 3 in the minor one: a turned
-// footprint was filtered as if it were turned less. The same blend built from the principal moments
-// lambda_1 >= lambda_2 (H'^2 = lambda_1, L'^2 = lambda_2 = H^2 L^2 / lambda_1) with its probes
-// along the principal axis, slope tp to the major axis, has the footprint's covariance exactly:
-// L'^2 / 3 I
-// + (H'^2 - L'^2) / 3 e e^T. The probes' layout is computed along the major axis, so their
-// positions are scaled by cos = 1 / sqrt(1 + tp^2). Towards H = 1, where the table's copies take
-// over with the parallelogram's values, the principal values are blended back by beta = min(1,
-// (1 - H^2) / (2 (H'^2 - H^2))), which also keeps the blended H under 1.
-// Returns whether the reading is wholly in the principal axes (beta = 1).
+// footprint was filtered as if it were turned less. Built from the principal moments
+// lambda_1 >= lambda_2 instead (H'^2 = lambda_1, L'^2 = lambda_2 = H^2 L^2 / lambda_1), with the
+// probes along the principal axis (slope tp to the major axis), the same blend has the
+// covariance L'^2 / 3 I + (H'^2 - L'^2) / 3 e e^T: the footprint's own. The probes' layout is
+// computed along the major axis, so their positions are scaled by 1 / sqrt(1 + tp^2). Towards
+// H = 1, where the table's copies take over with the parallelogram's values, the principal
+// values are blended back by beta = min(1, (1 - H^2) / (2 (H'^2 - H^2))), which also keeps the
+// blended H under 1. Returns whether the reading is wholly in the principal axes (beta = 1).
 bool MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
   const float major = H * H, L2 = L * L;
   const float cross = tg * major, minor = L2 + tg * cross;
