@@ -36,10 +36,10 @@ Frame MakeFrame(const GrazingPlaneView& view) {
           std::sin(yaw)};
 }
 
-}  // namespace
-
-bool GroundPoint(const GrazingPlaneView& view, double px, double py, double* u, double* v) {
-  const Frame fr = MakeFrame(view);
+// GroundPoint with the view's frame computed once by the caller (its trigonometry would
+// dominate the reference's inner loop).
+bool GroundPointInFrame(const GrazingPlaneView& view, const Frame& fr, double px, double py,
+                        double* u, double* v) {
   // Ray direction: right (1, 0, 0), up (0, cos, -sin), forward (0, -sin, -cos).
   const double dx = (px - fr.cx) / fr.f, dy = -(py - fr.cy) / fr.f;
   const double q = fr.s - dy * fr.c;  // -direction.y: the ray descends when q > 0
@@ -50,6 +50,12 @@ bool GroundPoint(const GrazingPlaneView& view, double px, double py, double* u, 
   *u += view.origin_u;
   *v += view.origin_v;
   return true;
+}
+
+}  // namespace
+
+bool GroundPoint(const GrazingPlaneView& view, double px, double py, double* u, double* v) {
+  return GroundPointInFrame(view, MakeFrame(view), px, py, u, v);
 }
 
 bool GroundFootprint(const GrazingPlaneView& view, int i, int j, TextureFootprint* f) {
@@ -155,6 +161,7 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
                             int max_per_side, int min_per_side) {
   Image out(view.width, view.height);
   const double a = view.aperture, n = texture.width();
+  const Frame frame = MakeFrame(view);
   tbb::parallel_for(0, view.height, [&](int j) {
     TextureFootprint f;
     for (int i = 0; i < view.width; ++i) {
@@ -183,7 +190,7 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
           const double px = i + 0.5 + a * ((sx + StratumJitter(key, sx, sy, 0)) / kx - 0.5);
           const double py = j + 0.5 + a * ((sy + StratumJitter(key, sx, sy, 1)) / ky - 0.5);
           double u, v;
-          if (!GroundPoint(view, px, py, &u, &v)) continue;  // sky contributes 0
+          if (!GroundPointInFrame(view, frame, px, py, &u, &v)) continue;  // sky: 0
           const Rgba c = BilinearPeriodic(texture, u - std::floor(u), v - std::floor(v));
           r += c.r, g += c.g, b += c.b;
           ++count;
