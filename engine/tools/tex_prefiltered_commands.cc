@@ -111,27 +111,9 @@ int RunInfo(int argc, char** argv) {
 
 // ---- bench-filter ----------------------------------------------------------------------------
 
-absl::StatusOr<Image> CachedReference(const GrazingPlaneView& view, const BenchTexture& texture,
-                                      double density, int max_per_side, int min_per_side,
-                                      const std::string& cache_dir, bool* cached) {
-  const std::string path =
-      (std::filesystem::path(cache_dir) /
-       absl::StrCat("ref_", texture.name, "_", texture.image.width(), "_p", view.pitch_deg, "_y",
-                    view.yaw_deg, "_a", view.aperture, "_d", density, "_m", max_per_side, "_n",
-                    min_per_side, "_", view.width, "x", view.height,
-                    view.origin_u == 0 && view.origin_v == 0
-                        ? ""
-                        : absl::StrFormat("_o%.6f_%.6f", view.origin_u, view.origin_v),
-                    ".exr"))
-          .string();
-  *cached = std::filesystem::exists(path);
-  if (*cached) return LoadImageFile(path);
-  Image ref = RenderGroundReference(view, texture.image, density, max_per_side, min_per_side);
-  ExrOptions exr;
-  exr.pixel_type = ExrPixelType::kFloat;
-  if (auto s = WriteExrFile(ref, exr, path); !s.ok()) return s;
-  return ref;
-}
+// bench-filter's modes: trilinear, aniso, and issue 22's OpenImageIO peers (its defaults, and
+// anisotropic 16 with bilinear texels).
+constexpr int kModes = 4;
 
 int RunBenchFilter(int argc, char** argv) {
   auto args = ParseArgs(
@@ -146,11 +128,12 @@ int RunBenchFilter(int argc, char** argv) {
         "         [--angles 5,20,60] [--yaws 0] [--apertures 2,1] [--out DIR] [--cache DIR]\n"
         "         [--ref-density D] [--ref-max K] [--ref-min K] [--timing-rows S] [--threads N]\n"
         "         [--positions P]\n"
-        "The grazing-plane benchmark (DESIGN.md): PSNR of trilinear, aniso and oiio against\n"
-        "the supersampled reference of the same aperture, and ns per sample single-threaded;\n"
-        "then PSNR by band of footprint length and by the footprint's angle from the nearest\n"
-        "texture axis (5-degree bins), and with several --yaws the spread of each mode's PSNR\n"
-        "across them (issue 22 bars aniso's at 0.8 dB).\n"
+        "The grazing-plane benchmark (DESIGN.md): PSNR of trilinear, aniso, oiio (OpenImageIO's\n"
+        "defaults) and oiio16 (OpenImageIO, anisotropic 16, bilinear) against the supersampled\n"
+        "reference of the same aperture, and ns per sample single-threaded; then PSNR by band\n"
+        "of footprint length and by the footprint's angle from the nearest texture axis\n"
+        "(5-degree bins), and with several --yaws the spread of each mode's PSNR across them\n"
+        "(issue 22 bars aniso's at 0.8 dB).\n"
         "--yaws turns the camera about the vertical (0: along the texture's v axis); the\n"
         "reference takes D strata per texel of extent per side, at least --ref-min (2) and at\n"
         "most --ref-max (128).\n"
@@ -160,8 +143,8 @@ int RunBenchFilter(int argc, char** argv) {
         "(compare yaws with P >= 4). Each position has its own reference; the plots pool\n"
         "the positions too, the images and timings are the first position's.\n"
         "Writes every image as EXR under --out (default out/bench-filter), and per view a plot\n"
-        "of PSNR by row (_rows.png: trilinear blue, aniso red, oiio green; grid every 10 dB,\n"
-        "rows from the first measured one, left, to the bottom); references are\n"
+        "of PSNR by row (_rows.png: trilinear blue, aniso red, oiio green, oiio16 grey; grid\n"
+        "every 10 dB, rows from the first measured one, left, to the bottom); references are\n"
         "cached under --cache (default: the cache folder in --out).\n");
     return args->help ? 0 : 2;
   }
@@ -200,9 +183,9 @@ int RunBenchFilter(int argc, char** argv) {
   if (ec) return Fail("bench-filter", absl::StrCat("cannot create ", cache_dir));
 
   std::printf(
-      "| texture | theta | yaw | a | rows | trilinear dB | aniso dB | oiio dB | "
-      "aniso - oiio | aniso - trilinear | trilinear ns | aniso ns | oiio ns | "
-      "oiio / aniso |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| texture | theta | yaw | a | rows | trilinear dB | aniso dB | oiio dB | oiio16 dB | "
+      "aniso - best oiio | aniso - trilinear | trilinear ns | aniso ns | oiio ns | oiio16 ns | "
+      "oiio / aniso |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   // PSNR by band of footprint length (texels a pixel step spans), printed after the table.
   const std::vector<double> kBandEdges = {2, 4, 16};
@@ -224,11 +207,14 @@ int RunBenchFilter(int argc, char** argv) {
     AnisoSampler aniso(*table);
     auto oiio = OiioSampler::Create(tex.image);
     if (!oiio.ok()) return Fail("bench-filter", std::string(oiio.status().message()));
+    // Issue 22's second OpenImageIO peer: anisotropic 16, bilinear texels.
+    auto oiio16 = OiioSampler::Create(tex.image, "", {.anisotropic = 16, .bilinear = true});
+    if (!oiio16.ok()) return Fail("bench-filter", std::string(oiio16.status().message()));
     std::fprintf(stderr, "%s: %dx%d, table %zu bytes built in %.2f s\n", tex.name.c_str(),
                  tex.image.width(), tex.image.height(), block->bytes.size(), build_s);
     for (double a : *apertures) {
       for (double theta : *angles) {
-        std::vector<double> view_psnr[3];  // per mode, one per yaw
+        std::vector<double> view_psnr[kModes];  // per mode, one per yaw
         for (double yaw : *yaws) {
           GrazingPlaneView view;
           view.pitch_deg = theta;
@@ -245,7 +231,10 @@ int RunBenchFilter(int argc, char** argv) {
             std::vector<double> psnr;
             std::vector<std::vector<double>> bands, angles, rows;
           };
-          Mode modes[] = {{"trilinear", &trilinear}, {"aniso", &aniso}, {"oiio", oiio->get()}};
+          Mode modes[kModes] = {{"trilinear", &trilinear},
+                                {"aniso", &aniso},
+                                {"oiio", oiio->get()},
+                                {"oiio16", oiio16->get()}};
           std::vector<uint64_t> pixels;  // per band; the same at every position
           std::vector<uint64_t> angle_pixels;
           for (int k = 0; k < positions; ++k) {
@@ -276,8 +265,9 @@ int RunBenchFilter(int argc, char** argv) {
               if (auto s = WriteExrFile(*ref, {}, absl::StrCat(stem, "_reference.exr")); !s.ok())
                 return Fail("bench-filter", std::string(s.message()));
             if (positions > 1)
-              std::fprintf(stderr, "    trilinear %.2f aniso %.2f oiio %.2f dB\n",
-                           modes[0].psnr.back(), modes[1].psnr.back(), modes[2].psnr.back());
+              std::fprintf(stderr, "    trilinear %.2f aniso %.2f oiio %.2f oiio16 %.2f dB\n",
+                           modes[0].psnr.back(), modes[1].psnr.back(), modes[2].psnr.back(),
+                           modes[3].psnr.back());
           }
           // Pooled over the positions: the PSNR of the mean squared error.
           auto pooled = [](const std::vector<std::vector<double>>& per_position, size_t i) {
@@ -287,17 +277,20 @@ int RunBenchFilter(int argc, char** argv) {
           };
           std::string band_row = absl::StrCat("| ", tex.name, " | ", theta, " | ", yaw, " | ", a);
           std::string angle_row = band_row;
-          for (int m : {1, 2})  // aniso, oiio
+          for (int m : {1, 2, 3})  // aniso, oiio, oiio16
             for (size_t b = 0; b < angle_pixels.size(); ++b)
               absl::StrAppend(
                   &angle_row, " | ",
                   angle_pixels[b] == 0 ? "-" : absl::StrFormat("%.2f", pooled(modes[m].angles, b)));
-          // Per-row PSNR, one line per mode: trilinear blue, aniso red, oiio green.
-          const Rgba kColours[] = {
-              {0.1f, 0.2f, 0.9f, 1}, {0.9f, 0.1f, 0.1f, 1}, {0.1f, 0.6f, 0.1f, 1}};
+          // Per-row PSNR, one line per mode: trilinear blue, aniso red, oiio green, oiio16
+          // grey.
+          const Rgba kColours[kModes] = {{0.1f, 0.2f, 0.9f, 1},
+                                         {0.9f, 0.1f, 0.1f, 1},
+                                         {0.1f, 0.6f, 0.1f, 1},
+                                         {0.5f, 0.5f, 0.5f, 1}};
           std::vector<PlotSeries> rows;
-          double psnr[3];
-          for (int m = 0; m < 3; ++m) {
+          double psnr[kModes];
+          for (int m = 0; m < kModes; ++m) {
             psnr[m] = PooledPsnr(modes[m].psnr);
             for (size_t b = 0; b < pixels.size(); ++b)
               absl::StrAppend(
@@ -312,18 +305,18 @@ int RunBenchFilter(int argc, char** argv) {
               !s.ok())
             return Fail("bench-filter", std::string(s.message()));
           std::printf(
-              "| %s | %g | %g | %g | %d-%d | %.2f | %.2f | %.2f | %+.2f | %+.2f | %.0f | %.0f | "
-              "%.0f | %.1fx |\n",
+              "| %s | %g | %g | %g | %d-%d | %.2f | %.2f | %.2f | %.2f | %+.2f | %+.2f | %.0f | "
+              "%.0f | %.0f | %.0f | %.1fx |\n",
               tex.name.c_str(), theta, yaw, a, first, view.height - 1, psnr[0], psnr[1], psnr[2],
-              psnr[1] - psnr[2], psnr[1] - psnr[0], modes[0].ns, modes[1].ns, modes[2].ns,
-              modes[2].ns / modes[1].ns);
+              psnr[3], psnr[1] - std::max(psnr[2], psnr[3]), psnr[1] - psnr[0], modes[0].ns,
+              modes[1].ns, modes[2].ns, modes[3].ns, modes[2].ns / modes[1].ns);
           std::fflush(stdout);
           band_rows.push_back(band_row + " |");
           angle_rows.push_back(angle_row + " |");
-          for (int m = 0; m < 3; ++m) view_psnr[m].push_back(psnr[m]);
+          for (int m = 0; m < kModes; ++m) view_psnr[m].push_back(psnr[m]);
         }
         std::string spread_row = absl::StrCat("| ", tex.name, " | ", theta, " | ", a);
-        for (int m = 0; m < 3; ++m) {
+        for (int m = 0; m < kModes; ++m) {
           const YawSpread s = SpreadAcrossYaws(*yaws, view_psnr[m]);
           absl::StrAppend(&spread_row, absl::StrFormat(" | %.2f (%g)", s.spread, s.lowest_yaw));
         }
@@ -332,28 +325,30 @@ int RunBenchFilter(int argc, char** argv) {
     }
   }
   std::printf(
-      "\nPSNR by footprint length (texels a pixel step spans), trilinear / aniso / oiio:\n\n"
+      "\nPSNR by footprint length (texels a pixel step spans), trilinear / aniso / oiio / "
+      "oiio16:\n\n"
       "| texture | theta | yaw | a | tri < 2 | tri 2-4 | tri 4-16 | tri >= 16 | aniso < 2 | "
-      "aniso 2-4 | aniso 4-16 | aniso >= 16 | oiio < 2 | oiio 2-4 | oiio 4-16 | oiio >= 16 |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "aniso 2-4 | aniso 4-16 | aniso >= 16 | oiio < 2 | oiio 2-4 | oiio 4-16 | oiio >= 16 | "
+      "oiio16 < 2 | oiio16 2-4 | oiio16 4-16 | oiio16 >= 16 |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& row : band_rows) std::printf("%s\n", row.c_str());
   std::printf(
       "\nPSNR by the footprint's long axis's angle from the nearest texture axis (degrees), aniso "
-      "/ oiio:\n\n| texture | theta | yaw | a");
+      "/ oiio / oiio16:\n\n| texture | theta | yaw | a");
   const size_t angle_bins = kAngleEdges.size() + 1;  // the last runs to 45 degrees
-  for (const char* mode : {"aniso", "oiio"})
+  for (const char* mode : {"aniso", "oiio", "oiio16"})
     for (size_t b = 0; b < angle_bins; ++b)
       std::printf(" | %s %g-%g", mode, b == 0 ? 0.0 : kAngleEdges[b - 1],
                   b + 1 < angle_bins ? kAngleEdges[b] : 45.0);
   std::printf(" |\n|---|---|---|---");
-  for (size_t b = 0; b < 2 * angle_bins; ++b) std::printf("|---");
+  for (size_t b = 0; b < 3 * angle_bins; ++b) std::printf("|---");
   std::printf("|\n");
   for (const std::string& row : angle_rows) std::printf("%s\n", row.c_str());
   if (yaws->size() > 1) {
     std::printf(
         "\nSpread of the view PSNR across the yaws (dB, highest - lowest; the lowest view's yaw "
-        "in brackets), trilinear / aniso / oiio:\n\n| texture | theta | a | trilinear | aniso | "
-        "oiio |\n|---|---|---|---|---|---|\n");
+        "in brackets), trilinear / aniso / oiio / oiio16:\n\n| texture | theta | a | trilinear | "
+        "aniso | oiio | oiio16 |\n|---|---|---|---|---|---|---|\n");
     for (const std::string& row : spread_rows) std::printf("%s\n", row.c_str());
   }
   return 0;
