@@ -9,6 +9,9 @@
 #   FILTER_YAWS=0,15,30,45,60,90 PLANES= TRIS= scripts/bench-peers.sh   # filter quality only (issue 22)
 #   FILTER_YAWS=0,45 FILTER_TEXTURES=checker,asphalt_torcs_1024 FILTER_PITCH=5 PLANES= TRIS= \
 #     scripts/bench-peers.sh                       # ... on the photos of ../shared/data/raster too
+#   FILTER_YAWS=0,15,30,45,60,90 FILTER_PITCH=3,5,12,20,60 POSITIONS=4 PLANES= TRIS= \
+#     scripts/bench-peers.sh                       # ... every pitch, four camera positions pooled
+#                                                  # (references cached with bench-filter's, CACHE)
 #   FLICKER_FRAMES=120 PLANES= TRIS= scripts/bench-peers.sh              # flicker with llvmpipe (issue 22)
 #   MEMORY=100000,1000000 PLANES= TRIS= scripts/bench-peers.sh          # peak memory of a frame
 #
@@ -30,5 +33,6 @@ cmake --build build -j "$(nproc)" --target peer_bench >/dev/null
 LP_NUM_THREADS=2 build/tests/peer_bench --rounds "${ROUNDS:-5}" --tris "${TRIS-10000,100000}" \
   --planes "${PLANES-5,20,60}" --psnr_pixels "${PSNR_PIXELS:-3000}" \
   --filter_yaws "${FILTER_YAWS:-}" --filter_pitch "${FILTER_PITCH:-5}" \
+  --positions "${POSITIONS:-1}" --cache "${CACHE:-out/bench-filter/cache}" \
   --filter_textures "${FILTER_TEXTURES:-checker}" --data "${DATA:-../shared/data/raster}" \
   --flicker_frames "${FLICKER_FRAMES:-0}" --memory "${MEMORY:-}" 2>&1 | grep -v '\[info\]'

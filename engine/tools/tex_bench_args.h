@@ -8,6 +8,7 @@
 
 #include "absl/status/statusor.h"
 #include "base/image.h"
+#include "testing/grazing_plane.h"
 
 namespace aperture {
 
@@ -42,5 +43,12 @@ struct BenchTexture {
 // (".png" added), resized to a power of two.
 absl::StatusOr<std::vector<BenchTexture>> LoadBenchTextures(const std::string& list,
                                                             const std::string& data_dir);
+
+// The supersampled reference of a grazing-plane view (RenderGroundReference), loaded from
+// `cache_dir` when an earlier run wrote it there (its file name holds every parameter), else
+// computed and written there; *cached tells which. bench-filter and peer_bench share the cache.
+absl::StatusOr<Image> CachedReference(const GrazingPlaneView& view, const BenchTexture& texture,
+                                      double density, int max_per_side, int min_per_side,
+                                      const std::string& cache_dir, bool* cached);
 
 }  // namespace aperture

@@ -6,7 +6,8 @@
 //   plane-T  DESIGN.md's grazing plane pitched down T degrees, 1024^2 checkerboard of 8 x 8
 //            cells repeated every 4 m: llvmpipe trilinear against Aperture trilinear and aniso.
 //
-//   filter   with --filter_yaws: bench-filter's plane turned by each yaw, on each of
+//   filter   with --filter_yaws: bench-filter's plane at each --filter_pitch (default 5) turned
+//            by each yaw, from --positions camera positions (default 1), on each of
 //            --filter_textures (the checkerboard, or images by name in --data, as bench-filter
 //            loads them), llvmpipe trilinear and anisotropic 16 against Aperture's filters and
 //            OpenImageIO (its defaults, and anisotropic 16 with bilinear texels), PSNR against
@@ -18,8 +19,9 @@
 //            draws it (OpenGL's vertex arrays; Aperture's scene).
 //
 // Usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] [--psnr_pixels P]
-//                   [--filter_yaws Y,Y,... [--filter_pitch T]] [--flicker_frames N]
-//                   [--filter_textures checker,NAME,...] [--data DIR] [--memory N,N,...]
+//                   [--filter_yaws Y,Y,... [--filter_pitch T,T,...] [--positions P]
+//                   [--cache DIR]] [--flicker_frames N] [--filter_textures checker,NAME,...]
+//                   [--data DIR] [--memory N,N,...]
 // (scripts/bench-peers.sh builds and runs it with LP_NUM_THREADS=2; docs/BENCHMARKS.md.)
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -187,8 +189,10 @@ struct Options {
   std::vector<double> planes = {5, 20, 60};
   int psnr_pixels = 3000;
   std::vector<double> filter_yaws;  // empty: no filter-quality table
-  double filter_pitch = 5;
-  int flicker_frames = 0;  // 0: no flicker table
+  std::vector<double> filter_pitches = {5};
+  int positions = 1;                                 // bench-filter's --positions
+  std::string cache_dir = "out/bench-filter/cache";  // bench-filter's default reference cache
+  int flicker_frames = 0;                            // 0: no flicker table
   std::string filter_textures = "checker";
   std::string data_dir = "../shared/data/raster";
   std::vector<int> memory;  // tris-N counts for the memory table
@@ -598,34 +602,71 @@ class FilterPeers {
   std::vector<double> edges_;
 };
 
-// bench-filter's plane (1024 x 768, a = 1) from each of --filter_yaws: llvmpipe's trilinear and
-// anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO (defaults, and
-// anisotropic 16 bilinear), every image scored against the same supersampled pixel box (at
-// least 16 x 16 strata a pixel, 4 per texel of extent per side) over the rows bench-filter
-// measures (issue 22, part 1).
-void RunFilterQuality(FilterPeers& f, const Options& o) {
-  std::printf(
-      "\nfilter quality: %s, 1024x768, pitch %g, a = 1, PSNR against the pixel box\n\n"
-      "| yaw | llvmpipe trilinear | llvmpipe aniso 16 | Aperture trilinear | Aperture aniso | "
-      "OpenImageIO | OpenImageIO aniso 16 bilinear | aniso - best peer |\n"
-      "|---|---:|---:|---:|---:|---:|---:|---:|\n",
-      f.name().c_str(), o.filter_pitch);
-  for (double yaw : o.filter_yaws) {
-    GrazingPlaneView view;
-    view.pitch_deg = o.filter_pitch;
-    view.yaw_deg = yaw;
-    view.aperture = 1;
-    const int first = FirstMeasuredRow(view);
-    const Image reference = RenderGroundReference(view, f.image(), 4, 128, 16);
-    const double gl = Psnr(f.Llvmpipe(view, 1), reference, first);
-    const double gl16 = Psnr(f.Llvmpipe(view, 16), reference, first);
-    const double tri = Psnr(RenderGroundImage(view, f.trilinear()), reference, first);
-    const double ani = Psnr(RenderGroundImage(view, f.aniso()), reference, first);
-    const double oi = Psnr(RenderGroundImage(view, f.oiio()), reference, first);
-    const double oi16 = Psnr(RenderGroundImage(view, f.oiio16()), reference, first);
-    std::printf("| %g | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %+.2f |\n", yaw, gl, gl16, tri,
-                ani, oi, oi16, ani - std::max({gl, gl16, oi, oi16}));
-    std::fflush(stdout);
+// bench-filter's plane (1024 x 768, a = 1) at each of --filter_pitch from each of --filter_yaws:
+// llvmpipe's trilinear and anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO
+// (defaults, and anisotropic 16 bilinear), every image scored against the same supersampled
+// pixel box (at least 16 x 16 strata a pixel, 4 per texel of extent per side: bench-filter's
+// `--ref-min 16 --ref-density 4`, whose reference cache this shares) over the rows bench-filter
+// measures (issue 22, part 1). With --positions P each view is scored from bench-filter's P
+// camera positions and the squared errors pooled. llvmpipe has no aperture to widen, so this is
+// the pixel box (a = 1) only; bench-filter scores OpenImageIO at a = 2.
+void RunFilterQuality(FilterPeers& f, const BenchTexture& texture, const Options& o) {
+  constexpr int kFilters = 6;
+  const char* kNames[kFilters] = {"llvmpipe trilinear", "llvmpipe aniso 16",
+                                  "Aperture trilinear", "Aperture aniso",
+                                  "OpenImageIO",        "OpenImageIO aniso 16 bilinear"};
+  for (double pitch : o.filter_pitches) {
+    std::printf(
+        "\nfilter quality: %s, 1024x768, pitch %g, a = 1, PSNR against the pixel box, %d "
+        "position%s pooled\n\n|",
+        f.name().c_str(), pitch, o.positions, o.positions == 1 ? "" : "s");
+    std::printf(" yaw |");
+    for (const char* name : kNames) std::printf(" %s |", name);
+    std::printf(" aniso - best peer |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::vector<double> leads, aniso_by_yaw;
+    for (double yaw : o.filter_yaws) {
+      GrazingPlaneView view;
+      view.pitch_deg = pitch;
+      view.yaw_deg = yaw;
+      view.aperture = 1;
+      const int first = FirstMeasuredRow(view);
+      std::vector<double> psnr[kFilters];  // per filter, one per position
+      for (int k = 0; k < o.positions; ++k) {
+        const GrazingPlaneView at = ViewAtPosition(view, k);
+        bool cached = false;
+        const double start = Now();
+        auto reference = CachedReference(at, texture, 4, 128, 16, o.cache_dir, &cached);
+        if (!reference.ok()) {
+          std::fprintf(stderr, "peer_bench: %s\n",
+                       std::string(reference.status().message()).c_str());
+          std::exit(1);
+        }
+        std::fprintf(stderr, "  pitch %g yaw %g position %d/%d: reference %s in %.1f s\n", pitch,
+                     yaw, k + 1, o.positions, cached ? "from cache" : "computed",
+                     (Now() - start) / 1000);
+        const Image images[kFilters] = {f.Llvmpipe(at, 1),
+                                        f.Llvmpipe(at, 16),
+                                        RenderGroundImage(at, f.trilinear()),
+                                        RenderGroundImage(at, f.aniso()),
+                                        RenderGroundImage(at, f.oiio()),
+                                        RenderGroundImage(at, f.oiio16())};
+        for (int m = 0; m < kFilters; ++m) psnr[m].push_back(Psnr(images[m], *reference, first));
+      }
+      double pooled[kFilters];
+      for (int m = 0; m < kFilters; ++m) pooled[m] = PooledPsnr(psnr[m]);
+      const double lead = pooled[3] - std::max({pooled[0], pooled[1], pooled[4], pooled[5]});
+      std::printf("| %g |", yaw);
+      for (double value : pooled) std::printf(" %.2f |", value);
+      std::printf(" %+.2f |\n", lead);
+      std::fflush(stdout);
+      leads.push_back(lead);
+      aniso_by_yaw.push_back(pooled[3]);
+    }
+    const YawSpread spread = SpreadAcrossYaws(o.filter_yaws, aniso_by_yaw);
+    std::printf(
+        "\nlead over the best peer: %+.2f to %+.2f dB; aniso's spread across the yaws %.2f dB\n",
+        *std::min_element(leads.begin(), leads.end()),
+        *std::max_element(leads.begin(), leads.end()), spread.spread);
   }
 }
 
@@ -727,7 +768,11 @@ int main(int argc, char** argv) {
     } else if (flag == "--filter_yaws") {
       o.filter_yaws = aperture::ParseList<double>(argv[i + 1]);
     } else if (flag == "--filter_pitch") {
-      o.filter_pitch = std::atof(argv[i + 1]);
+      o.filter_pitches = aperture::ParseList<double>(argv[i + 1]);
+    } else if (flag == "--positions") {
+      o.positions = std::clamp(std::atoi(argv[i + 1]), 1, 64);
+    } else if (flag == "--cache") {
+      o.cache_dir = argv[i + 1];
     } else if (flag == "--flicker_frames") {
       o.flicker_frames = std::atoi(argv[i + 1]);
     } else if (flag == "--filter_textures") {
@@ -739,9 +784,9 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: peer_bench [--rounds R] [--tris N,N,...] [--planes T,T,...] "
-                   "[--psnr_pixels P] [--filter_yaws Y,Y,... [--filter_pitch T]] "
-                   "[--flicker_frames N] [--filter_textures checker,NAME,...] [--data DIR] "
-                   "[--memory N,N,...]\n");
+                   "[--psnr_pixels P] [--filter_yaws Y,Y,... [--filter_pitch T,T,...] "
+                   "[--positions P] [--cache DIR]] [--flicker_frames N] "
+                   "[--filter_textures checker,NAME,...] [--data DIR] [--memory N,N,...]\n");
       return 2;
     }
   }
@@ -766,7 +811,7 @@ int main(int argc, char** argv) {
     }
     for (size_t t = 0; t < textures->size(); ++t) {
       aperture::FilterPeers filters(peer, (*textures)[t]);
-      if (!o.filter_yaws.empty()) aperture::RunFilterQuality(filters, o);
+      if (!o.filter_yaws.empty()) aperture::RunFilterQuality(filters, (*textures)[t], o);
       if (o.flicker_frames > 1 && t == 0) aperture::RunFlicker(filters, o);
     }
   }
