@@ -21,9 +21,11 @@ struct Args {
   std::vector<std::pair<std::string, std::string>> options;
   bool help = false;
 
+  // The last value given for `name` (a later option overrides an earlier one, as in most
+  // command lines), else `fallback`.
   std::string Get(const std::string& name, const std::string& fallback) const {
-    for (const auto& [k, v] : options)
-      if (k == name) return v;
+    for (auto it = options.rbegin(); it != options.rend(); ++it)
+      if (it->first == name) return it->second;
     return fallback;
   }
 };

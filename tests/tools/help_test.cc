@@ -57,6 +57,10 @@ TEST(Help, TheFilterBenchmarkListsPositionsAndRefusesABadCountNamingIt) {
     EXPECT_NE(r.output.find("--positions 1..64"), std::string::npos) << r.output;
   }
   EXPECT_EQ(RunProcess("test -e " + out).exit_code, 1) << out << " was made";
+  // A repeated option: the last value counts (were it the first, the bad angle would be named).
+  const ProcessResult last = RunProcess(bench + " --positions 2 --positions 0 --angles 95");
+  EXPECT_EQ(last.exit_code, 2) << last.output;
+  EXPECT_NE(last.output.find("--positions 1..64"), std::string::npos) << last.output;
 }
 
 TEST(Help, AnUnknownFlagIsAUsageErrorNamingIt) {
