@@ -35,4 +35,5 @@ LP_NUM_THREADS=2 build/tests/peer_bench --rounds "${ROUNDS:-5}" --tris "${TRIS-1
   --filter_yaws "${FILTER_YAWS:-}" --filter_pitch "${FILTER_PITCH:-5}" \
   --positions "${POSITIONS:-1}" --cache "${CACHE:-out/bench-filter/cache}" \
   --filter_textures "${FILTER_TEXTURES:-checker}" --data "${DATA:-../shared/data/raster}" \
-  --flicker_frames "${FLICKER_FRAMES:-0}" --memory "${MEMORY:-}" 2>&1 | grep -v '\[info\]'
+  --flicker_frames "${FLICKER_FRAMES:-0}" --memory "${MEMORY:-}" \
+  2> >(grep -v '\[info\]' >&2) | grep -v '\[info\]'   # progress on stderr, the tables on stdout

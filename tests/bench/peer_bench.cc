@@ -46,6 +46,7 @@
 #include <thread>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "large_buffers.h"
 #include "raster/projection.h"
 #include "render/frame_renderer.h"
@@ -617,9 +618,10 @@ void RunFilterQuality(FilterPeers& f, const BenchTexture& texture, const Options
                                   "OpenImageIO",        "OpenImageIO aniso 16 bilinear"};
   for (double pitch : o.filter_pitches) {
     std::printf(
-        "\nfilter quality: %s, 1024x768, pitch %g, a = 1, PSNR against the pixel box, %d "
-        "position%s pooled\n\n|",
-        f.name().c_str(), pitch, o.positions, o.positions == 1 ? "" : "s");
+        "\nfilter quality: %s, 1024x768, pitch %g, a = 1, PSNR against the pixel box, %s\n\n|",
+        f.name().c_str(), pitch,
+        o.positions == 1 ? "one camera position"
+                         : absl::StrCat(o.positions, " camera positions pooled").c_str());
     std::printf(" yaw |");
     for (const char* name : kNames) std::printf(" %s |", name);
     std::printf(" aniso - best peer |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
