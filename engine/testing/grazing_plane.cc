@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 
 #include "texture/reference_sampler.h"
 
@@ -213,16 +214,36 @@ void MoveForward(GrazingPlaneView* view, double world_units) {
   view->origin_v -= step * std::cos(yaw);
 }
 
+namespace {
+
+// The radical inverse of k in base 2 (van der Corput): for the first N = 2^m values of k, every
+// multiple of 1 / N once, and so for 3k (3 is odd: k -> 3k is a permutation mod 2^m).
+double VanDerCorput(uint32_t k) {
+  uint32_t x = 0;
+  for (int bit = 0; bit < 32; ++bit, k >>= 1) x = x << 1 | (k & 1);
+  return x * 0x1p-32;
+}
+
+}  // namespace
+
 GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k) {
-  // In texels of a 1024-texel repeat (the benchmark textures'): k (389, 583) whole texels
-  // spread the positions over the repeat, and the R2 sequence's fractions k / g and k / g^2 (g
-  // the plastic number, g^3 = g + 1) spread the phases within a texel. (The R2 sequence alone
-  // over the repeat would not: 1024 / g is within 0.01 of a whole number.)
+  // In texels of a 1024-texel repeat (the benchmark textures'), on three scales:
+  //  - the phase within the checkerboard's 128-texel cells, where its edges fall: the van der
+  //    Corput sequence of k along U and of 3k along V, so that for 2^m positions both axes meet
+  //    the edges at the same 2^m evenly spread phases (a view along U and its mirror along V
+  //    score alike), and their sum, the phase that matters looking along a diagonal, takes 3 of
+  //    4 strata for four positions (no pairing takes all 4) and 9 of 16 for sixteen;
+  //  - the cell of the repeat, 3k and 5k mod 8 (the photos' content);
+  //  - the phase within a texel, the R2 sequence's fractions k / g and k / g^2 (g the plastic
+  //    number, g^3 = g + 1).
+  // (Session 33's 389 k and 583 k whole texels spread the positions over the repeat but not
+  // over a cell along U: 389 = 5 mod 128 put four positions' edges within 16 texels.)
   constexpr double kG = 1.32471795724474602596;
+  const uint32_t i = static_cast<uint32_t>(k);
   GrazingPlaneView moved = view;
   double whole = 0;
-  const double u = 389.0 * k + std::modf(k / kG, &whole);
-  const double v = 583.0 * k + std::modf(k / (kG * kG), &whole);
+  const double u = 128.0 * ((3 * i) % 8 + VanDerCorput(i)) + std::modf(k / kG, &whole);
+  const double v = 128.0 * ((5 * i) % 8 + VanDerCorput(3 * i)) + std::modf(k / (kG * kG), &whole);
   moved.origin_u = view.origin_u + std::modf(u / 1024.0, &whole);
   moved.origin_v = view.origin_v + std::modf(v / 1024.0, &whole);
   return moved;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "texture/reference_sampler.h"
 
@@ -185,6 +186,21 @@ TEST(GrazingPlane, PositionsMoveTheGroundByTheirOriginsAndSpreadTheTexelPhases) 
       EXPECT_GE(quarters[axis][q], 2) << "axis " << axis << " quarter " << q;
       EXPECT_GE(texel_quarters[axis][q], 2) << "axis " << axis << " texel quarter " << q;
     }
+  // The checkerboard's edges (every 128 texels): the first 4 and the first 16 positions meet
+  // them at evenly spread phases, one in each 128 / N texels, along U and along V alike (a view
+  // along U and its mirror along V are scored over the same phases).
+  for (int n : {4, 16}) {
+    for (int axis = 0; axis < 2; ++axis) {
+      std::vector<int> strata(n, 0);
+      for (int k = 0; k < n; ++k) {
+        const GrazingPlaneView at = ViewAtPosition(view, k);
+        const double texels = 1024.0 * (axis == 0 ? at.origin_u : at.origin_v);
+        ++strata[static_cast<int>(std::fmod(texels, 128.0) / (128.0 / n))];
+      }
+      for (int s = 0; s < n; ++s)
+        EXPECT_EQ(strata[s], 1) << n << " positions, axis " << axis << ", phase stratum " << s;
+    }
+  }
 }
 
 TEST(ReferenceSampler, AveragesALinearTextureToItsCentreValue) {
