@@ -58,11 +58,12 @@ Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, 
 // Moves the camera `world_units` forward along its heading (the turned view axis, on the ground):
 // the view's texture origin moves with it (bench-flicker's fly-over).
 void MoveForward(GrazingPlaneView* view, double world_units);
-// The view with the camera moved over the plane to position k (k = 0: the view itself): the
-// texture origins spread over the repeat and, for textures of 1024 texels, their phases within
-// a texel spread by the R2 low-discrepancy sequence. Looking along a texture axis, every pixel
-// row meets the texels and the checkerboard's edges at one phase, so one position scores one
-// phase: bench-filter --positions pools several.
+// The view with the camera moved over the plane to position k (k = 0: the view itself). For
+// textures of 1024 texels the first 2^m positions meet the checkerboard's 128-texel cells at
+// 2^m evenly spread phases along U and along V alike, lie in different cells of the repeat, and
+// spread their phases within a texel (the .cc says how). Looking along a texture axis, every
+// pixel row meets the texels and the checkerboard's edges at one phase, so one position scores
+// one phase: bench-filter --positions pools several.
 GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k);
 // The spread of one view's PSNR across yaws (issue 22's bar on aniso): the highest minus the
 // lowest, and the yaw of the lowest (the first where two tie). Empty or unequal spans: spread 0,
