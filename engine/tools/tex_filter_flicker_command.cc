@@ -93,7 +93,7 @@ int RunBenchFlicker(int argc, char** argv) {
   AnisoSampler aniso(*table);
   auto oiio = OiioSampler::Create(tex.image);
   if (!oiio.ok()) return Fail("bench-flicker", std::string(oiio.status().message()));
-  auto oiio16 = OiioSampler::Create(tex.image, "", {.anisotropic = 16, .bilinear = true});
+  auto oiio16 = OiioSampler::Create(tex.image, "", kOiioAniso16Bilinear);
   if (!oiio16.ok()) return Fail("bench-flicker", std::string(oiio16.status().message()));
 
   const std::string out_dir = args->Get("--out", "out/bench-flicker");

@@ -207,8 +207,7 @@ int RunBenchFilter(int argc, char** argv) {
     AnisoSampler aniso(*table);
     auto oiio = OiioSampler::Create(tex.image);
     if (!oiio.ok()) return Fail("bench-filter", std::string(oiio.status().message()));
-    // Issue 22's second OpenImageIO peer: anisotropic 16, bilinear texels.
-    auto oiio16 = OiioSampler::Create(tex.image, "", {.anisotropic = 16, .bilinear = true});
+    auto oiio16 = OiioSampler::Create(tex.image, "", kOiioAniso16Bilinear);
     if (!oiio16.ok()) return Fail("bench-filter", std::string(oiio16.status().message()));
     std::fprintf(stderr, "%s: %dx%d, table %zu bytes built in %.2f s\n", tex.name.c_str(),
                  tex.image.width(), tex.image.height(), block->bytes.size(), build_s);

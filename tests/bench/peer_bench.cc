@@ -532,7 +532,7 @@ class FilterPeers {
     block_ = *std::move(block);
     auto table = block_.View();
     auto oiio = OiioSampler::Create(image_);
-    auto oiio16 = OiioSampler::Create(image_, "", {.anisotropic = 16, .bilinear = true});
+    auto oiio16 = OiioSampler::Create(image_, "", kOiioAniso16Bilinear);
     if (!table.ok() || !oiio.ok() || !oiio16.ok()) std::exit(1);
     aniso_ = std::make_unique<AnisoSampler>(*table);
     oiio_ = *std::move(oiio);
