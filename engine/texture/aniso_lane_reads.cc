@@ -216,6 +216,7 @@ __attribute__((target("avx2"))) inline int Shared(__m256i copy) {
 struct CopyTables {
   const uint8_t* texels;
   const LaneReader::Copy* copies;
+  int32_t box_copy;  // the first copy's directory index (the box probes read it)
 };
 
 // Field `field` (LaneReader::Copy::offset or ::shape) of each lane's copy in `mask` (0 elsewhere).
@@ -289,6 +290,74 @@ __attribute__((target("avx2"))) inline void AddReadPair(const CopyTables& t, __m
           sums);
 }
 
+// The base probes (kBox false: reads of the base) or the box probes (kBox true: reads of the
+// first copy, in two rows where box_probe_rows > 0) of reading r in the lanes of `read`
+// (ForEachProbe in aniso_sampler.cc, the same operations).
+template <bool kBox>
+__attribute__((target("avx2"))) inline void AddProbeReads(const CopyTables& t, float inv_size,
+                                                          const SelectionLanes& s, int r, int n,
+                                                          __m256 read, __m256 u, __m256 v,
+                                                          __m256 tg, __m256 scale, LaneSums& sums) {
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256i izero = _mm256_setzero_si256();
+  const int32_t* count = kBox ? s.box_probes[r] : s.probes[r];
+  const __m256i probes = _mm256_and_si256(
+      _mm256_castps_si256(read), _mm256_load_si256(reinterpret_cast<const __m256i*>(count)));
+  int most = 0;
+  for (int i = 0; i < n; ++i) most = std::max(most, count[i] * (s.reading_weight[r][i] > 0));
+  if (most == 0) return;
+  const __m256i copy = kBox ? _mm256_set1_epi32(t.box_copy) : izero;
+  // The probe fields are only set where there are probes (a stale denormal would cost a
+  // microcode assist): masked before any arithmetic.
+  const __m256 has = _mm256_castsi256_ps(_mm256_cmpgt_epi32(probes, izero));
+  const __m256 step = _mm256_mul_ps(
+      _mm256_and_ps(has, _mm256_loadu_ps(kBox ? s.box_probe_step[r] : s.probe_step[r])),
+      _mm256_set1_ps(inv_size));
+  const __m256 first = _mm256_mul_ps(
+      _mm256_mul_ps(_mm256_set1_ps(-0.5f),
+                    _mm256_cvtepi32_ps(_mm256_sub_epi32(probes, _mm256_set1_epi32(1)))),
+      step);
+  const __m256 w = _mm256_mul_ps(
+      _mm256_and_ps(has, _mm256_loadu_ps(kBox ? s.box_probe_weight[r] : s.probe_weight[r])), scale);
+  const __m256 w_end = _mm256_mul_ps(
+      _mm256_and_ps(has, _mm256_loadu_ps(kBox ? s.box_probe_end_weight[r] : s.probe_end_weight[r])),
+      scale);
+  const __m256 along_v = _mm256_castsi256_ps(
+      _mm256_cmpgt_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(s.along_v[r])), izero));
+  const __m256i last = _mm256_sub_epi32(probes, _mm256_set1_epi32(1));
+  // Box probes: the rows' offset across (repeats) and the lanes read in two rows.
+  const __m256 d = kBox ? _mm256_mul_ps(_mm256_and_ps(has, _mm256_loadu_ps(s.box_probe_rows[r])),
+                                        _mm256_set1_ps(inv_size))
+                        : zero;
+  const __m256 two_rows = kBox ? _mm256_cmp_ps(d, zero, _CMP_GT_OQ) : zero;
+  const bool any_two_rows = kBox && _mm256_movemask_ps(two_rows) != 0;
+  for (int k = 0; k < most; ++k) {
+    const __m256i kk = _mm256_set1_epi32(k);
+    const __m256 mask = _mm256_castsi256_ps(_mm256_cmpgt_epi32(probes, kk));
+    const __m256 major =
+        _mm256_add_ps(first, _mm256_mul_ps(_mm256_set1_ps(static_cast<float>(k)), step));
+    const __m256 minor = _mm256_mul_ps(major, tg);
+    const __m256 end = _mm256_castsi256_ps(
+        _mm256_or_si256(_mm256_cmpeq_epi32(kk, izero), _mm256_cmpeq_epi32(kk, last)));
+    const __m256 wk = _mm256_blendv_ps(w, w_end, end);
+    if (!any_two_rows) {
+      const __m256 pu = _mm256_add_ps(u, _mm256_blendv_ps(major, minor, along_v));
+      const __m256 pv = _mm256_add_ps(v, _mm256_blendv_ps(minor, major, along_v));
+      AddRead(t, copy, mask, pu, pv, zero, wk, sums);
+      continue;
+    }
+    // The row -d (d = 0 in one-row lanes: minor itself, of weight wk), then the row +d.
+    const __m256 half = _mm256_mul_ps(_mm256_set1_ps(0.5f), wk);
+    const __m256 below = _mm256_sub_ps(minor, d), above = _mm256_add_ps(minor, d);
+    AddRead(t, copy, mask, _mm256_add_ps(u, _mm256_blendv_ps(major, below, along_v)),
+            _mm256_add_ps(v, _mm256_blendv_ps(below, major, along_v)), zero,
+            _mm256_blendv_ps(wk, half, two_rows), sums);
+    AddRead(t, copy, _mm256_and_ps(mask, two_rows),
+            _mm256_add_ps(u, _mm256_blendv_ps(major, above, along_v)),
+            _mm256_add_ps(v, _mm256_blendv_ps(above, major, along_v)), zero, half, sums);
+  }
+}
+
 __attribute__((target("avx2"))) void ReadLanesAvx2(const CopyTables& t, float inv_size,
                                                    const SelectionLanes& s, const double* u_in,
                                                    const double* v_in, int n, Rgba* out) {
@@ -324,42 +393,8 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const CopyTables& t, float in
     const __m256 scale = _mm256_and_ps(
         read[r], _mm256_div_ps(_mm256_load_ps(s.reading_weight[r]), _mm256_set1_ps(255.0f)));
     const __m256 tg = _mm256_and_ps(read[r], _mm256_load_ps(s.tg[r]));
-    // The base probes (ForEachBaseProbe in aniso_sampler.cc, the same operations).
-    const __m256i probes =
-        _mm256_and_si256(_mm256_castps_si256(read[r]),
-                         _mm256_load_si256(reinterpret_cast<const __m256i*>(s.probes[r])));
-    int most = 0;
-    for (int i = 0; i < n; ++i)
-      most = std::max(most, s.probes[r][i] * (s.reading_weight[r][i] > 0));
-    if (most > 0) {
-      // The probe fields are only set where there are probes (a stale denormal would cost a
-      // microcode assist): masked before any arithmetic.
-      const __m256 has = _mm256_castsi256_ps(_mm256_cmpgt_epi32(probes, izero));
-      const __m256 step = _mm256_mul_ps(_mm256_and_ps(has, _mm256_loadu_ps(s.probe_step[r])),
-                                        _mm256_set1_ps(inv_size));
-      const __m256 first = _mm256_mul_ps(
-          _mm256_mul_ps(_mm256_set1_ps(-0.5f),
-                        _mm256_cvtepi32_ps(_mm256_sub_epi32(probes, _mm256_set1_epi32(1)))),
-          step);
-      const __m256 w = _mm256_mul_ps(_mm256_and_ps(has, _mm256_loadu_ps(s.probe_weight[r])), scale);
-      const __m256 w_end =
-          _mm256_mul_ps(_mm256_and_ps(has, _mm256_loadu_ps(s.probe_end_weight[r])), scale);
-      const __m256 along_v = _mm256_castsi256_ps(_mm256_cmpgt_epi32(
-          _mm256_load_si256(reinterpret_cast<const __m256i*>(s.along_v[r])), izero));
-      const __m256i last = _mm256_sub_epi32(probes, _mm256_set1_epi32(1));
-      for (int k = 0; k < most; ++k) {
-        const __m256i kk = _mm256_set1_epi32(k);
-        const __m256 mask = _mm256_castsi256_ps(_mm256_cmpgt_epi32(probes, kk));
-        const __m256 major =
-            _mm256_add_ps(first, _mm256_mul_ps(_mm256_set1_ps(static_cast<float>(k)), step));
-        const __m256 minor = _mm256_mul_ps(major, tg);
-        const __m256 pu = _mm256_add_ps(u, _mm256_blendv_ps(major, minor, along_v));
-        const __m256 pv = _mm256_add_ps(v, _mm256_blendv_ps(minor, major, along_v));
-        const __m256 end = _mm256_castsi256_ps(
-            _mm256_or_si256(_mm256_cmpeq_epi32(kk, izero), _mm256_cmpeq_epi32(kk, last)));
-        AddRead(t, izero, mask, pu, pv, zero, _mm256_blendv_ps(w, w_end, end), sums);
-      }
-    }
+    AddProbeReads<false>(t, inv_size, s, r, n, read[r], u, v, tg, scale, sums);
+    AddProbeReads<true>(t, inv_size, s, r, n, read[r], u, v, tg, scale, sums);
     // The table copies, a cell's two tilts at a time: the sample's own tangent (the skew
     // interpolates between tilts).
     for (int slot = 0; slot < SelectionLanes::kSlots; slot += 2) {
@@ -398,6 +433,7 @@ std::optional<LaneReader> LaneReader::For(const PrefilteredTable& table) {
   LaneReader reader;
   reader.texels_ = table.texels(table.base());
   reader.inv_size_ = 1.0f / static_cast<float>(table.size());
+  reader.box_copy_ = static_cast<int32_t>(table.cell(0, 0).first);
   const uint64_t base = table.base().offset;
   for (const CopyEntry& e : table.directory()) {
     const uint64_t bytes = e.offset - base;
@@ -426,7 +462,7 @@ std::optional<LaneReader> LaneReader::For(const PrefilteredTable& table) {
 void LaneReader::Read(const SelectionLanes& s, const double* u, const double* v, int n,
                       Rgba* out) const {
 #if defined(__x86_64__) && defined(__GNUC__)
-  ReadLanesAvx2({texels_, copies_.data()}, inv_size_, s, u, v, n, out);
+  ReadLanesAvx2({texels_, copies_.data(), box_copy_}, inv_size_, s, u, v, n, out);
 #else
   (void)s, (void)u, (void)v, (void)n, (void)out;
 #endif

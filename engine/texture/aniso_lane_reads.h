@@ -1,7 +1,7 @@
 // The copy reads of eight aniso samples at once: AnisoSampler::Blend's reads (the base probes,
-// then the table copies of each reading, seed 000, eq. 6-9 inside each copy) with one sample
-// per vector lane, the texels fetched by AVX2 gathers. The same float operations in the same
-// order per sample as Blend, so the sums are equal bit for bit (tests/texture/
+// the box probes, then the table copies of each reading, seed 000, eq. 6-9 inside each copy) with
+// one sample per vector lane, the texels fetched by AVX2 gathers. The same float operations in the
+// same order per sample as Blend, so the sums are equal bit for bit (tests/texture/
 // aniso_sampler_test.cc compares them).
 #pragma once
 
@@ -39,6 +39,7 @@ class LaneReader {
  private:
   const uint8_t* texels_ = nullptr;  // the base copy's first texel
   float inv_size_ = 0;               // 1 / 2^n: one base texel in repeats
+  int32_t box_copy_ = 0;             // the first copy's directory index (the box probes')
   std::vector<Copy> copies_;         // per directory entry
 };
 

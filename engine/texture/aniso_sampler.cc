@@ -84,27 +84,37 @@ template <typename Layout>
              Mix(at(a + 1, b2), at(a + 1, b2 + 1), m2 - m2f), fM);
 }
 
-// The base probes of reading r of a lane (texture/aniso_selection: AddProbesLane):
-// visit(u', v', weight) for each, in order, where they are read (a bilinear read of the base,
-// untilted); `scale` multiplies every weight.
-template <typename Visit>
-[[gnu::always_inline]] inline void ForEachBaseProbe(const SelectionLanes& s, int r, int lane,
-                                                    float u, float v, float inv_size, float scale,
-                                                    Visit visit) {
-  const int probes = s.probes[r][lane];
+// The base probes (kBox false) or the box probes (kBox true) of reading r of a lane
+// (texture/aniso_selection: AddProbesLane, AddBoxProbesLane): visit(u', v', weight) for each,
+// in order, where it is read (a bilinear read of the base or the first copy, both untilted);
+// `scale` multiplies every weight. A box probe in two rows is two reads of half its weight, the
+// row -d first.
+template <bool kBox, typename Visit>
+[[gnu::always_inline]] inline void ForEachProbe(const SelectionLanes& s, int r, int lane, float u,
+                                                float v, float inv_size, float scale, Visit visit) {
+  const int probes = kBox ? s.box_probes[r][lane] : s.probes[r][lane];
   // The other probe fields are only set when there are probes (reading them otherwise could
   // load a stale denormal, which costs a microcode assist a multiplication).
   if (probes == 0) return;
   // Along the major axis, and tg times that along the minor one; in repeats.
-  const float step = s.probe_step[r][lane] * inv_size;
+  const float step = (kBox ? s.box_probe_step[r][lane] : s.probe_step[r][lane]) * inv_size;
   const float first = -0.5f * static_cast<float>(probes - 1) * step;
   const float tg = s.tg[r][lane];
-  const float w = s.probe_weight[r][lane] * scale, w_end = s.probe_end_weight[r][lane] * scale;
+  const float w = (kBox ? s.box_probe_weight[r][lane] : s.probe_weight[r][lane]) * scale;
+  const float w_end =
+      (kBox ? s.box_probe_end_weight[r][lane] : s.probe_end_weight[r][lane]) * scale;
   const bool along_u = s.along_v[r][lane] == 0;
+  const float d = kBox ? s.box_probe_rows[r][lane] * inv_size : 0.0f;
   for (int k = 0; k < probes; ++k) {
     const float major = first + static_cast<float>(k) * step, minor = major * tg;
-    visit(u + (along_u ? major : minor), v + (along_u ? minor : major),
-          k == 0 || k == probes - 1 ? w_end : w);
+    const float wk = k == 0 || k == probes - 1 ? w_end : w;
+    if (kBox && d > 0.0f) {
+      const float below = minor - d, above = minor + d, half = 0.5f * wk;
+      visit(u + (along_u ? major : below), v + (along_u ? below : major), half);
+      visit(u + (along_u ? major : above), v + (along_u ? above : major), half);
+    } else {
+      visit(u + (along_u ? major : minor), v + (along_u ? minor : major), wk);
+    }
   }
 }
 
@@ -143,8 +153,11 @@ void AnisoSampler::ForEachRead(const SelectionLanes& s, int lane, float u, float
   for (int r = 0; r < 2; ++r) {
     if (!(s.reading_weight[r][lane] > 0.0f)) continue;
     const float scale = s.reading_weight[r][lane] / 255.0f;
-    ForEachBaseProbe(s, r, lane, u, v, inv_size, scale,
-                     [&](float pu, float pv, float w) { visit(layouts_[0], pu, pv, 0.0f, w); });
+    ForEachProbe<false>(s, r, lane, u, v, inv_size, scale,
+                        [&](float pu, float pv, float w) { visit(layouts_[0], pu, pv, 0.0f, w); });
+    const CopyLayout& box = layouts_[table_.cell(0, 0).first];
+    ForEachProbe<true>(s, r, lane, u, v, inv_size, scale,
+                       [&](float pu, float pv, float w) { visit(box, pu, pv, 0.0f, w); });
     // The sample's own tangent: the skew interpolates between tilts (seed 000, eq. 6-9).
     const float tg = s.tg[r][lane];
     for (int slot = 0; slot < SelectionLanes::kSlots; ++slot) {

@@ -22,6 +22,14 @@ constexpr float kProbeHalfExtent = 4.0f;
 // Probes are this many texels apart along the long side once more than two are needed (1.125
 // read 0.4-0.6 dB worse on the asphalt photo at pitch 5, a = 1, and saved 2-4 % of a frame).
 constexpr float kProbeSpacing = 1.0f;
+// The box probes (AddBoxProbesLane): apertures thinner than this half-thickness, whole up to
+// kBoxProbeThickness - 1 / kBoxProbeFade = 1.25 and fading into the table's copies above it.
+// Up to 2 (whole to 1.75) they gained another 0.4 dB on the asphalt photo at pitch 20, a = 2,
+// and cost 5.7 ms more a demo frame, against 1.5 ms (docs/BENCHMARKS.md, issue 22, session 37).
+constexpr float kBoxProbeThickness = 1.5f;
+constexpr float kBoxProbeFade = 4.0f;
+// The box probes' spacing: the first copy's box is 2 texels wide.
+constexpr float kBoxProbeSpacing = 2.0f;
 
 // x = 2^e (1 + m) with 0 <= m < 1, for finite x >= 1 (from the bits, exact).
 struct PowerOfTwoSplit {
@@ -152,6 +160,26 @@ bool MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
   return beta == 1.0f;
 }
 
+// The 2J evenly spread probes whose positions have the variance t (in units of the spacing^2,
+// t > 1/4): J, and e, the weight of the outer two (the 2 (J - 1) inner ones share 1 - 2e).
+// Where the count grows, the new outer pair starts at weight 0 (continuous).
+struct EvenProbes {
+  int J;
+  float e;
+};
+EvenProbes SpreadEvenly(float t) {
+  // The smallest J whose 2J evenly weighted probes reach t: (4 J^2 - 1) / 12 >= t.
+  // t < 64 / 3 keeps J <= 9; the bound is the read lists' size.
+  const int J = std::clamp(static_cast<int>(std::ceil(0.5f * std::sqrt(12.0f * t + 1.0f))), 2,
+                           SelectionLanes::kMaxProbes / 2);
+  // The 2 (J - 1) inner probes alone have the variance A (e = 0); e solves
+  // A + 2 e ((J - 1/2)^2 - A) = t with inner weights (1 - 2 e) / (2 (J - 1)), and
+  // (J - 1/2)^2 - A = J (2J - 1) / 3.
+  const float Jf = static_cast<float>(J);
+  const float A = (4.0f * (Jf - 1.0f) * (Jf - 1.0f) - 1.0f) * (1.0f / 12.0f);
+  return {J, std::clamp(1.5f * (t - A) / (Jf * (2.0f * Jf - 1.0f)), 0.0f, 0.5f / Jf)};
+}
+
 // Below L = 1 the table's thinnest copies are up to twice too thick across the long side: the
 // paper's table stops there. This mixes in bilinear probes of the base, spread along the long
 // side, so that the blend's variances are the aperture's own (box of half-sides H and L on the
@@ -207,23 +235,64 @@ void AddProbesLane(SelectionLanes& out, int r, int lane) {
     out.probe_weight[r][lane] = 0.0f;
     out.probe_end_weight[r][lane] = 0.5f * share;
   } else {
-    const float t = T / s2;  // in units of the spacing^2
-    // The smallest J whose 2J evenly weighted probes reach t: (4 J^2 - 1) / 12 >= t.
-    // H < 2 kProbeHalfExtent = 8 keeps J <= 9 (t < 64 / 3); the bound is the read lists' size.
-    const int J = std::clamp(static_cast<int>(std::ceil(0.5f * std::sqrt(12.0f * t + 1.0f))), 2,
-                             SelectionLanes::kMaxProbes / 2);
-    // The 2 (J - 1) inner probes alone have the variance A (e = 0); e solves
-    // A + 2 e ((J - 1/2)^2 - A) = t with inner weights (1 - 2 e) / (2 (J - 1)), and
-    // (J - 1/2)^2 - A = J (2J - 1) / 3.
+    // In units of the spacing^2; H < 2 kProbeHalfExtent = 8 keeps t under 64 / 3.
+    const auto [J, e] = SpreadEvenly(T / s2);
     const float Jf = static_cast<float>(J);
-    const float A = (4.0f * (Jf - 1.0f) * (Jf - 1.0f) - 1.0f) * (1.0f / 12.0f);
-    const float e = std::clamp(1.5f * (t - A) / (Jf * (2.0f * Jf - 1.0f)), 0.0f, 0.5f / Jf);
     out.probes[r][lane] = 2 * J;
     out.probe_step[r][lane] = kProbeSpacing * out.probe_scale[r][lane];
     out.probe_end_weight[r][lane] = e * share;
     out.probe_weight[r][lane] = (1.0f - 2.0f * e) / (2.0f * (Jf - 1.0f)) * share;
   }
   for (int s = 0; s < SelectionLanes::kSlots; ++s) out.weight[r][s][lane] *= 1.0f - share;
+}
+
+// The box probes (issue 22, session 37). A table copy of half-extent c is read bilinearly
+// between texels c apart (CopyExtent), so along each axis its kernel is the box of half-width c
+// convolved with a tent of half-width c, where the pixel's box on the bilinear base is the box
+// of half-width H convolved with a tent of one texel. Short apertures (the copies of H = 2-4 at
+// texels 2-4 apart) were blurred at their ends: the 2-4 texel band of the checkerboard at a = 2
+// was up to 1.1 dB behind OpenImageIO's anisotropic 16. The first copy, the 2 x 2 box, is
+// stored at full resolution; its bilinear reads kBoxProbeSpacing = 2 texels apart along the long
+// side tile the box: for an even H they sum to exactly the pixel's kernel along that side, and
+// for any H their positions have the variance T = (H^2 - 1) / 3, the kernel's H^2 / 3 + 1/6 less
+// the read's own 1/3 + 1/6 (the layout of AddProbesLane: two probes at +-sqrt(T) up to T = 1,
+// then 2J probes). Across, one row is the first copy's own box (L = 1); for L > 1 two rows at
+// +-d, d^2 = (L^2 - 1) / 3, have the variance L^2 / 3 + 1/6 (twice the reads, so they stop at
+// kBoxProbeThickness). The probes follow (1, tg) and the rows the minor axis, so a turned
+// footprint is read in its own parallelogram, with no tilt between.
+// They take over the table's copies (whatever weight AddProbesLane left them: below L = 1 the
+// copies of (H, 1), whose box the probes have) with the weight
+// g = min(1, 2 - H / kProbeHalfExtent) min(1, (kBoxProbeThickness - L) kBoxProbeFade), fading
+// out with the base probes between H = 4 and 8 and into the table's copies between L = 1.25
+// and 1.5. Continuous: at H = 1 the probes meet at the centre (T = 0), the first copy alone,
+// which is the table's copy there; the rows part from L = 1; g reaches 0 at the fades' ends.
+void AddBoxProbesLane(SelectionLanes& out, int r, int lane) {
+  out.box_probes[r][lane] = 0;
+  if (!(out.reading_weight[r][lane] > 0.0f)) return;
+  const float H = out.H[r][lane], L = std::min(out.L[r][lane], H);
+  if (!(H >= 1.0f) || !(L < kBoxProbeThickness) || !(H < 2.0f * kProbeHalfExtent)) return;
+  const float g = std::min(1.0f, 2.0f - H / kProbeHalfExtent) *
+                  std::min(1.0f, (kBoxProbeThickness - L) * kBoxProbeFade);
+  float table = 0.0f;
+  for (int s = 0; s < SelectionLanes::kSlots; ++s) table += out.weight[r][s][lane];
+  for (int s = 0; s < SelectionLanes::kSlots; ++s) out.weight[r][s][lane] *= 1.0f - g;
+  const float share = g * table;
+  out.box_probe_rows[r][lane] = L > 1.0f ? std::sqrt((L * L - 1.0f) * (1.0f / 3.0f)) : 0.0f;
+  const float T = (H * H - 1.0f) * (1.0f / 3.0f);
+  const float t = T * (1.0f / (kBoxProbeSpacing * kBoxProbeSpacing));
+  if (t <= 0.25f) {
+    out.box_probes[r][lane] = 2;
+    out.box_probe_step[r][lane] = 2.0f * std::sqrt(T);
+    out.box_probe_weight[r][lane] = 0.0f;
+    out.box_probe_end_weight[r][lane] = 0.5f * share;
+    return;
+  }
+  const auto [J, e] = SpreadEvenly(t);  // H < 8: t < 63 / 12
+  const float Jf = static_cast<float>(J);
+  out.box_probes[r][lane] = 2 * J;
+  out.box_probe_step[r][lane] = kBoxProbeSpacing;
+  out.box_probe_end_weight[r][lane] = e * share;
+  out.box_probe_weight[r][lane] = (1.0f - 2.0f * e) / (2.0f * (Jf - 1.0f)) * share;
 }
 
 }  // namespace
@@ -336,7 +405,10 @@ void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const fl
     }
   }
   for (int lane = 0; lane < n; ++lane)
-    for (int k = 0; k < 2; ++k) AddProbesLane(out, k, lane);
+    for (int k = 0; k < 2; ++k) {
+      AddProbesLane(out, k, lane);
+      AddBoxProbesLane(out, k, lane);
+    }
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -411,6 +483,29 @@ constexpr ProbeTable MakeProbeTable() {
 constexpr ProbeTable kProbeTable = MakeProbeTable();
 static_assert(SelectionLanes::kMaxProbes / 2 - 2 < 8, "J - 2 indexes eight entries");
 
+// SpreadEvenly for eight lanes: J, J - 1 and e, the same floats (its functions of J looked up).
+__attribute__((target("avx2"))) inline void SpreadEvenlyAvx2(__m256 t, __m256i& J, __m256& J1,
+                                                             __m256& e) {
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  J = _mm256_min_epi32(
+      _mm256_max_epi32(
+          _mm256_cvttps_epi32(_mm256_ceil_ps(_mm256_mul_ps(
+              _mm256_set1_ps(0.5f),
+              _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(12.0f), t), one))))),
+          _mm256_set1_epi32(2)),
+      _mm256_set1_epi32(SelectionLanes::kMaxProbes / 2));
+  const __m256i row = _mm256_sub_epi32(J, _mm256_set1_epi32(2));
+  const __m256 A = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.A), row);
+  J1 = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.J1), row);
+  // std::clamp(y, 0, 0.5 / J): y < 0 ? 0 : (0.5 / J < y ? 0.5 / J : y).
+  const __m256 y =
+      _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(t, A)),
+                    _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.denominator), row));
+  const __m256 top = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.top), row);
+  e = _mm256_blendv_ps(y, top, _mm256_cmp_ps(top, y, _CMP_LT_OQ));
+  e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
+}
+
 // AddProbesLane for the lanes of `thin` (read, L < 1, H < 2 kProbeHalfExtent and not nearly
 // round), the same operations; `magnify`: H < 1.
 __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, __m256 thin,
@@ -444,23 +539,9 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
   __m256 step = _mm256_mul_ps(two, root), weight = zero, end_weight = _mm256_mul_ps(half, share);
   const __m256 spread = _mm256_andnot_ps(two_probes, thin);
   if (_mm256_movemask_ps(spread) != 0) {  // 2J probes (never where a lane fades: T < 1 / 64)
-    const __m256i J = _mm256_min_epi32(
-        _mm256_max_epi32(_mm256_cvttps_epi32(_mm256_ceil_ps(_mm256_mul_ps(
-                             half, _mm256_sqrt_ps(_mm256_add_ps(
-                                       _mm256_mul_ps(_mm256_set1_ps(12.0f), T), one))))),
-                         _mm256_set1_epi32(2)),
-        _mm256_set1_epi32(SelectionLanes::kMaxProbes / 2));
-    // AddProbesLane's functions of J (2..9), looked up: the same floats.
-    const __m256i row = _mm256_sub_epi32(J, _mm256_set1_epi32(2));
-    const __m256 A = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.A), row);
-    const __m256 J1 = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.J1), row);
-    // std::clamp(y, 0, 0.5 / J): y < 0 ? 0 : (0.5 / J < y ? 0.5 / J : y).
-    const __m256 y =
-        _mm256_div_ps(_mm256_mul_ps(_mm256_set1_ps(1.5f), _mm256_sub_ps(T, A)),
-                      _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.denominator), row));
-    const __m256 top = _mm256_permutevar8x32_ps(_mm256_load_ps(kProbeTable.top), row);
-    __m256 e = _mm256_blendv_ps(y, top, _mm256_cmp_ps(top, y, _CMP_LT_OQ));
-    e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
+    __m256i J;
+    __m256 J1, e;
+    SpreadEvenlyAvx2(T, J, J1, e);
     probes = _mm256_blendv_epi8(probes, _mm256_add_epi32(J, J), _mm256_castps_si256(spread));
     step = _mm256_blendv_ps(step, one, spread);
     weight = _mm256_blendv_ps(weight,
@@ -502,10 +583,69 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
                probed);
 }
 
+// AddBoxProbesLane for the lanes of `read`, the same operations; L is min(L, H). The caller
+// has set every lane's count to 0.
+__attribute__((target("avx2"))) void AddBoxProbesAvx2(SelectionLanes& out, int r, __m256 read,
+                                                      __m256 H, __m256 L) {
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  const __m256 two = _mm256_set1_ps(2.0f);
+  const __m256 boxed = _mm256_and_ps(
+      _mm256_and_ps(read, _mm256_cmp_ps(H, one, _CMP_GE_OQ)),
+      _mm256_and_ps(_mm256_cmp_ps(L, _mm256_set1_ps(kBoxProbeThickness), _CMP_LT_OQ),
+                    _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ)));
+  if (_mm256_movemask_ps(boxed) == 0) return;
+  // H / kProbeHalfExtent, a power of two: the same float as the division.
+  const __m256 g = _mm256_mul_ps(
+      _mm256_min_ps(_mm256_sub_ps(two, _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
+                    one),
+      _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(kBoxProbeThickness), L),
+                                  _mm256_set1_ps(kBoxProbeFade)),
+                    one));
+  __m256 table = zero;
+  for (int slot = 0; slot < SelectionLanes::kSlots; ++slot)
+    table = _mm256_add_ps(table, _mm256_loadu_ps(out.weight[r][slot]));
+  const __m256 keep = _mm256_sub_ps(one, g);
+  for (int slot = 0; slot < SelectionLanes::kSlots; ++slot)
+    BlendStore(out.weight[r][slot], _mm256_mul_ps(_mm256_loadu_ps(out.weight[r][slot]), keep),
+               boxed);
+  const __m256 share = _mm256_mul_ps(g, table);
+  const __m256 third = _mm256_set1_ps(1.0f / 3.0f);
+  const __m256 rows =
+      _mm256_and_ps(_mm256_cmp_ps(L, one, _CMP_GT_OQ),
+                    _mm256_sqrt_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(L, L), one), third)));
+  const __m256 T = _mm256_mul_ps(_mm256_sub_ps(_mm256_mul_ps(H, H), one), third);
+  const __m256 t = _mm256_mul_ps(T, _mm256_set1_ps(1.0f / (kBoxProbeSpacing * kBoxProbeSpacing)));
+  __m256i probes = _mm256_set1_epi32(2);
+  __m256 step = _mm256_mul_ps(two, _mm256_sqrt_ps(T)), weight = zero,
+         end_weight = _mm256_mul_ps(_mm256_set1_ps(0.5f), share);
+  const __m256 spread =
+      _mm256_andnot_ps(_mm256_cmp_ps(t, _mm256_set1_ps(0.25f), _CMP_LE_OQ), boxed);
+  if (_mm256_movemask_ps(spread) != 0) {
+    __m256i J;
+    __m256 J1, e;
+    SpreadEvenlyAvx2(t, J, J1, e);
+    probes = _mm256_blendv_epi8(probes, _mm256_add_epi32(J, J), _mm256_castps_si256(spread));
+    step = _mm256_blendv_ps(step, _mm256_set1_ps(kBoxProbeSpacing), spread);
+    weight = _mm256_blendv_ps(weight,
+                              _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(two, e)),
+                                                          _mm256_mul_ps(two, J1)),
+                                            share),
+                              spread);
+    end_weight = _mm256_blendv_ps(end_weight, _mm256_mul_ps(e, share), spread);
+  }
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.box_probes[r]),
+                     _mm256_and_si256(probes, _mm256_castps_si256(boxed)));
+  BlendStore(out.box_probe_step[r], step, boxed);
+  BlendStore(out.box_probe_weight[r], weight, boxed);
+  BlendStore(out.box_probe_end_weight[r], end_weight, boxed);
+  BlendStore(out.box_probe_rows[r], rows, boxed);
+}
+
 // The AVX2 lanes of SelectPortable: ReadLane and TableSlots for eight lanes, the same float
 // operations in the same order. Lanes whose readings are not read compute harmless values
 // (clamped cell indices, finite arithmetic) that are never used; the second reading is skipped
-// when no lane is near a diagonal; the base probes by AddProbesAvx2.
+// when no lane is near a diagonal; the base probes by AddProbesAvx2, the box probes by
+// AddBoxProbesAvx2.
 __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* dvdx,
                                                 const float* dudy, const float* dvdy,
                                                 float half_size, int n_log2, uint32_t first_copy,
@@ -595,6 +735,7 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
   _mm256_store_ps(out.reading_weight[1], second);
   for (int r = 0; r < 2; ++r) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.probes[r]), _mm256_setzero_si256());
+    _mm256_store_si256(reinterpret_cast<__m256i*>(out.box_probes[r]), _mm256_setzero_si256());
     if (_mm256_movemask_ps(read[r]) == 0) continue;
     const __m256 H = shape_h[r], L = shape_l[r], tg = shape_tg[r];
     // Magnified: H under 1 (the principal axes' H, blended, stays under 1 where the axis one is).
@@ -734,6 +875,7 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
         BlendSlot(out, r, slot, magnify, izero, zero);
     }
     if (_mm256_movemask_ps(thin) != 0) AddProbesAvx2(out, r, thin, magnify, H, Lmin);
+    AddBoxProbesAvx2(out, r, read[r], H, Lmin);
   }
 }
 
@@ -793,7 +935,11 @@ CopyBlend BlendOf(const PrefilteredTable& table, const ApertureShape& shape, boo
                                  shape.axis == TiltAxis::kV, lanes, 0, 0);
   lanes.probes[0][0] = 0;
   lanes.probe_scale[0][0] = 1.0f;  // the given shape as it is (no principal axes)
-  if (probes) AddProbesLane(lanes, 0, 0);
+  lanes.box_probes[0][0] = 0;
+  if (probes) {
+    AddProbesLane(lanes, 0, 0);
+    AddBoxProbesLane(lanes, 0, 0);
+  }
   for (int s = 0; s < SelectionLanes::kSlots; ++s) {
     if (!(lanes.weight[0][s][0] > 0.0f)) continue;
     blend.copy[blend.count] = lanes.copy[0][s][0];
@@ -804,6 +950,13 @@ CopyBlend BlendOf(const PrefilteredTable& table, const ApertureShape& shape, boo
     blend.probe_step = lanes.probe_step[0][0];
     blend.probe_weight = lanes.probe_weight[0][0];
     blend.probe_end_weight = lanes.probe_end_weight[0][0];
+  }
+  blend.box_probes = lanes.box_probes[0][0];
+  if (blend.box_probes > 0) {
+    blend.box_probe_step = lanes.box_probe_step[0][0];
+    blend.box_probe_weight = lanes.box_probe_weight[0][0];
+    blend.box_probe_end_weight = lanes.box_probe_end_weight[0][0];
+    blend.box_probe_rows = lanes.box_probe_rows[0][0];
   }
   return blend;
 }

@@ -77,16 +77,22 @@ struct CopyBlend {
   // sample; the outer two weigh `probe_end_weight`, the others `probe_weight`.
   int probes = 0;
   float probe_step = 0, probe_weight = 0, probe_end_weight = 0;
+  // 1 <= H < 8 and L < 1.5: also `box_probes` bilinear reads of the first copy
+  // (the 2 x 2 box) along the long side, `box_probe_step` texels apart, in two rows
+  // +-box_probe_rows texels across (one row when that is 0), each read of a pair weighing half
+  // (BoxProbes in the .cc).
+  int box_probes = 0;
+  float box_probe_step = 0, box_probe_weight = 0, box_probe_end_weight = 0, box_probe_rows = 0;
 };
-// seed 000, eq. 5, and below L = 1 the base probes (a deviation: the paper's table ends at
-// L = 1; docs/BENCHMARKS.md, issue 3, measures it).
+// seed 000, eq. 5, below L = 1 the base probes (a deviation: the paper's table ends at L = 1;
+// docs/BENCHMARKS.md, issue 3, measures it) and below L = 1.5 the box probes (issue 22).
 CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
-// The paper's selection alone (with the tilt blend), without the base probes for L < 1.
+// The paper's selection alone (with the tilt blend), without the base and box probes.
 CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape);
 
 // The selections of up to eight samples, lane by lane. Per lane two readings; per reading six
-// slots (three cells of eq. 5, two tilts each) whose zero weights are not read, and the base
-// probes.
+// slots (three cells of eq. 5, two tilts each) whose zero weights are not read, the base probes
+// and the box probes.
 struct SelectionLanes {
   static constexpr int kLanes = 8;
   static constexpr int kSlots = CopyBlend::kMaxCopies;
@@ -106,6 +112,13 @@ struct SelectionLanes {
   // The probes' positions are scaled by this (1 but for magnified readings, whose probes lie
   // along the footprint's principal axis: see MagnifiedInPrincipalAxes in the .cc).
   alignas(32) float probe_scale[2][kLanes];
+  // The box probes (CopyBlend::box_probes): count, spacing, weights and the rows' offset across,
+  // in texels (0: one row).
+  alignas(32) int32_t box_probes[2][kLanes];
+  float box_probe_step[2][kLanes];
+  float box_probe_weight[2][kLanes];
+  float box_probe_end_weight[2][kLanes];
+  float box_probe_rows[2][kLanes];
 };
 
 class CopySelector {

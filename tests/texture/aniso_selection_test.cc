@@ -16,9 +16,9 @@ namespace {
 
 constexpr int kN = 64;
 
-// Derivatives (repeats per pixel) of every class: magnified, thin (the base probes), three
-// copies on both axes, near a diagonal (both readings), the frozen region, whole periods,
-// zero, tiny, huge, infinite and NaN.
+// Derivatives (repeats per pixel) of every class: magnified, thin (the base probes), short
+// (the box probes, in one row or two), three copies on both axes, near a diagonal (both readings),
+// the frozen region, whole periods, zero, tiny, huge, infinite and NaN.
 std::vector<std::array<float, 4>> Footprints(int count, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> turn(0, 2 * M_PI), log_len(-4, 24), log_ratio(0, 14),
@@ -64,6 +64,7 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   if (!selector.has_kernel()) GTEST_SKIP() << "no AVX2 on this processor: one code path only";
   const auto footprints = Footprints(8000, 5);
   int compared = 0, second_readings = 0, probed = 0, magnified = 0, degenerate = 0;
+  int boxed = 0, two_rows = 0;
   int one_of_two = 0;  // magnified near a diagonal: both readings in the principal axes, one read
   for (size_t first = 0; first + 8 <= footprints.size(); first += 8) {
     float d[4][8];
@@ -104,6 +105,17 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
           EXPECT_EQ(bits(portable.probe_end_weight[r][lane]),
                     bits(kernel.probe_end_weight[r][lane]));
         }
+        ASSERT_EQ(portable.box_probes[r][lane], kernel.box_probes[r][lane]);
+        if (portable.box_probes[r][lane] > 0) {
+          ++boxed;
+          two_rows += portable.box_probe_rows[r][lane] > 0.0f;
+          EXPECT_EQ(bits(portable.box_probe_step[r][lane]), bits(kernel.box_probe_step[r][lane]));
+          EXPECT_EQ(bits(portable.box_probe_weight[r][lane]),
+                    bits(kernel.box_probe_weight[r][lane]));
+          EXPECT_EQ(bits(portable.box_probe_end_weight[r][lane]),
+                    bits(kernel.box_probe_end_weight[r][lane]));
+          EXPECT_EQ(bits(portable.box_probe_rows[r][lane]), bits(kernel.box_probe_rows[r][lane]));
+        }
       }
       degenerate += !any;
       const TextureFootprint f{0, 0, d[0][lane], d[1][lane], d[2][lane], d[3][lane]};
@@ -115,6 +127,8 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   // Every class was among them.
   EXPECT_GT(second_readings, 300);
   EXPECT_GT(probed, 300);
+  EXPECT_GT(boxed, 100);
+  EXPECT_GT(two_rows, 20);
   EXPECT_GT(magnified, 100);
   EXPECT_GT(degenerate, 300);
   EXPECT_GT(one_of_two, 50);
