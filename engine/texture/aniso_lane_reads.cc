@@ -306,7 +306,9 @@ __attribute__((target("avx2"))) inline void AddProbeReads(const CopyTables& t, f
   int most = 0;
   for (int i = 0; i < n; ++i) most = std::max(most, count[i] * (s.reading_weight[r][i] > 0));
   if (most == 0) return;
-  const __m256i copy = kBox ? _mm256_set1_epi32(t.box_copy) : izero;
+  // Every lane reads one untilted copy: its fields broadcast once, read as plain bilinear (what
+  // AddRead does for a shared untilted copy).
+  const LaneCopies copy = Broadcast(t.copies[kBox ? t.box_copy : 0]);
   // The probe fields are only set where there are probes (a stale denormal would cost a
   // microcode assist): masked before any arithmetic.
   const __m256 has = _mm256_castsi256_ps(_mm256_cmpgt_epi32(probes, izero));
@@ -343,18 +345,23 @@ __attribute__((target("avx2"))) inline void AddProbeReads(const CopyTables& t, f
     if (!any_two_rows) {
       const __m256 pu = _mm256_add_ps(u, _mm256_blendv_ps(major, minor, along_v));
       const __m256 pv = _mm256_add_ps(v, _mm256_blendv_ps(minor, major, along_v));
-      AddRead(t, copy, mask, pu, pv, zero, wk, sums);
+      AddCopyReads<Tilt::kBase, false>(t.texels, copy, izero, mask, mask, pu, pv, zero, wk, wk,
+                                       sums);
       continue;
     }
     // The row -d (d = 0 in one-row lanes: minor itself, of weight wk), then the row +d.
     const __m256 half = _mm256_mul_ps(_mm256_set1_ps(0.5f), wk);
     const __m256 below = _mm256_sub_ps(minor, d), above = _mm256_add_ps(minor, d);
-    AddRead(t, copy, mask, _mm256_add_ps(u, _mm256_blendv_ps(major, below, along_v)),
-            _mm256_add_ps(v, _mm256_blendv_ps(below, major, along_v)), zero,
-            _mm256_blendv_ps(wk, half, two_rows), sums);
-    AddRead(t, copy, _mm256_and_ps(mask, two_rows),
-            _mm256_add_ps(u, _mm256_blendv_ps(major, above, along_v)),
-            _mm256_add_ps(v, _mm256_blendv_ps(above, major, along_v)), zero, half, sums);
+    const __m256 first_row = _mm256_blendv_ps(wk, half, two_rows);
+    const __m256 second = _mm256_and_ps(mask, two_rows);
+    AddCopyReads<Tilt::kBase, false>(t.texels, copy, izero, mask, mask,
+                                     _mm256_add_ps(u, _mm256_blendv_ps(major, below, along_v)),
+                                     _mm256_add_ps(v, _mm256_blendv_ps(below, major, along_v)),
+                                     zero, first_row, first_row, sums);
+    AddCopyReads<Tilt::kBase, false>(t.texels, copy, izero, second, second,
+                                     _mm256_add_ps(u, _mm256_blendv_ps(major, above, along_v)),
+                                     _mm256_add_ps(v, _mm256_blendv_ps(above, major, along_v)),
+                                     zero, half, half, sums);
   }
 }
 

@@ -197,12 +197,17 @@ EvenProbes SpreadEvenly(float t) {
 // (where the next pair appears), e set so that the variance is T. The probes fade out between
 // kProbeHalfExtent and twice it. This sets the probes of reading r of a lane when it is read and
 // thin; their positions are scaled by the lane's probe_scale (MagnifiedInPrincipalAxes).
+// The base probes' share of a thin reading (L < 1, H < 2 kProbeHalfExtent).
+inline float BaseProbeShare(float H, float L) {
+  return std::min(1.0f, 2.0f - H / kProbeHalfExtent) * (1.0f - L * L);
+}
+
 void AddProbesLane(SelectionLanes& out, int r, int lane) {
   out.probes[r][lane] = 0;
   if (!(out.reading_weight[r][lane] > 0.0f)) return;
   const float H = out.H[r][lane], L = std::min(out.L[r][lane], H);
   if (!(L < 1.0f) || H >= 2.0f * kProbeHalfExtent) return;
-  const float share = std::min(1.0f, 2.0f - H / kProbeHalfExtent) * (1.0f - L * L);
+  const float share = BaseProbeShare(H, L);
   float T = H * H * (1.0f / 3.0f);
   if (H < 1.0f) {
     T = (H * H - L * L) / (3.0f * (1.0f - L * L));
@@ -273,8 +278,8 @@ void AddBoxProbesLane(SelectionLanes& out, int r, int lane) {
   if (!(H >= 1.0f) || !(L < kBoxProbeThickness) || !(H < 2.0f * kProbeHalfExtent)) return;
   const float g = std::min(1.0f, 2.0f - H / kProbeHalfExtent) *
                   std::min(1.0f, (kBoxProbeThickness - L) * kBoxProbeFade);
-  float table = 0.0f;
-  for (int s = 0; s < SelectionLanes::kSlots; ++s) table += out.weight[r][s][lane];
+  // What the base probes left the table (its slots' weights sum to that, up to rounding).
+  const float table = 1.0f - (L < 1.0f ? BaseProbeShare(H, L) : 0.0f);
   for (int s = 0; s < SelectionLanes::kSlots; ++s) out.weight[r][s][lane] *= 1.0f - g;
   const float share = g * table;
   out.box_probe_rows[r][lane] = L > 1.0f ? std::sqrt((L * L - 1.0f) * (1.0f / 3.0f)) : 0.0f;
@@ -506,6 +511,17 @@ __attribute__((target("avx2"))) inline void SpreadEvenlyAvx2(__m256 t, __m256i& 
   e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
 }
 
+// BaseProbeShare, the same operations.
+__attribute__((target("avx2"))) inline __m256 BaseProbeShareAvx2(__m256 H, __m256 L) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  return _mm256_mul_ps(
+      // H / kProbeHalfExtent, a power of two: the same float as the division.
+      _mm256_min_ps(_mm256_sub_ps(_mm256_set1_ps(2.0f),
+                                  _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
+                    one),
+      _mm256_sub_ps(one, _mm256_mul_ps(L, L)));
+}
+
 // AddProbesLane for the lanes of `thin` (read, L < 1, H < 2 kProbeHalfExtent and not nearly
 // round), the same operations; `magnify`: H < 1.
 __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, __m256 thin,
@@ -514,11 +530,7 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   const __m256 half = _mm256_set1_ps(0.5f), two = _mm256_set1_ps(2.0f);
   const __m256 L2 = _mm256_mul_ps(L, L), H2 = _mm256_mul_ps(H, H);
-  const __m256 share = _mm256_mul_ps(
-      // H / kProbeHalfExtent, a power of two: the same float as the division.
-      _mm256_min_ps(_mm256_sub_ps(two, _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
-                    one),
-      _mm256_sub_ps(one, L2));
+  const __m256 share = BaseProbeShareAvx2(H, L);
   __m256 T = _mm256_mul_ps(H2, _mm256_set1_ps(1.0f / 3.0f));
   if (_mm256_movemask_ps(_mm256_and_ps(thin, magnify)) != 0)
     T = _mm256_blendv_ps(T,
@@ -583,27 +595,37 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
                probed);
 }
 
+// The lanes of `read` that AddBoxProbesLane gives box probes, and their weight g, the same
+// operations.
+__attribute__((target("avx2"))) inline __m256 BoxProbedAvx2(__m256 read, __m256 H, __m256 L) {
+  return _mm256_and_ps(
+      _mm256_and_ps(read, _mm256_cmp_ps(H, _mm256_set1_ps(1.0f), _CMP_GE_OQ)),
+      _mm256_and_ps(_mm256_cmp_ps(L, _mm256_set1_ps(kBoxProbeThickness), _CMP_LT_OQ),
+                    _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ)));
+}
+__attribute__((target("avx2"))) inline __m256 BoxProbeWeightAvx2(__m256 H, __m256 L) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  // H / kProbeHalfExtent, a power of two: the same float as the division.
+  return _mm256_mul_ps(
+      _mm256_min_ps(_mm256_sub_ps(_mm256_set1_ps(2.0f),
+                                  _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
+                    one),
+      _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(kBoxProbeThickness), L),
+                                  _mm256_set1_ps(kBoxProbeFade)),
+                    one));
+}
+
 // AddBoxProbesLane for the lanes of `read`, the same operations; L is min(L, H). The caller
 // has set every lane's count to 0.
 __attribute__((target("avx2"))) void AddBoxProbesAvx2(SelectionLanes& out, int r, __m256 read,
                                                       __m256 H, __m256 L) {
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   const __m256 two = _mm256_set1_ps(2.0f);
-  const __m256 boxed = _mm256_and_ps(
-      _mm256_and_ps(read, _mm256_cmp_ps(H, one, _CMP_GE_OQ)),
-      _mm256_and_ps(_mm256_cmp_ps(L, _mm256_set1_ps(kBoxProbeThickness), _CMP_LT_OQ),
-                    _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ)));
+  const __m256 boxed = BoxProbedAvx2(read, H, L);
   if (_mm256_movemask_ps(boxed) == 0) return;
-  // H / kProbeHalfExtent, a power of two: the same float as the division.
-  const __m256 g = _mm256_mul_ps(
-      _mm256_min_ps(_mm256_sub_ps(two, _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
-                    one),
-      _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(kBoxProbeThickness), L),
-                                  _mm256_set1_ps(kBoxProbeFade)),
-                    one));
-  __m256 table = zero;
-  for (int slot = 0; slot < SelectionLanes::kSlots; ++slot)
-    table = _mm256_add_ps(table, _mm256_loadu_ps(out.weight[r][slot]));
+  const __m256 g = BoxProbeWeightAvx2(H, L);
+  const __m256 table = _mm256_sub_ps(
+      one, _mm256_and_ps(_mm256_cmp_ps(L, one, _CMP_LT_OQ), BaseProbeShareAvx2(H, L)));
   const __m256 keep = _mm256_sub_ps(one, g);
   for (int slot = 0; slot < SelectionLanes::kSlots; ++slot)
     BlendStore(out.weight[r][slot], _mm256_mul_ps(_mm256_loadu_ps(out.weight[r][slot]), keep),
@@ -774,6 +796,20 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
         _mm256_store_ps(out.weight[r][slot], zero);
       }
       if (_mm256_movemask_ps(thin) != 0) AddProbesAvx2(out, r, thin, magnify, H, Lmin);
+      continue;
+    }
+    // Every lane read wholly by the box probes (g = 1, where the lane code's table weights end
+    // as 0): the table's copies are not chosen.
+    const __m256 whole_box =
+        _mm256_and_ps(BoxProbedAvx2(read[r], H, Lmin),
+                      _mm256_cmp_ps(BoxProbeWeightAvx2(H, Lmin), one, _CMP_EQ_OQ));
+    if (_mm256_movemask_ps(whole_box) == _mm256_movemask_ps(read[r])) {
+      for (int slot = 0; slot < SelectionLanes::kSlots; ++slot) {
+        _mm256_store_si256(reinterpret_cast<__m256i*>(out.copy[r][slot]), izero);
+        _mm256_store_ps(out.weight[r][slot], zero);
+      }
+      if (_mm256_movemask_ps(thin) != 0) AddProbesAvx2(out, r, thin, magnify, H, Lmin);
+      AddBoxProbesAvx2(out, r, read[r], H, Lmin);
       continue;
     }
     // CopyExtent of H and L. Its x < 1 branch is not needed here: H >= 1 on these lanes, and

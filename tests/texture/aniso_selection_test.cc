@@ -17,8 +17,8 @@ namespace {
 constexpr int kN = 64;
 
 // Derivatives (repeats per pixel) of every class: magnified, thin (the base probes), short
-// (the box probes, in one row or two), three copies on both axes, near a diagonal (both readings),
-// the frozen region, whole periods, zero, tiny, huge, infinite and NaN.
+// (the box probes, in one row or two, and whole groups of them), three copies on both axes, near a
+// diagonal (both readings), the frozen region, whole periods, zero, tiny, huge, infinite and NaN.
 std::vector<std::array<float, 4>> Footprints(int count, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> turn(0, 2 * M_PI), log_len(-4, 24), log_ratio(0, 14),
@@ -27,11 +27,17 @@ std::vector<std::array<float, 4>> Footprints(int count, uint32_t seed) {
   for (int k = 0; k < count; ++k) {
     double angle = turn(rng);
     if (k % 4 == 0) angle = M_PI / 4 + (unit(rng) - 0.5) * 0.2;  // near the diagonal
-    const double len = std::exp2(log_len(rng)), thick = len / std::exp2(log_ratio(rng));
+    double len = std::exp2(log_len(rng)), thick = len / std::exp2(log_ratio(rng));
+    if ((k / 8) % 10 == 3) {
+      // Whole groups of short footprints near an axis, read by the box probes alone (half-extents
+      // H = 1-4, L = 0.5-1.25 texels: len and thick are twice them).
+      angle = (k % 2) * M_PI / 2 + (unit(rng) - 0.5) * 0.2;
+      len = 2 + 6 * unit(rng), thick = std::min(len, 1 + 1.5 * unit(rng));
+    }
     const double c = std::cos(angle), s = std::sin(angle);
     std::array<float, 4> d = {float(len * c / kN), float(len * s / kN), float(-thick * s / kN),
                               float(thick * c / kN)};
-    switch (k % 23) {
+    switch ((k / 8) % 10 == 3 ? 0 : k % 23) {
       case 5:
         d = {0, 0, 0, 0};
         break;
@@ -64,7 +70,7 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   if (!selector.has_kernel()) GTEST_SKIP() << "no AVX2 on this processor: one code path only";
   const auto footprints = Footprints(8000, 5);
   int compared = 0, second_readings = 0, probed = 0, magnified = 0, degenerate = 0;
-  int boxed = 0, two_rows = 0;
+  int boxed = 0, two_rows = 0, whole_box_groups = 0;
   int one_of_two = 0;  // magnified near a diagonal: both readings in the principal axes, one read
   for (size_t first = 0; first + 8 <= footprints.size(); first += 8) {
     float d[4][8];
@@ -73,6 +79,16 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
     SelectionLanes portable, kernel;
     selector.SelectPortable(d[0], d[1], d[2], d[3], 8, portable);
     selector.Select(d[0], d[1], d[2], d[3], 8, kernel);
+    bool whole_box = true;  // every lane read by the box probes alone
+    for (int lane = 0; lane < 8; ++lane) {
+      for (int r = 0; r < 2; ++r) {
+        if (!(portable.reading_weight[r][lane] > 0.0f)) continue;
+        whole_box = whole_box && portable.box_probes[r][lane] > 0;
+        for (int s = 0; s < SelectionLanes::kSlots; ++s)
+          whole_box = whole_box && portable.weight[r][s][lane] == 0.0f;
+      }
+    }
+    whole_box_groups += whole_box;
     for (int lane = 0; lane < 8; ++lane) {
       SCOPED_TRACE(testing::Message() << "footprint " << first + lane);
       bool any = false;
@@ -129,6 +145,7 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   EXPECT_GT(probed, 300);
   EXPECT_GT(boxed, 100);
   EXPECT_GT(two_rows, 20);
+  EXPECT_GT(whole_box_groups, 50);  // where the kernel skips the table's copies
   EXPECT_GT(magnified, 100);
   EXPECT_GT(degenerate, 300);
   EXPECT_GT(one_of_two, 50);
