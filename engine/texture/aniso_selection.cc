@@ -24,10 +24,12 @@ constexpr float kProbeHalfExtent = 4.0f;
 constexpr float kProbeSpacing = 1.0f;
 // The box probes (AddBoxProbesLane): apertures thinner than this half-thickness, whole up to
 // kBoxProbeThickness - 1 / kBoxProbeFade = 1.25 and fading into the table's copies above it.
-// Up to 2 (whole to 1.75) they gained another 0.4 dB on the asphalt photo at pitch 20, a = 2,
-// and cost 5.7 ms more a demo frame, against 1.5 ms (docs/BENCHMARKS.md, issue 22, session 37).
-constexpr float kBoxProbeThickness = 1.5f;
-constexpr float kBoxProbeFade = 4.0f;
+// Their two rows double the reads. The demo frame's aniso time over the sampler without box
+// probes, in trilinear frames: +1.8 % with these constants, +5.6 % fading out up to 1.5 instead
+// (thickness 1.5, fade 4) and +19 % whole up to 1.75 (thickness 2), for 0.06 and 0.42 dB more on
+// the asphalt photo at pitch 20, a = 2 (docs/BENCHMARKS.md, issue 22, session 37).
+constexpr float kBoxProbeThickness = 1.375f;
+constexpr float kBoxProbeFade = 8.0f;
 // The box probes' spacing: the first copy's box is 2 texels wide.
 constexpr float kBoxProbeSpacing = 2.0f;
 
@@ -269,7 +271,7 @@ void AddProbesLane(SelectionLanes& out, int r, int lane) {
 // copies of (H, 1), whose box the probes have) with the weight
 // g = min(1, 2 - H / kProbeHalfExtent) min(1, (kBoxProbeThickness - L) kBoxProbeFade), fading
 // out with the base probes between H = 4 and 8 and into the table's copies between L = 1.25
-// and 1.5. Continuous: at H = 1 the probes meet at the centre (T = 0), the first copy alone,
+// and 1.375. Continuous: at H = 1 the probes meet at the centre (T = 0), the first copy alone,
 // which is the table's copy there; the rows part from L = 1; g reaches 0 at the fades' ends.
 void AddBoxProbesLane(SelectionLanes& out, int r, int lane) {
   out.box_probes[r][lane] = 0;

@@ -77,7 +77,7 @@ struct CopyBlend {
   // sample; the outer two weigh `probe_end_weight`, the others `probe_weight`.
   int probes = 0;
   float probe_step = 0, probe_weight = 0, probe_end_weight = 0;
-  // 1 <= H < 8 and L < 1.5: also `box_probes` bilinear reads of the first copy
+  // 1 <= H < 8 and L < 1.375: also `box_probes` bilinear reads of the first copy
   // (the 2 x 2 box) along the long side, `box_probe_step` texels apart, in two rows
   // +-box_probe_rows texels across (one row when that is 0), each read of a pair weighing half
   // (BoxProbes in the .cc).
@@ -85,7 +85,7 @@ struct CopyBlend {
   float box_probe_step = 0, box_probe_weight = 0, box_probe_end_weight = 0, box_probe_rows = 0;
 };
 // seed 000, eq. 5, below L = 1 the base probes (a deviation: the paper's table ends at L = 1;
-// docs/BENCHMARKS.md, issue 3, measures it) and below L = 1.5 the box probes (issue 22).
+// docs/BENCHMARKS.md, issue 3, measures it) and below L = 1.375 the box probes (issue 22).
 CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
 // The paper's selection alone (with the tilt blend), without the base and box probes.
 CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape);

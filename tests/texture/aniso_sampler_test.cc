@@ -380,7 +380,7 @@ BoxProbeMoments MomentsOfBoxProbes(const CopyBlend& b) {
 }
 
 TEST_F(AnisoSamplerTest, ShortAperturesAreReadByBoxProbesOfTheirOwnKernel) {
-  // 1 <= H < 8, L < 1.5: bilinear reads of the first copy (the 2 x 2 box, variance 1/3 + 1/6 per
+  // 1 <= H < 8, L < 1.375: bilinear reads of the first copy (the 2 x 2 box, variance 1/3 + 1/6 per
   // axis with its tent) along the long side, whose positions have the variance (H^2 - 1) / 3, so
   // that the blend's is the pixel box's H^2 / 3 + 1/6 on the bilinear base; across, rows at +-d
   // with d^2 = (L^2 - 1) / 3 for L > 1.
@@ -409,17 +409,17 @@ TEST_F(AnisoSamplerTest, ShortAperturesAreReadByBoxProbesOfTheirOwnKernel) {
     }
     EXPECT_EQ(b.box_probe_rows, 0.0f);
   }
-  // The fades: between L = 1.25 and 1.5 into the table's copies (L = 1.375: half each), and
-  // between H = 4 and 8 with the base probes (H = 6: half each); none from L = 1.5 or H = 8, or
+  // The fades: between L = 1.25 and 1.375 into the table's copies (L = 1.3125: half each), and
+  // between H = 4 and 8 with the base probes (H = 6: half each); none from L = 1.375 or H = 8, or
   // below H = 1 (magnified).
-  const CopyBlend paper = SelectTableCopies(*table_, {TiltAxis::kU, 3, 1.375, 0});
-  const CopyBlend half = SelectCopies(*table_, {TiltAxis::kU, 3, 1.375, 0});
+  const CopyBlend paper = SelectTableCopies(*table_, {TiltAxis::kU, 3, 1.3125, 0});
+  const CopyBlend half = SelectCopies(*table_, {TiltAxis::kU, 3, 1.3125, 0});
   ASSERT_EQ(half.count, paper.count);
   for (int c = 0; c < half.count; ++c) EXPECT_FLOAT_EQ(half.weight[c], 0.5f * paper.weight[c]);
   EXPECT_NEAR(MomentsOfBoxProbes(half).weight, 0.5, 1e-6);
   EXPECT_NEAR(MomentsOfBoxProbes(SelectCopies(*table_, {TiltAxis::kU, 6, 1.2, 0})).weight, 0.5,
               1e-6);
-  EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 3, 1.5, 0}).box_probes, 0);
+  EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 3, 1.375, 0}).box_probes, 0);
   EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 8, 1.2, 0}).box_probes, 0);
   EXPECT_EQ(SelectCopies(*table_, {TiltAxis::kU, 0.9, 0.5, 0}).box_probes, 0);
   // Continuous where they start: at H = 1 both probes sit at the centre, the first copy alone,
@@ -783,7 +783,7 @@ TEST_F(AnisoSamplerTest, FootprintsNearADiagonalAreNoFartherFromTheReferenceThan
   // spacing to one side: the root mean square error within 8 degrees of a diagonal was 1.11x the
   // error within 8 degrees of an axis, for both shapes. The end tilts (tg = +-1, cells of
   // lambda >= 4) bring it to 0.95x and 0.88x (0.60x and 0.66x with ends in the cells of lambda =
-  // 2 too, not kept: docs/BENCHMARKS.md); the axis error is unchanged. The box probes (L < 1.5,
+  // 2 too, not kept: docs/BENCHMARKS.md); the axis error is unchanged. The box probes (L < 1.375,
   // H < 8) now read the thinner shape within the fades: 0.0136 / 0.0129 -> 0.0118 / 0.0068.
   constexpr int n = 128;
   const Image image = SmoothedNoise(n, 77);
