@@ -26,8 +26,8 @@ constexpr float kProbeSpacing = 1.0f;
 // kBoxProbeThickness - 1 / kBoxProbeFade = 1.25 and fading into the table's copies above it.
 // Their two rows double the reads. The demo frame's aniso time over the sampler without box
 // probes, in trilinear frames: +1.8 % with these constants, +5.6 % fading out up to 1.5 instead
-// (thickness 1.5, fade 4) and +19 % whole up to 1.75 (thickness 2), for 0.06 and 0.42 dB more on
-// the asphalt photo at pitch 20, a = 2 (docs/BENCHMARKS.md, issue 22, session 37).
+// (thickness 1.5, fade 4) and +18 % whole up to 1.75 (thickness 2), for 0.06 and 0.43 dB more
+// on the asphalt photo at pitch 20, a = 2 (docs/BENCHMARKS.md, issue 22, session 37).
 constexpr float kBoxProbeThickness = 1.375f;
 constexpr float kBoxProbeFade = 8.0f;
 // The box probes' spacing: the first copy's box is 2 texels wide.
