@@ -199,10 +199,11 @@ EvenProbes SpreadEvenly(float t) {
 // (where the next pair appears), e set so that the variance is T. The probes fade out between
 // kProbeHalfExtent and twice it. This sets the probes of reading r of a lane when it is read and
 // thin; their positions are scaled by the lane's probe_scale (MagnifiedInPrincipalAxes).
+// The probes' fade between H = kProbeHalfExtent and twice it (the base and the box probes').
+inline float ProbeFade(float H) { return std::min(1.0f, 2.0f - H / kProbeHalfExtent); }
+
 // The base probes' share of a thin reading (L < 1, H < 2 kProbeHalfExtent).
-inline float BaseProbeShare(float H, float L) {
-  return std::min(1.0f, 2.0f - H / kProbeHalfExtent) * (1.0f - L * L);
-}
+inline float BaseProbeShare(float H, float L) { return ProbeFade(H) * (1.0f - L * L); }
 
 void AddProbesLane(SelectionLanes& out, int r, int lane) {
   out.probes[r][lane] = 0;
@@ -278,8 +279,7 @@ void AddBoxProbesLane(SelectionLanes& out, int r, int lane) {
   if (!(out.reading_weight[r][lane] > 0.0f)) return;
   const float H = out.H[r][lane], L = std::min(out.L[r][lane], H);
   if (!(H >= 1.0f) || !(L < kBoxProbeThickness) || !(H < 2.0f * kProbeHalfExtent)) return;
-  const float g = std::min(1.0f, 2.0f - H / kProbeHalfExtent) *
-                  std::min(1.0f, (kBoxProbeThickness - L) * kBoxProbeFade);
+  const float g = ProbeFade(H) * std::min(1.0f, (kBoxProbeThickness - L) * kBoxProbeFade);
   // What the base probes left the table (its slots' weights sum to that, up to rounding).
   const float table = 1.0f - (L < 1.0f ? BaseProbeShare(H, L) : 0.0f);
   for (int s = 0; s < SelectionLanes::kSlots; ++s) out.weight[r][s][lane] *= 1.0f - g;
@@ -513,15 +513,15 @@ __attribute__((target("avx2"))) inline void SpreadEvenlyAvx2(__m256 t, __m256i& 
   e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
 }
 
-// BaseProbeShare, the same operations.
+// ProbeFade and BaseProbeShare, the same operations.
+__attribute__((target("avx2"))) inline __m256 ProbeFadeAvx2(__m256 H) {
+  // H / kProbeHalfExtent, a power of two: the same float as the division.
+  return _mm256_min_ps(_mm256_sub_ps(_mm256_set1_ps(2.0f),
+                                     _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
+                       _mm256_set1_ps(1.0f));
+}
 __attribute__((target("avx2"))) inline __m256 BaseProbeShareAvx2(__m256 H, __m256 L) {
-  const __m256 one = _mm256_set1_ps(1.0f);
-  return _mm256_mul_ps(
-      // H / kProbeHalfExtent, a power of two: the same float as the division.
-      _mm256_min_ps(_mm256_sub_ps(_mm256_set1_ps(2.0f),
-                                  _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
-                    one),
-      _mm256_sub_ps(one, _mm256_mul_ps(L, L)));
+  return _mm256_mul_ps(ProbeFadeAvx2(H), _mm256_sub_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(L, L)));
 }
 
 // AddProbesLane for the lanes of `thin` (read, L < 1, H < 2 kProbeHalfExtent and not nearly
@@ -606,15 +606,11 @@ __attribute__((target("avx2"))) inline __m256 BoxProbedAvx2(__m256 read, __m256 
                     _mm256_cmp_ps(H, _mm256_set1_ps(2.0f * kProbeHalfExtent), _CMP_LT_OQ)));
 }
 __attribute__((target("avx2"))) inline __m256 BoxProbeWeightAvx2(__m256 H, __m256 L) {
-  const __m256 one = _mm256_set1_ps(1.0f);
-  // H / kProbeHalfExtent, a power of two: the same float as the division.
   return _mm256_mul_ps(
-      _mm256_min_ps(_mm256_sub_ps(_mm256_set1_ps(2.0f),
-                                  _mm256_mul_ps(H, _mm256_set1_ps(1.0f / kProbeHalfExtent))),
-                    one),
+      ProbeFadeAvx2(H),
       _mm256_min_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(kBoxProbeThickness), L),
                                   _mm256_set1_ps(kBoxProbeFade)),
-                    one));
+                    _mm256_set1_ps(1.0f)));
 }
 
 // AddBoxProbesLane for the lanes of `read`, the same operations; L is min(L, H). The caller
