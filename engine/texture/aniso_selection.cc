@@ -513,6 +513,27 @@ __attribute__((target("avx2"))) inline void SpreadEvenlyAvx2(__m256 t, __m256i& 
   e = _mm256_blendv_ps(e, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
 }
 
+// Where `spread` is set, the 2J probes of SpreadEvenly(t), `spacing` texels apart, sharing
+// `share`, into a probe layout: the lane code's floats.
+__attribute__((target("avx2"))) inline void BlendEvenProbesAvx2(__m256 t, __m256 spacing,
+                                                                __m256 share, __m256 spread,
+                                                                __m256i& probes, __m256& step,
+                                                                __m256& weight,
+                                                                __m256& end_weight) {
+  const __m256 one = _mm256_set1_ps(1.0f), two = _mm256_set1_ps(2.0f);
+  __m256i J;
+  __m256 J1, e;
+  SpreadEvenlyAvx2(t, J, J1, e);
+  probes = _mm256_blendv_epi8(probes, _mm256_add_epi32(J, J), _mm256_castps_si256(spread));
+  step = _mm256_blendv_ps(step, spacing, spread);
+  weight = _mm256_blendv_ps(
+      weight,
+      _mm256_mul_ps(
+          _mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(two, e)), _mm256_mul_ps(two, J1)), share),
+      spread);
+  end_weight = _mm256_blendv_ps(end_weight, _mm256_mul_ps(e, share), spread);
+}
+
 // ProbeFade and BaseProbeShare, the same operations.
 __attribute__((target("avx2"))) inline __m256 ProbeFadeAvx2(__m256 H) {
   // H / kProbeHalfExtent, a power of two: the same float as the division.
@@ -553,17 +574,7 @@ __attribute__((target("avx2"))) void AddProbesAvx2(SelectionLanes& out, int r, _
   __m256 step = _mm256_mul_ps(two, root), weight = zero, end_weight = _mm256_mul_ps(half, share);
   const __m256 spread = _mm256_andnot_ps(two_probes, thin);
   if (_mm256_movemask_ps(spread) != 0) {  // 2J probes (never where a lane fades: T < 1 / 64)
-    __m256i J;
-    __m256 J1, e;
-    SpreadEvenlyAvx2(T, J, J1, e);
-    probes = _mm256_blendv_epi8(probes, _mm256_add_epi32(J, J), _mm256_castps_si256(spread));
-    step = _mm256_blendv_ps(step, one, spread);
-    weight = _mm256_blendv_ps(weight,
-                              _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(two, e)),
-                                                          _mm256_mul_ps(two, J1)),
-                                            share),
-                              spread);
-    end_weight = _mm256_blendv_ps(end_weight, _mm256_mul_ps(e, share), spread);
+    BlendEvenProbesAvx2(T, one, share, spread, probes, step, weight, end_weight);
   }
   // The fading lanes: two probes at +-sqrt(T) of weight p / 2 share, the blend's two reads.
   probes = _mm256_blendv_epi8(probes, _mm256_set1_epi32(2), _mm256_castps_si256(fade));
@@ -641,17 +652,8 @@ __attribute__((target("avx2"))) void AddBoxProbesAvx2(SelectionLanes& out, int r
   const __m256 spread =
       _mm256_andnot_ps(_mm256_cmp_ps(t, _mm256_set1_ps(0.25f), _CMP_LE_OQ), boxed);
   if (_mm256_movemask_ps(spread) != 0) {
-    __m256i J;
-    __m256 J1, e;
-    SpreadEvenlyAvx2(t, J, J1, e);
-    probes = _mm256_blendv_epi8(probes, _mm256_add_epi32(J, J), _mm256_castps_si256(spread));
-    step = _mm256_blendv_ps(step, _mm256_set1_ps(kBoxProbeSpacing), spread);
-    weight = _mm256_blendv_ps(weight,
-                              _mm256_mul_ps(_mm256_div_ps(_mm256_sub_ps(one, _mm256_mul_ps(two, e)),
-                                                          _mm256_mul_ps(two, J1)),
-                                            share),
-                              spread);
-    end_weight = _mm256_blendv_ps(end_weight, _mm256_mul_ps(e, share), spread);
+    BlendEvenProbesAvx2(t, _mm256_set1_ps(kBoxProbeSpacing), share, spread, probes, step, weight,
+                        end_weight);
   }
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.box_probes[r]),
                      _mm256_and_si256(probes, _mm256_castps_si256(boxed)));
