@@ -365,6 +365,34 @@ __attribute__((target("avx2"))) inline void AddProbeReads(const CopyTables& t, f
   }
 }
 
+// The magnified taps of the lanes of `taps` (ForEachRead in aniso_sampler.cc, the same
+// operations): the first copy at the sample, then the base at +p, -p, +q, -q.
+__attribute__((target("avx2"))) inline void AddMagnifiedTaps(const CopyTables& t, float inv_size,
+                                                             const SelectionLanes& s, __m256 taps,
+                                                             __m256 u, __m256 v, LaneSums& sums) {
+  const __m256 zero = _mm256_setzero_ps(), scale = _mm256_set1_ps(1.0f / 255.0f);
+  const __m256i izero = _mm256_setzero_si256();
+  AddCopyReads<Tilt::kBase, false>(
+      t.texels, Broadcast(t.copies[t.box_copy]), izero, taps, taps, u, v, zero,
+      _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.taps_first)), scale), zero, sums);
+  const __m256 w = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.taps_weight)), scale);
+  const __m256 inv = _mm256_set1_ps(inv_size);
+  // Lanes without taps hold anything there: masked to 0 before any arithmetic.
+  const __m256 pu = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_p[0])), inv);
+  const __m256 pv = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_p[1])), inv);
+  const __m256 qu = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_q[0])), inv);
+  const __m256 qv = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_q[1])), inv);
+  const LaneCopies base = Broadcast(t.copies[0]);
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_add_ps(u, pu),
+                                   _mm256_add_ps(v, pv), zero, w, w, sums);
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_sub_ps(u, pu),
+                                   _mm256_sub_ps(v, pv), zero, w, w, sums);
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_add_ps(u, qu),
+                                   _mm256_add_ps(v, qv), zero, w, w, sums);
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_sub_ps(u, qu),
+                                   _mm256_sub_ps(v, qv), zero, w, w, sums);
+}
+
 __attribute__((target("avx2"))) void ReadLanesAvx2(const CopyTables& t, float inv_size,
                                                    const SelectionLanes& s, const double* u_in,
                                                    const double* v_in, int n, Rgba* out) {
@@ -390,10 +418,14 @@ __attribute__((target("avx2"))) void ReadLanesAvx2(const CopyTables& t, float in
   const __m256 read[2] = {
       _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[0]), zero, _CMP_GT_OQ)),
       _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.reading_weight[1]), zero, _CMP_GT_OQ))};
-  // Degenerate derivatives (neither reading): the base, bilinear.
-  const __m256 degenerate = _mm256_andnot_ps(_mm256_or_ps(read[0], read[1]), live);
+  const __m256 taps =
+      _mm256_and_ps(live, _mm256_cmp_ps(_mm256_load_ps(s.taps_share), zero, _CMP_GT_OQ));
+  // Degenerate derivatives (neither reading nor taps): the base, bilinear.
+  const __m256 degenerate =
+      _mm256_andnot_ps(_mm256_or_ps(_mm256_or_ps(read[0], read[1]), taps), live);
   if (_mm256_movemask_ps(degenerate) != 0)
     AddRead(t, izero, degenerate, u, v, zero, _mm256_set1_ps(1.0f / 255.0f), sums);
+  if (_mm256_movemask_ps(taps) != 0) AddMagnifiedTaps(t, inv_size, s, taps, u, v, sums);
   for (int r = 0; r < 2; ++r) {
     if (_mm256_movemask_ps(read[r]) == 0) continue;
     // Lanes not read hold anything: their inputs are masked to harmless values.

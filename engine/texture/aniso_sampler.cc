@@ -145,11 +145,24 @@ Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg)
 template <typename Visit>
 void AnisoSampler::ForEachRead(const SelectionLanes& s, int lane, float u, float v,
                                Visit visit) const {
-  if (!(s.reading_weight[0][lane] > 0.0f) && !(s.reading_weight[1][lane] > 0.0f)) {
+  const bool taps = s.taps_share[lane] > 0.0f;
+  if (!taps && !(s.reading_weight[0][lane] > 0.0f) && !(s.reading_weight[1][lane] > 0.0f)) {
     visit(layouts_[0], u, v, 0.0f, 1.0f / 255.0f);  // degenerate derivatives: the base, bilinear
     return;
   }
   const float inv_size = 1.0f / table_.size();
+  if (taps) {
+    // The magnified taps (texture/aniso_selection: MagnifiedTaps): the first copy at the
+    // sample, then the base at +p, -p, +q, -q.
+    visit(layouts_[table_.cell(0, 0).first], u, v, 0.0f, s.taps_first[lane] * (1.0f / 255.0f));
+    const float w = s.taps_weight[lane] * (1.0f / 255.0f);
+    const float pu = s.tap_p[0][lane] * inv_size, pv = s.tap_p[1][lane] * inv_size;
+    const float qu = s.tap_q[0][lane] * inv_size, qv = s.tap_q[1][lane] * inv_size;
+    visit(layouts_[0], u + pu, v + pv, 0.0f, w);
+    visit(layouts_[0], u - pu, v - pv, 0.0f, w);
+    visit(layouts_[0], u + qu, v + qv, 0.0f, w);
+    visit(layouts_[0], u - qu, v - qv, 0.0f, w);
+  }
   for (int r = 0; r < 2; ++r) {
     if (!(s.reading_weight[r][lane] > 0.0f)) continue;
     const float scale = s.reading_weight[r][lane] / 255.0f;

@@ -88,6 +88,9 @@ struct LaneReadings {
   bool u_major = true;  // the first reading is along U
   float first = 0;      // the first reading's weight; the second's is 1 - first
   float H[2] = {}, L[2] = {}, tg[2] = {};
+  // The moments of the pixel's half-axes X = (dUx, dVx), Y = (dUy, dVy) (texels, clamped) and
+  // |X x Y|: the magnified taps' inputs.
+  float uu = 0, uv = 0, vv = 0, area = 0;
 };
 
 LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half_size) {
@@ -108,6 +111,7 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
   const float total = uu + vv;
   if (!finite || !(total >= kMinMoment)) return out;
   out.valid = true;
+  out.uu = uu, out.uv = uv, out.vv = vv, out.area = area;
   // The first reading along the larger moment; its weight 1 outside the zone, else
   // 1/2 + |M_uu - M_vv| / (2 zone), 1/2 on the diagonal. The zone is a band of the long axis's
   // angle phi to U: |M_uu - M_vv| = |cos 2 phi| D with D = sqrt((M_uu - M_vv)^2 + 4 M_uv^2),
@@ -160,6 +164,67 @@ bool MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
   tg = tg + beta * (tp - tg);
   scale = 1.0f + beta * (1.0f / std::sqrt(1.0f + tp * tp) - 1.0f);
   return beta == 1.0f;
+}
+
+// The magnified taps (issue 22, session 39). Under a texel the readings' blend (the base and
+// the first copy by H^2, or the first copy by L^2 and two probes along the long side, in the
+// principal axes) has the footprint's covariance but not its shape: too much weight in its tails
+// and at its centre. Against the pixel box on the bilinear texture it scored 43-51 dB on the
+// grass photo (RMS over random positions) where the taps below score 50-68 dB, and a footprint
+// along a texture axis lost up to 1 dB more than one turned 45 degrees (the grass at pitch 60,
+// a = 1, spread 0.93 dB across yaws). The taps: the first copy (the 2 x 2 box, covariance I / 3)
+// with the weight beta = det S, and four bilinear reads of the base at +-a and +-b sharing
+// 1 - beta, where S = X X^T + Y Y^T (X, Y the pixel's half-axes in texels, ReadLane) and
+//   (a b) = sqrt(2/3) R,   R = the symmetric square root of S_t = (S - beta I) / (1 - beta),
+// so that the taps' covariance (a a^T + b b^T) / 2 = S_t / 3 and the blend's is the pixel box's,
+// (beta I + S - beta I) / 3 (every read adds its tent's 1/6 to both). beta <= lambda2 (S's
+// smaller eigenvalue) needs lambda1 <= 1.
+//  - The shape. Of the four-point rules with that covariance, +-R e_u and +-R e_v put the taps on
+//    the texel axes of the footprint's own frame: for a footprint along an axis a cross whose
+//    three abscissae (weights 1/4, 1/2, 1/4) have nearly the box's fourth moment along that axis
+//    (2/9 h^4 against 1/5 h^4), for one turned 45 degrees the two-point Gauss-Legendre grid of its
+//    parallelogram. Along the texel axes the bilinear tent, separable, damps an error least, so
+//    that is where the moments matter: the Gauss grid of the pixel's own parallelogram turned with
+//    the footprint scored the same at 45 degrees and 3-4 dB less along an axis, 1.6-1.8 dB less on
+//    average on the three photos (half-extents 0.3-0.85, elongations 1-2.5, angles 0, 22.5, 45).
+//  - The share. Below it the rule integrates the bilinear texture inside a small box almost
+//    exactly; its error grows as the box crosses texel edges, where the box copy's shrinks.
+//    beta = det S = H^2 L^2 in the principal axes (the squared area) was the best of
+//    lambda2 lambda1^k (k = 0.75, 1, 1.5, 2), 0.75 lambda2 lambda1 and c L^2 for fixed c.
+// (out/s39/magexp*.py in the session notes measure these; docs/BENCHMARKS.md the views.)
+// R = (S_t + s I) / sqrt(tr S_t + 2 s) with s = sqrt(det S_t) = sqrt(beta (1 - tr S + beta)) /
+// (1 - beta) is continuous through round footprints and the diagonals (no principal or reading
+// axis is chosen). The taps' share w = clamp(kTapsFade (1 - sqrt(lambda1)), 0, 1) fades them into
+// the readings' blend (weights 1 - w) as the long half-axis goes from 1 - 1 / kTapsFade to 1
+// texel, so everything stays continuous.
+constexpr float kTapsFade = 8.0f;
+
+struct MagnifiedTapsOfLane {
+  float share = 0, first = 0, weight = 0;
+  float p[2] = {}, q[2] = {};  // a and b, (u, v) texels
+};
+
+// The taps of a valid lane from ReadLane's moments uu, uv, vv and area |X x Y|, texels.
+MagnifiedTapsOfLane MagnifiedTaps(float uu, float uv, float vv, float area) {
+  MagnifiedTapsOfLane out;
+  const float half_difference = 0.5f * (uu - vv);
+  const float root = std::sqrt(half_difference * half_difference + uv * uv);
+  const float lambda1 = 0.5f * (uu + vv) + root;
+  const float share = std::clamp(kTapsFade * (1.0f - std::sqrt(lambda1)), 0.0f, 1.0f);
+  if (!(share > 0.0f)) return out;
+  const float beta = area * area, rest = 1.0f - beta, inv_rest = 1.0f / rest;
+  const float trace = uu + vv;
+  // S_t's entries, its determinant's root s and the root's normalisation sqrt(tr S_t + 2 s),
+  // with sqrt(2/3) folded in.
+  const float tu = (uu - beta) * inv_rest, tv = (vv - beta) * inv_rest, tuv = uv * inv_rest;
+  const float s = std::sqrt(std::max(0.0f, beta * (1.0f - trace + beta))) * inv_rest;
+  const float k = 0.81649658092772603f / std::sqrt((trace - 2.0f * beta) * inv_rest + 2.0f * s);
+  out.share = share;
+  out.first = share * beta;
+  out.weight = 0.25f * (share * rest);
+  out.p[0] = (tu + s) * k, out.p[1] = tuv * k;
+  out.q[0] = tuv * k, out.q[1] = (tv + s) * k;
+  return out;
 }
 
 // The 2J evenly spread probes whose positions have the variance t (in units of the spacing^2,
@@ -404,6 +469,16 @@ void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const fl
     // the probes along the same axis at the same distances): the first alone is read.
     if (principal[0] && principal[1])
       out.reading_weight[0][lane] = 1.0f, out.reading_weight[1][lane] = 0.0f;
+    // The magnified taps take their share w; the readings the rest (none where w = 1).
+    const MagnifiedTapsOfLane taps =
+        r.valid ? MagnifiedTaps(r.uu, r.uv, r.vv, r.area) : MagnifiedTapsOfLane{};
+    out.taps_share[lane] = taps.share;
+    out.taps_first[lane] = taps.first;
+    out.taps_weight[lane] = taps.weight;
+    for (int c = 0; c < 2; ++c) out.tap_p[c][lane] = taps.p[c], out.tap_q[c][lane] = taps.q[c];
+    const float readings = 1.0f - taps.share;
+    out.reading_weight[0][lane] *= readings;
+    out.reading_weight[1][lane] *= readings;
     for (int k = 0; k < 2; ++k) {
       out.H[k][lane] = H[k], out.L[k][lane] = L[k], out.tg[k][lane] = tg[k];
       out.probe_scale[k][lane] = scale[k];
@@ -470,6 +545,50 @@ __attribute__((target("avx2"))) __m256 MagnifiedInPrincipalAxesAvx2(__m256 lanes
   scale = _mm256_blendv_ps(one, _mm256_add_ps(one, _mm256_mul_ps(beta, _mm256_sub_ps(cosine, one))),
                            lanes);
   return _mm256_and_ps(lanes, _mm256_cmp_ps(beta, one, _CMP_EQ_OQ));
+}
+
+// MagnifiedTaps for the lanes of `valid`, the same operations, stored into `out`'s taps; returns
+// the share (0 in the other lanes).
+__attribute__((target("avx2"))) __m256 MagnifiedTapsAvx2(__m256 valid, __m256 uu, __m256 uv,
+                                                         __m256 vv, __m256 area,
+                                                         SelectionLanes& out) {
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  const __m256 half = _mm256_set1_ps(0.5f), two = _mm256_set1_ps(2.0f);
+  const __m256 half_difference = _mm256_mul_ps(half, _mm256_sub_ps(uu, vv));
+  const __m256 root = _mm256_sqrt_ps(
+      _mm256_add_ps(_mm256_mul_ps(half_difference, half_difference), _mm256_mul_ps(uv, uv)));
+  const __m256 lambda1 = _mm256_add_ps(_mm256_mul_ps(half, _mm256_add_ps(uu, vv)), root);
+  // std::clamp(x, 0, 1): x < 0 ? 0 : (1 < x ? 1 : x).
+  const __m256 x =
+      _mm256_mul_ps(_mm256_set1_ps(kTapsFade), _mm256_sub_ps(one, _mm256_sqrt_ps(lambda1)));
+  __m256 share = _mm256_blendv_ps(x, one, _mm256_cmp_ps(one, x, _CMP_LT_OQ));
+  share = _mm256_blendv_ps(share, zero, _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
+  const __m256 has = _mm256_and_ps(valid, _mm256_cmp_ps(share, zero, _CMP_GT_OQ));
+  _mm256_store_ps(out.taps_share, _mm256_and_ps(has, share));
+  if (_mm256_movemask_ps(has) == 0) return zero;
+  const __m256 beta = _mm256_mul_ps(area, area), rest = _mm256_sub_ps(one, beta);
+  const __m256 inv_rest = _mm256_div_ps(one, rest);
+  const __m256 trace = _mm256_add_ps(uu, vv);
+  const __m256 tu = _mm256_mul_ps(_mm256_sub_ps(uu, beta), inv_rest);
+  const __m256 tv = _mm256_mul_ps(_mm256_sub_ps(vv, beta), inv_rest);
+  const __m256 tuv = _mm256_mul_ps(uv, inv_rest);
+  // std::max(0, y): 0 < y ? y : 0 (y is never NaN on these lanes).
+  const __m256 det = _mm256_mul_ps(beta, _mm256_add_ps(_mm256_sub_ps(one, trace), beta));
+  const __m256 s = _mm256_mul_ps(_mm256_sqrt_ps(_mm256_max_ps(det, zero)), inv_rest);
+  const __m256 k =
+      _mm256_div_ps(_mm256_set1_ps(0.81649658092772603f),
+                    _mm256_sqrt_ps(_mm256_add_ps(
+                        _mm256_mul_ps(_mm256_sub_ps(trace, _mm256_mul_ps(two, beta)), inv_rest),
+                        _mm256_mul_ps(two, s))));
+  // Lanes without taps store zeros (finite, never read).
+  _mm256_store_ps(out.taps_first, _mm256_and_ps(has, _mm256_mul_ps(share, beta)));
+  _mm256_store_ps(out.taps_weight, _mm256_and_ps(has, _mm256_mul_ps(_mm256_set1_ps(0.25f),
+                                                                    _mm256_mul_ps(share, rest))));
+  _mm256_store_ps(out.tap_p[0], _mm256_and_ps(has, _mm256_mul_ps(_mm256_add_ps(tu, s), k)));
+  _mm256_store_ps(out.tap_p[1], _mm256_and_ps(has, _mm256_mul_ps(tuv, k)));
+  _mm256_store_ps(out.tap_q[0], _mm256_and_ps(has, _mm256_mul_ps(tuv, k)));
+  _mm256_store_ps(out.tap_q[1], _mm256_and_ps(has, _mm256_mul_ps(_mm256_add_ps(tv, s), k)));
+  return _mm256_and_ps(has, share);
 }
 
 // For J = 2..9 (index J - 2): AddProbesLane's A, J - 1, J (2J - 1) and 0.5 / J.
@@ -752,7 +871,14 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
   const __m256 one_reading = _mm256_and_ps(principal[0], principal[1]);
   first = _mm256_blendv_ps(first, one, one_reading);
   second = _mm256_andnot_ps(one_reading, second);
-  read[1] = _mm256_andnot_ps(one_reading, read[1]);
+  // The magnified taps' share; the readings the rest (none where it is 1).
+  const __m256 taps_share = MagnifiedTapsAvx2(valid, uu, uv, vv, area, out);
+  const __m256 readings = _mm256_sub_ps(one, taps_share);
+  first = _mm256_mul_ps(first, readings);
+  second = _mm256_mul_ps(second, readings);
+  read[0] = _mm256_and_ps(read[0], _mm256_cmp_ps(first, zero, _CMP_GT_OQ));
+  read[1] = _mm256_and_ps(_mm256_andnot_ps(one_reading, read[1]),
+                          _mm256_cmp_ps(second, zero, _CMP_GT_OQ));
   _mm256_store_ps(out.reading_weight[0], first);
   _mm256_store_ps(out.reading_weight[1], second);
   for (int r = 0; r < 2; ++r) {

@@ -85,7 +85,10 @@ struct CopyBlend {
   float box_probe_step = 0, box_probe_weight = 0, box_probe_end_weight = 0, box_probe_rows = 0;
 };
 // seed 000, eq. 5, below L = 1 the base probes (a deviation: the paper's table ends at L = 1;
-// docs/BENCHMARKS.md, issue 3, measures it) and below L = 1.375 the box probes (issue 22).
+// docs/BENCHMARKS.md, issue 3, measures it) and below L = 1.375 the box probes (issue 22): one
+// reading's blend. The sampler reads a footprint whose long half-axis is under a texel by the
+// magnified taps (SelectionLanes::taps_share, from the footprint, not from a reading), fading
+// into the readings' blend between 0.875 and 1 texel.
 CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
 // The paper's selection alone (with the tilt blend), without the base and box probes.
 CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape);
@@ -119,6 +122,15 @@ struct SelectionLanes {
   float box_probe_weight[2][kLanes];
   float box_probe_end_weight[2][kLanes];
   float box_probe_rows[2][kLanes];
+  // The magnified taps (MagnifiedTaps in the .cc), per lane, not per reading: their share w of
+  // the sample (the readings' weights are scaled by 1 - w; 0: none), the first copy's weight
+  // (read at the sample), each of the four base reads' weight, and the reads' offsets +-p and
+  // +-q in texels (u, v).
+  alignas(32) float taps_share[kLanes];
+  alignas(32) float taps_first[kLanes];
+  alignas(32) float taps_weight[kLanes];
+  alignas(32) float tap_p[2][kLanes];
+  alignas(32) float tap_q[2][kLanes];
 };
 
 class CopySelector {

@@ -16,9 +16,10 @@ namespace {
 
 constexpr int kN = 64;
 
-// Derivatives (repeats per pixel) of every class: magnified, thin (the base probes), short
-// (the box probes, in one row or two, and whole groups of them), three copies on both axes, near a
-// diagonal (both readings), the frozen region, whole periods, zero, tiny, huge, infinite and NaN.
+// Derivatives (repeats per pixel) of every class: magnified (the taps, and their fade into the
+// readings), thin (the base probes), short (the box probes, in one row or two, and whole groups
+// of them), three copies on both axes, near a diagonal (both readings), the frozen region, whole
+// periods, zero, tiny, huge, infinite and NaN.
 std::vector<std::array<float, 4>> Footprints(int count, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> turn(0, 2 * M_PI), log_len(-4, 24), log_ratio(0, 14),
@@ -33,6 +34,12 @@ std::vector<std::array<float, 4>> Footprints(int count, uint32_t seed) {
       // H = 1-4, L = 0.5-1.25 texels: len and thick are twice them).
       angle = (k % 2) * M_PI / 2 + (unit(rng) - 0.5) * 0.2;
       len = 2 + 6 * unit(rng), thick = std::min(len, 1 + 1.5 * unit(rng));
+    }
+    if ((k / 8) % 10 == 6 && k % 2 == 0) {
+      // Nearly round, near a diagonal, half-extents 0.88-1 texel: the magnified taps fading into
+      // both readings in the principal axes, of which the first alone is read.
+      angle = M_PI / 4 + (unit(rng) - 0.5) * 0.1;
+      len = 2 * (0.88 + 0.12 * unit(rng)), thick = len * (0.97 + 0.03 * unit(rng));
     }
     const double c = std::cos(angle), s = std::sin(angle);
     std::array<float, 4> d = {float(len * c / kN), float(len * s / kN), float(-thick * s / kN),
@@ -72,6 +79,7 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   int compared = 0, second_readings = 0, probed = 0, magnified = 0, degenerate = 0;
   int boxed = 0, two_rows = 0, whole_box_groups = 0;
   int one_of_two = 0;  // magnified near a diagonal: both readings in the principal axes, one read
+  int tapped = 0, faded = 0;  // the magnified taps; between them and the readings
   for (size_t first = 0; first + 8 <= footprints.size(); first += 8) {
     float d[4][8];
     for (int lane = 0; lane < 8; ++lane)
@@ -133,9 +141,27 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
           EXPECT_EQ(bits(portable.box_probe_rows[r][lane]), bits(kernel.box_probe_rows[r][lane]));
         }
       }
+      auto bits = [](float x) {
+        uint32_t b;
+        std::memcpy(&b, &x, 4);
+        return b;
+      };
+      ASSERT_EQ(bits(portable.taps_share[lane]), bits(kernel.taps_share[lane]));
+      if (portable.taps_share[lane] > 0.0f) {
+        any = true;
+        ++tapped;
+        faded += portable.taps_share[lane] < 1.0f;
+        EXPECT_EQ(bits(portable.taps_first[lane]), bits(kernel.taps_first[lane]));
+        EXPECT_EQ(bits(portable.taps_weight[lane]), bits(kernel.taps_weight[lane]));
+        for (int c = 0; c < 2; ++c) {
+          EXPECT_EQ(bits(portable.tap_p[c][lane]), bits(kernel.tap_p[c][lane])) << c;
+          EXPECT_EQ(bits(portable.tap_q[c][lane]), bits(kernel.tap_q[c][lane])) << c;
+        }
+      }
       degenerate += !any;
       const TextureFootprint f{0, 0, d[0][lane], d[1][lane], d[2][lane], d[3][lane]};
-      one_of_two += ReadingsOfFootprint(f, kN).count == 2 && portable.reading_weight[0][lane] == 1;
+      one_of_two += ReadingsOfFootprint(f, kN).count == 2 && portable.reading_weight[0][lane] > 0 &&
+                    portable.reading_weight[1][lane] == 0;
       ++compared;
     }
   }
@@ -148,7 +174,13 @@ TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
   EXPECT_GT(whole_box_groups, 50);  // where the kernel skips the table's copies
   EXPECT_GT(magnified, 100);
   EXPECT_GT(degenerate, 300);
-  EXPECT_GT(one_of_two, 50);
+  EXPECT_GT(one_of_two, 20);
+  EXPECT_GT(tapped, 300);
+  EXPECT_GT(faded, 20);
+  std::printf(
+      "lanes compared: %d; second readings %d, probed %d, box probed %d, magnified %d, "
+      "tapped %d (faded %d), one of two %d, degenerate %d\n",
+      compared, second_readings, probed, boxed, magnified, tapped, faded, one_of_two, degenerate);
 }
 
 }  // namespace
