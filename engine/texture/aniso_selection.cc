@@ -169,12 +169,14 @@ bool MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
 // The magnified taps (issue 22, session 39). Under a texel the readings' blend (the base and
 // the first copy by H^2, or the first copy by L^2 and two probes along the long side, in the
 // principal axes) has the footprint's covariance but not its shape: too much weight in its tails
-// and at its centre. Against the pixel box on the bilinear texture it scored 43-51 dB on the
-// grass photo (RMS over random positions) where the taps below score 50-68 dB, and a footprint
-// along a texture axis lost up to 1 dB more than one turned 45 degrees (the grass at pitch 60,
-// a = 1, spread 0.93 dB across yaws). The taps: the first copy (the 2 x 2 box, covariance I / 3)
-// with the weight beta = det S, and four bilinear reads of the base at +-a and +-b sharing
-// 1 - beta, where S = X X^T + Y Y^T (X, Y the pixel's half-axes in texels, ReadLane) and
+// and at its centre. Against the pixel box on the bilinear texture (RMS over random positions,
+// half-extents 0.3-0.85 texel, elongations 1-2.5, angles 0, 22.5 and 45 degrees;
+// scripts/magnified-taps-error.py) it scores 48.6 / 45.7 / 72.0 dB on the grass / asphalt /
+// brick photos where the taps below score 57.0 / 54.8 / 80.3; on the grass at pitch 60, a = 1, a
+// view along a texture axis lost up to 1 dB more than one turned 45 degrees (spread 0.93 dB).
+// The taps: the first copy (the 2 x 2 box, covariance I / 3) with the weight beta = det S, and
+// four bilinear reads of the base at +-a and +-b sharing 1 - beta, where S = X X^T + Y Y^T (X, Y
+// the pixel's half-axes in texels, ReadLane) and
 //   (a b) = sqrt(2/3) R,   R = the symmetric square root of S_t = (S - beta I) / (1 - beta),
 // so that the taps' covariance (a a^T + b b^T) / 2 = S_t / 3 and the blend's is the pixel box's,
 // (beta I + S - beta I) / 3 (every read adds its tent's 1/6 to both). beta <= lambda2 (S's
@@ -184,14 +186,13 @@ bool MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
 //    three abscissae (weights 1/4, 1/2, 1/4) have nearly the box's fourth moment along that axis
 //    (2/9 h^4 against 1/5 h^4), for one turned 45 degrees the two-point Gauss-Legendre grid of its
 //    parallelogram. Along the texel axes the bilinear tent, separable, damps an error least, so
-//    that is where the moments matter: the Gauss grid of the pixel's own parallelogram turned with
-//    the footprint scored the same at 45 degrees and 3-4 dB less along an axis, 1.6-1.8 dB less on
-//    average on the three photos (half-extents 0.3-0.85, elongations 1-2.5, angles 0, 22.5, 45).
+//    that is where the moments matter: the Gauss grid of the pixel's own parallelogram, turned
+//    with the footprint, scores the same at 45 degrees, 2.2-3.4 dB less along an axis and 1.3-1.7
+//    dB less on average on the three photos.
 //  - The share. Below it the rule integrates the bilinear texture inside a small box almost
 //    exactly; its error grows as the box crosses texel edges, where the box copy's shrinks.
-//    beta = det S = H^2 L^2 in the principal axes (the squared area) was the best of
-//    lambda2 lambda1^k (k = 0.75, 1, 1.5, 2), 0.75 lambda2 lambda1 and c L^2 for fixed c.
-// (out/s39/magexp*.py in the session notes measure these; docs/BENCHMARKS.md the views.)
+//    beta = det S = lambda1 lambda2 (the squared area) scores best on average of lambda2 f(lambda1)
+//    for f = lambda1^k (k = 0.75, 1, 1.5, 2) and 0.75 lambda1 (the script's --shares).
 // R = (S_t + s I) / sqrt(tr S_t + 2 s) with s = sqrt(det S_t) = sqrt(beta (1 - tr S + beta)) /
 // (1 - beta) is continuous through round footprints and the diagonals (no principal or reading
 // axis is chosen). The taps' share w = clamp(kTapsFade (1 - sqrt(lambda1)), 0, 1) fades them into
@@ -848,8 +849,13 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
                 one_bits = _mm256_set1_epi32(0x3f800000);
   const __m256 majors[2] = {major, second_major};
   const __m256i along_v[2] = {v_first, v_second};
-  __m256 read[2] = {_mm256_cmp_ps(first, zero, _CMP_GT_OQ),
-                    _mm256_cmp_ps(second, zero, _CMP_GT_OQ)};
+  // The magnified taps' share; the readings the rest (none where it is 1: their shapes are not
+  // computed there, and groups of eight tapped lanes skip them).
+  const __m256 taps_share = MagnifiedTapsAvx2(valid, uu, uv, vv, area, out);
+  const __m256 readings = _mm256_sub_ps(one, taps_share);
+  const __m256 untapped = _mm256_cmp_ps(readings, zero, _CMP_GT_OQ);
+  __m256 read[2] = {_mm256_and_ps(untapped, _mm256_cmp_ps(first, zero, _CMP_GT_OQ)),
+                    _mm256_and_ps(untapped, _mm256_cmp_ps(second, zero, _CMP_GT_OQ))};
   // Both readings' shapes; magnified ones in the principal axes (MagnifiedInPrincipalAxes), and
   // where both are wholly so the first alone is read (as in SelectPortable).
   __m256 shape_h[2] = {one, one}, shape_l[2] = {one, one}, shape_tg[2] = {zero, zero};
@@ -871,9 +877,6 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
   const __m256 one_reading = _mm256_and_ps(principal[0], principal[1]);
   first = _mm256_blendv_ps(first, one, one_reading);
   second = _mm256_andnot_ps(one_reading, second);
-  // The magnified taps' share; the readings the rest (none where it is 1).
-  const __m256 taps_share = MagnifiedTapsAvx2(valid, uu, uv, vv, area, out);
-  const __m256 readings = _mm256_sub_ps(one, taps_share);
   first = _mm256_mul_ps(first, readings);
   second = _mm256_mul_ps(second, readings);
   read[0] = _mm256_and_ps(read[0], _mm256_cmp_ps(first, zero, _CMP_GT_OQ));
