@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
 #include <random>
+#include <vector>
 
 #include "texture/aniso_selection.h"
 #include "texture/footprint_batch.h"
@@ -597,6 +599,48 @@ std::array<double, 3> MagnifiedBlendCovariance(const SelectionLanes& s, uint32_t
     }
   }
   return c;
+}
+
+TEST_F(AnisoSamplerTest, MagnifiedTapsTurnWithTheFootprint) {
+  // The taps of a magnified footprint: the first copy's weight det S is the same at every turn,
+  // and a quarter turn of the footprint turns its four taps by a quarter turn (the texel axes
+  // map to each other: the rule is exactly symmetric under the texture grid's own symmetries).
+  Build(Image(kN, kN));
+  const CopySelector selector(*table_);
+  auto taps_of = [&](const double X[2], const double Y[2]) {
+    const TextureFootprint f = Footprint(X[0], X[1], Y[0], Y[1]);
+    SelectionLanes lanes;
+    selector.SelectPortable(&f.dudx, &f.dvdx, &f.dudy, &f.dvdy, 1, lanes);
+    EXPECT_EQ(lanes.taps_share[0], 1.0f);
+    std::vector<std::array<double, 2>> points;
+    for (const double sign : {1.0, -1.0}) {
+      points.push_back({sign * lanes.tap_p[0][0], sign * lanes.tap_p[1][0]});
+      points.push_back({sign * lanes.tap_q[0][0], sign * lanes.tap_q[1][0]});
+    }
+    return std::make_pair(double(lanes.taps_first[0]), points);
+  };
+  const double shapes[][2] = {{0.6, 0.25}, {0.8, 0.7}, {0.35, 0.1}};
+  for (const auto& shape : shapes) {
+    const double want_first = std::pow(shape[0] * shape[1], 2);  // det S = (H L)^2
+    for (int degrees = 0; degrees < 360; degrees += 5) {
+      SCOPED_TRACE(testing::Message() << shape[0] << " x " << shape[1] << " at " << degrees);
+      const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a);
+      const double X[2] = {shape[0] * c, shape[0] * s}, Y[2] = {-shape[1] * s, shape[1] * c};
+      // A quarter turn: (u, v) -> (-v, u).
+      const double Xq[2] = {-X[1], X[0]}, Yq[2] = {-Y[1], Y[0]};
+      const auto [first, points] = taps_of(X, Y);
+      const auto [first_q, points_q] = taps_of(Xq, Yq);
+      EXPECT_NEAR(first, want_first, 2e-6);
+      EXPECT_NEAR(first_q, want_first, 2e-6);
+      // Each tap turned is one of the turned footprint's taps.
+      for (const auto& p : points) {
+        double nearest = INFINITY;
+        for (const auto& q : points_q)
+          nearest = std::min(nearest, std::hypot(-p[1] - q[0], p[0] - q[1]));
+        EXPECT_LT(nearest, 2e-6) << p[0] << ", " << p[1];
+      }
+    }
+  }
 }
 
 TEST_F(AnisoSamplerTest, MagnifiedFootprintsAreFilteredWithTheirOwnCovarianceTurnedAnyWay) {
