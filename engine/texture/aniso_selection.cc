@@ -135,6 +135,12 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
   return out;
 }
 
+// The larger eigenvalue of the symmetric 2 x 2 matrix ((a, c), (c, b)).
+inline float LargerEigenvalue(float a, float b, float c) {
+  const float half_difference = 0.5f * (a - b);
+  return 0.5f * (a + b) + std::sqrt(half_difference * half_difference + c * c);
+}
+
 // A magnified reading (H < 1) in the footprint's principal axes (issue 22, session 35). The
 // magnification blend (TableSlots, AddProbesLane) reads the base and the first copy, the 2 x 2
 // box, neither of them sheared, and puts its probes along (1, tg). With the parallelogram's
@@ -151,9 +157,7 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
 bool MagnifiedInPrincipalAxes(float& H, float& L, float& tg, float& scale) {
   const float major = H * H, L2 = L * L;
   const float cross = tg * major, minor = L2 + tg * cross;
-  const float half_difference = 0.5f * (major - minor);
-  const float lambda1 =
-      0.5f * (major + minor) + std::sqrt(half_difference * half_difference + cross * cross);
+  const float lambda1 = LargerEigenvalue(major, minor, cross);
   const float excess = lambda1 - major, room = 0.5f * (1.0f - major);
   const float beta = excess <= room ? 1.0f : room / excess;
   const float gap = lambda1 - minor;
@@ -208,9 +212,7 @@ struct MagnifiedTapsOfLane {
 // The taps of a valid lane from ReadLane's moments uu, uv, vv and area |X x Y|, texels.
 MagnifiedTapsOfLane MagnifiedTaps(float uu, float uv, float vv, float area) {
   MagnifiedTapsOfLane out;
-  const float half_difference = 0.5f * (uu - vv);
-  const float root = std::sqrt(half_difference * half_difference + uv * uv);
-  const float lambda1 = 0.5f * (uu + vv) + root;
+  const float lambda1 = LargerEigenvalue(uu, vv, uv);
   const float share = std::clamp(kTapsFade * (1.0f - std::sqrt(lambda1)), 0.0f, 1.0f);
   if (!(share > 0.0f)) return out;
   const float beta = area * area, rest = 1.0f - beta, inv_rest = 1.0f / rest;
@@ -515,6 +517,15 @@ __attribute__((target("avx2"))) inline void BlendStore(float* to, __m256 value, 
   _mm256_storeu_ps(to, _mm256_blendv_ps(_mm256_loadu_ps(to), value, lanes));
 }
 
+// LargerEigenvalue for eight lanes, the same operations.
+__attribute__((target("avx2"))) inline __m256 LargerEigenvalueAvx2(__m256 a, __m256 b, __m256 c) {
+  const __m256 half = _mm256_set1_ps(0.5f);
+  const __m256 half_difference = _mm256_mul_ps(half, _mm256_sub_ps(a, b));
+  return _mm256_add_ps(_mm256_mul_ps(half, _mm256_add_ps(a, b)),
+                       _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(half_difference, half_difference),
+                                                    _mm256_mul_ps(c, c))));
+}
+
 // MagnifiedInPrincipalAxes for the lanes of `lanes`, the same operations; scale is 1 elsewhere.
 // Returns the lanes wholly in the principal axes (beta = 1) among `lanes`.
 __attribute__((target("avx2"))) __m256 MagnifiedInPrincipalAxesAvx2(__m256 lanes, __m256& H,
@@ -525,11 +536,7 @@ __attribute__((target("avx2"))) __m256 MagnifiedInPrincipalAxesAvx2(__m256 lanes
   const __m256 major = _mm256_mul_ps(H, H), L2 = _mm256_mul_ps(L, L);
   const __m256 cross = _mm256_mul_ps(tg, major);
   const __m256 minor = _mm256_add_ps(L2, _mm256_mul_ps(tg, cross));
-  const __m256 half_difference = _mm256_mul_ps(half, _mm256_sub_ps(major, minor));
-  const __m256 lambda1 =
-      _mm256_add_ps(_mm256_mul_ps(half, _mm256_add_ps(major, minor)),
-                    _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(half_difference, half_difference),
-                                                 _mm256_mul_ps(cross, cross))));
+  const __m256 lambda1 = LargerEigenvalueAvx2(major, minor, cross);
   const __m256 excess = _mm256_sub_ps(lambda1, major);
   const __m256 room = _mm256_mul_ps(half, _mm256_sub_ps(one, major));
   const __m256 beta =
@@ -554,11 +561,8 @@ __attribute__((target("avx2"))) __m256 MagnifiedTapsAvx2(__m256 valid, __m256 uu
                                                          __m256 vv, __m256 area,
                                                          SelectionLanes& out) {
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
-  const __m256 half = _mm256_set1_ps(0.5f), two = _mm256_set1_ps(2.0f);
-  const __m256 half_difference = _mm256_mul_ps(half, _mm256_sub_ps(uu, vv));
-  const __m256 root = _mm256_sqrt_ps(
-      _mm256_add_ps(_mm256_mul_ps(half_difference, half_difference), _mm256_mul_ps(uv, uv)));
-  const __m256 lambda1 = _mm256_add_ps(_mm256_mul_ps(half, _mm256_add_ps(uu, vv)), root);
+  const __m256 two = _mm256_set1_ps(2.0f);
+  const __m256 lambda1 = LargerEigenvalueAvx2(uu, vv, uv);
   // std::clamp(x, 0, 1): x < 0 ? 0 : (1 < x ? 1 : x).
   const __m256 x =
       _mm256_mul_ps(_mm256_set1_ps(kTapsFade), _mm256_sub_ps(one, _mm256_sqrt_ps(lambda1)));
