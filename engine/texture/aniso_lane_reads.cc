@@ -365,86 +365,32 @@ __attribute__((target("avx2"))) inline void AddProbeReads(const CopyTables& t, f
   }
 }
 
-// AxisBoxPairs (texture/axis_box_reads.h) for eight lanes, the same operations; `c` and `half`
-// finite in every lane, half > 0.
-__attribute__((target("avx2"))) inline void AxisBoxPairsAvx2(__m256 c, __m256 half, __m256 inv_size,
-                                                             __m256 position[2], __m256 weight[2]) {
-  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-  const __m256 point_five = _mm256_set1_ps(0.5f), two = _mm256_set1_ps(2.0f);
-  const __m256 x0 = _mm256_sub_ps(_mm256_floor_ps(_mm256_sub_ps(c, point_five)), one);
-  const __m256 a0 = _mm256_sub_ps(_mm256_sub_ps(c, x0), point_five);
-  const __m256 inv_4h = _mm256_div_ps(one, _mm256_mul_ps(_mm256_set1_ps(4.0f), half));
-  const __m256 minus_half = _mm256_sub_ps(zero, half);
-  __m256 R[6];
-  for (int j = 0; j < 6; ++j) {
-    const __m256 y = _mm256_add_ps(a0, _mm256_set1_ps(1.0f - static_cast<float>(j)));
-    const __m256 z = _mm256_add_ps(_mm256_min_ps(_mm256_max_ps(y, minus_half), half), half);
-    R[j] = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(z, z), inv_4h),
-                         _mm256_max_ps(_mm256_sub_ps(y, half), zero));
-  }
-  for (int p = 0; p < 2; ++p) {
-    const __m256 w0 =
-        _mm256_add_ps(_mm256_sub_ps(R[2 * p], _mm256_mul_ps(two, R[2 * p + 1])), R[2 * p + 2]);
-    const __m256 w1 =
-        _mm256_add_ps(_mm256_sub_ps(R[2 * p + 1], _mm256_mul_ps(two, R[2 * p + 2])), R[2 * p + 3]);
-    const __m256 sum = _mm256_add_ps(w0, w1);
-    weight[p] = sum;
-    position[p] = _mm256_mul_ps(
-        _mm256_add_ps(_mm256_add_ps(x0, _mm256_set1_ps(0.5f + 2.0f * static_cast<float>(p))),
-                      _mm256_div_ps(w1, sum)),
-        inv_size);
-  }
-}
-
 // The magnified taps of the lanes of `taps` (ForEachRead in aniso_sampler.cc, the same
-// operations): the first copy at the sample, then the base at +p, -p, +q, -q, where the
-// axis-aligned box leaves them a weight; then the box's four reads where it has a share.
+// operations): the first copy at the sample, then the base at +p, -p, +q, -q.
 __attribute__((target("avx2"))) inline void AddMagnifiedTaps(const CopyTables& t, float inv_size,
                                                              const SelectionLanes& s, __m256 taps,
                                                              __m256 u, __m256 v, LaneSums& sums) {
   const __m256 zero = _mm256_setzero_ps(), scale = _mm256_set1_ps(1.0f / 255.0f);
   const __m256i izero = _mm256_setzero_si256();
+  AddCopyReads<Tilt::kBase, false>(
+      t.texels, Broadcast(t.copies[t.box_copy]), izero, taps, taps, u, v, zero,
+      _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.taps_first)), scale), zero, sums);
+  const __m256 w = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.taps_weight)), scale);
   const __m256 inv = _mm256_set1_ps(inv_size);
+  // Lanes without taps hold anything there: masked to 0 before any arithmetic.
+  const __m256 pu = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_p[0])), inv);
+  const __m256 pv = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_p[1])), inv);
+  const __m256 qu = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_q[0])), inv);
+  const __m256 qv = _mm256_mul_ps(_mm256_and_ps(taps, _mm256_load_ps(s.tap_q[1])), inv);
   const LaneCopies base = Broadcast(t.copies[0]);
-  const __m256 cross =
-      _mm256_and_ps(taps, _mm256_cmp_ps(_mm256_load_ps(s.taps_weight), zero, _CMP_GT_OQ));
-  if (_mm256_movemask_ps(cross) != 0) {
-    AddCopyReads<Tilt::kBase, false>(
-        t.texels, Broadcast(t.copies[t.box_copy]), izero, cross, cross, u, v, zero,
-        _mm256_mul_ps(_mm256_and_ps(cross, _mm256_load_ps(s.taps_first)), scale), zero, sums);
-    const __m256 w = _mm256_mul_ps(_mm256_and_ps(cross, _mm256_load_ps(s.taps_weight)), scale);
-    // Lanes without taps hold anything there: masked to 0 before any arithmetic.
-    const __m256 pu = _mm256_mul_ps(_mm256_and_ps(cross, _mm256_load_ps(s.tap_p[0])), inv);
-    const __m256 pv = _mm256_mul_ps(_mm256_and_ps(cross, _mm256_load_ps(s.tap_p[1])), inv);
-    const __m256 qu = _mm256_mul_ps(_mm256_and_ps(cross, _mm256_load_ps(s.tap_q[0])), inv);
-    const __m256 qv = _mm256_mul_ps(_mm256_and_ps(cross, _mm256_load_ps(s.tap_q[1])), inv);
-    AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, cross, cross, _mm256_add_ps(u, pu),
-                                     _mm256_add_ps(v, pv), zero, w, w, sums);
-    AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, cross, cross, _mm256_sub_ps(u, pu),
-                                     _mm256_sub_ps(v, pv), zero, w, w, sums);
-    AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, cross, cross, _mm256_add_ps(u, qu),
-                                     _mm256_add_ps(v, qv), zero, w, w, sums);
-    AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, cross, cross, _mm256_sub_ps(u, qu),
-                                     _mm256_sub_ps(v, qv), zero, w, w, sums);
-  }
-  const __m256 boxed =
-      _mm256_and_ps(taps, _mm256_cmp_ps(_mm256_load_ps(s.axis_box_share), zero, _CMP_GT_OQ));
-  if (_mm256_movemask_ps(boxed) == 0) return;
-  // Lanes without the box read at 0 with half-widths 1 (finite) and weight 0.
-  const __m256 one = _mm256_set1_ps(1.0f);
-  const __m256 size = _mm256_set1_ps(1.0f / inv_size);  // a power of two: exact
-  __m256 pu[2], wu[2], pv[2], wv[2];
-  AxisBoxPairsAvx2(_mm256_mul_ps(_mm256_and_ps(boxed, u), size),
-                   _mm256_blendv_ps(one, _mm256_load_ps(s.axis_box_half[0]), boxed), inv, pu, wu);
-  AxisBoxPairsAvx2(_mm256_mul_ps(_mm256_and_ps(boxed, v), size),
-                   _mm256_blendv_ps(one, _mm256_load_ps(s.axis_box_half[1]), boxed), inv, pv, wv);
-  const __m256 share = _mm256_mul_ps(_mm256_and_ps(boxed, _mm256_load_ps(s.axis_box_share)), scale);
-  for (int b = 0; b < 2; ++b)
-    for (int a = 0; a < 2; ++a) {
-      const __m256 w = _mm256_mul_ps(_mm256_mul_ps(share, wu[a]), wv[b]);
-      AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, boxed, boxed, pu[a], pv[b], zero, w,
-                                       w, sums);
-    }
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_add_ps(u, pu),
+                                   _mm256_add_ps(v, pv), zero, w, w, sums);
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_sub_ps(u, pu),
+                                   _mm256_sub_ps(v, pv), zero, w, w, sums);
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_add_ps(u, qu),
+                                   _mm256_add_ps(v, qv), zero, w, w, sums);
+  AddCopyReads<Tilt::kBase, false>(t.texels, base, izero, taps, taps, _mm256_sub_ps(u, qu),
+                                   _mm256_sub_ps(v, qv), zero, w, w, sums);
 }
 
 __attribute__((target("avx2"))) void ReadLanesAvx2(const CopyTables& t, float inv_size,

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "texture/axis_box_reads.h"
 #include "texture/footprint_batch.h"
 
 #if defined(__SSE4_1__)
@@ -152,7 +151,7 @@ void AnisoSampler::ForEachRead(const SelectionLanes& s, int lane, float u, float
     return;
   }
   const float inv_size = 1.0f / table_.size();
-  if (taps && s.taps_weight[lane] > 0.0f) {
+  if (taps) {
     // The magnified taps (texture/aniso_selection: MagnifiedTaps): the first copy at the
     // sample, then the base at +p, -p, +q, -q.
     visit(layouts_[table_.cell(0, 0).first], u, v, 0.0f, s.taps_first[lane] * (1.0f / 255.0f));
@@ -163,16 +162,6 @@ void AnisoSampler::ForEachRead(const SelectionLanes& s, int lane, float u, float
     visit(layouts_[0], u - pu, v - pv, 0.0f, w);
     visit(layouts_[0], u + qu, v + qv, 0.0f, w);
     visit(layouts_[0], u - qu, v - qv, 0.0f, w);
-  }
-  if (taps && s.axis_box_share[lane] > 0.0f) {
-    // The axis-aligned box (texture/axis_box_reads.h): two reads along U times two along V.
-    const float size = static_cast<float>(table_.size());
-    float pu[2], wu[2], pv[2], wv[2];
-    AxisBoxPairs(u * size, s.axis_box_half[0][lane], inv_size, pu, wu);
-    AxisBoxPairs(v * size, s.axis_box_half[1][lane], inv_size, pv, wv);
-    const float share = s.axis_box_share[lane] * (1.0f / 255.0f);
-    for (int b = 0; b < 2; ++b)
-      for (int a = 0; a < 2; ++a) visit(layouts_[0], pu[a], pv[b], 0.0f, share * wu[a] * wv[b]);
   }
   for (int r = 0; r < 2; ++r) {
     if (!(s.reading_weight[r][lane] > 0.0f)) continue;

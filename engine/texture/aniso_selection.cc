@@ -91,8 +91,6 @@ struct LaneReadings {
   // The moments of the pixel's half-axes X = (dUx, dVx), Y = (dUy, dVy) (texels, clamped) and
   // |X x Y|: the magnified taps' inputs.
   float uu = 0, uv = 0, vv = 0, area = 0;
-  // The half-axes' components (texels, clamped): the axis-aligned box's inputs.
-  float dUx = 0, dVx = 0, dUy = 0, dVy = 0;
 };
 
 LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half_size) {
@@ -114,7 +112,6 @@ LaneReadings ReadLane(float dudx, float dvdx, float dudy, float dvdy, float half
   if (!finite || !(total >= kMinMoment)) return out;
   out.valid = true;
   out.uu = uu, out.uv = uv, out.vv = vv, out.area = area;
-  out.dUx = dUx, out.dVx = dVx, out.dUy = dUy, out.dVy = dVy;
   // The first reading along the larger moment; its weight 1 outside the zone, else
   // 1/2 + |M_uu - M_vv| / (2 zone), 1/2 on the diagonal. The zone is a band of the long axis's
   // angle phi to U: |M_uu - M_vv| = |cos 2 phi| D with D = sqrt((M_uu - M_vv)^2 + 4 M_uv^2),
@@ -230,43 +227,6 @@ MagnifiedTapsOfLane MagnifiedTaps(float uu, float uv, float vv, float area) {
   out.weight = 0.25f * (share * rest);
   out.p[0] = (tu + s) * k, out.p[1] = tuv * k;
   out.q[0] = tuv * k, out.q[1] = (tv + s) * k;
-  return out;
-}
-
-// The axis-aligned box (issue 22, session 40). A magnified footprint whose sides run along the
-// texture's axes is the box [-h_u, h_u] x [-h_v, h_v] around the sample, and the mean of the
-// bilinear base over it is separable: two bilinear reads along each axis give it exactly
-// (texture/axis_box_reads.h), where the taps' five reads only match its moments. The taps'
-// error is largest there: a box along the texel grid meets the bilinear texture's kinks along
-// its own sides (scripts/magnified-taps-error.py scores the taps 55.73 / 57.65 / 57.60 dB on the
-// grass at 0 / 22.5 / 45 degrees). The sides' slopes to the axes they run along, s (X along U:
-// |dVx| / |dUx| + |dUy| / |dVy|), blend the box in: it takes w = clamp(1 - kAxisBoxSlopes s, 0,
-// 1) of the taps' share, the taps the rest, so it is continuous (w = 0 before the sides' axes
-// swap, at s >= 1). A sheared footprint is read as the box of half-widths |dUx| and |dVy|, whose
-// error grows with s. Blended out by slopes of 1/8, the views along a texture axis at pitch 60
-// come level with those at 45 degrees; out to 1/4 they passed them by up to 1.6 dB, which the
-// spread across yaws counts as much as a loss (docs/BENCHMARKS.md, issue 22, session 40).
-constexpr float kAxisBoxSlopes = 8.0f;
-// Half-widths under this (texels) are read as this: R(y) in axis_box_reads.h divides by 4 h.
-constexpr float kAxisBoxMinHalf = 1.0f / 4096.0f;
-constexpr float kAxisBoxTiny = 1e-30f;  // guards the slopes' divisions (0 / 0 for a zero side)
-
-struct AxisBoxOfLane {
-  float blend = 0;  // w: the box's part of the taps' share
-  float half[2] = {};
-};
-
-AxisBoxOfLane AxisBox(const LaneReadings& r) {
-  const float ax = std::abs(r.dUx), bx = std::abs(r.dVx);
-  const float ay = std::abs(r.dUy), by = std::abs(r.dVy);
-  const bool x_along_u = ax >= bx;
-  const float slopes = x_along_u
-                           ? bx / std::max(ax, kAxisBoxTiny) + ay / std::max(by, kAxisBoxTiny)
-                           : ax / std::max(bx, kAxisBoxTiny) + by / std::max(ay, kAxisBoxTiny);
-  AxisBoxOfLane out;
-  out.blend = std::clamp(1.0f - kAxisBoxSlopes * slopes, 0.0f, 1.0f);
-  out.half[0] = std::max(x_along_u ? ax : ay, kAxisBoxMinHalf);
-  out.half[1] = std::max(x_along_u ? by : bx, kAxisBoxMinHalf);
   return out;
 }
 
@@ -515,14 +475,9 @@ void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const fl
     // The magnified taps take their share w; the readings the rest (none where w = 1).
     const MagnifiedTapsOfLane taps =
         r.valid ? MagnifiedTaps(r.uu, r.uv, r.vv, r.area) : MagnifiedTapsOfLane{};
-    // The axis-aligned box takes its part of the taps' share (AxisBox).
-    const AxisBoxOfLane box = taps.share > 0.0f ? AxisBox(r) : AxisBoxOfLane{};
-    const float cross = 1.0f - box.blend;
     out.taps_share[lane] = taps.share;
-    out.taps_first[lane] = taps.first * cross;
-    out.taps_weight[lane] = taps.weight * cross;
-    out.axis_box_share[lane] = taps.share * box.blend;
-    for (int c = 0; c < 2; ++c) out.axis_box_half[c][lane] = box.half[c];
+    out.taps_first[lane] = taps.first;
+    out.taps_weight[lane] = taps.weight;
     for (int c = 0; c < 2; ++c) out.tap_p[c][lane] = taps.p[c], out.tap_q[c][lane] = taps.q[c];
     const float readings = 1.0f - taps.share;
     out.reading_weight[0][lane] *= readings;
@@ -604,7 +559,6 @@ __attribute__((target("avx2"))) __m256 MagnifiedInPrincipalAxesAvx2(__m256 lanes
 // the share (0 in the other lanes).
 __attribute__((target("avx2"))) __m256 MagnifiedTapsAvx2(__m256 valid, __m256 uu, __m256 uv,
                                                          __m256 vv, __m256 area,
-                                                         const __m256 (&d)[4],
                                                          SelectionLanes& out) {
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   const __m256 two = _mm256_set1_ps(2.0f);
@@ -616,10 +570,7 @@ __attribute__((target("avx2"))) __m256 MagnifiedTapsAvx2(__m256 valid, __m256 uu
   share = _mm256_blendv_ps(share, zero, _mm256_cmp_ps(x, zero, _CMP_LT_OQ));
   const __m256 has = _mm256_and_ps(valid, _mm256_cmp_ps(share, zero, _CMP_GT_OQ));
   _mm256_store_ps(out.taps_share, _mm256_and_ps(has, share));
-  if (_mm256_movemask_ps(has) == 0) {
-    _mm256_store_ps(out.axis_box_share, zero);
-    return zero;
-  }
+  if (_mm256_movemask_ps(has) == 0) return zero;
   const __m256 beta = _mm256_mul_ps(area, area), rest = _mm256_sub_ps(one, beta);
   const __m256 inv_rest = _mm256_div_ps(one, rest);
   const __m256 trace = _mm256_add_ps(uu, vv);
@@ -634,32 +585,10 @@ __attribute__((target("avx2"))) __m256 MagnifiedTapsAvx2(__m256 valid, __m256 uu
                     _mm256_sqrt_ps(_mm256_add_ps(
                         _mm256_mul_ps(_mm256_sub_ps(trace, _mm256_mul_ps(two, beta)), inv_rest),
                         _mm256_mul_ps(two, s))));
-  // The axis-aligned box (AxisBox): its blend w and half-widths.
-  const __m256 tiny = _mm256_set1_ps(kAxisBoxTiny), min_half = _mm256_set1_ps(kAxisBoxMinHalf);
-  const __m256 ax = Abs(d[0]), bx = Abs(d[1]), ay = Abs(d[2]), by = Abs(d[3]);
-  const __m256 x_along_u = _mm256_cmp_ps(ax, bx, _CMP_GE_OQ);
-  const __m256 slopes = _mm256_blendv_ps(_mm256_add_ps(_mm256_div_ps(ax, _mm256_max_ps(bx, tiny)),
-                                                       _mm256_div_ps(by, _mm256_max_ps(ay, tiny))),
-                                         _mm256_add_ps(_mm256_div_ps(bx, _mm256_max_ps(ax, tiny)),
-                                                       _mm256_div_ps(ay, _mm256_max_ps(by, tiny))),
-                                         x_along_u);
-  const __m256 y = _mm256_sub_ps(one, _mm256_mul_ps(_mm256_set1_ps(kAxisBoxSlopes), slopes));
-  __m256 blend = _mm256_blendv_ps(y, one, _mm256_cmp_ps(one, y, _CMP_LT_OQ));
-  blend = _mm256_blendv_ps(blend, zero, _mm256_cmp_ps(y, zero, _CMP_LT_OQ));
-  const __m256 cross = _mm256_sub_ps(one, blend);
-  _mm256_store_ps(out.axis_box_share, _mm256_and_ps(has, _mm256_mul_ps(share, blend)));
-  _mm256_store_ps(out.axis_box_half[0],
-                  _mm256_max_ps(_mm256_blendv_ps(ay, ax, x_along_u), min_half));
-  _mm256_store_ps(out.axis_box_half[1],
-                  _mm256_max_ps(_mm256_blendv_ps(bx, by, x_along_u), min_half));
   // Lanes without taps store zeros (finite, never read).
-  _mm256_store_ps(out.taps_first,
-                  _mm256_and_ps(has, _mm256_mul_ps(_mm256_mul_ps(share, beta), cross)));
-  _mm256_store_ps(
-      out.taps_weight,
-      _mm256_and_ps(
-          has,
-          _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.25f), _mm256_mul_ps(share, rest)), cross)));
+  _mm256_store_ps(out.taps_first, _mm256_and_ps(has, _mm256_mul_ps(share, beta)));
+  _mm256_store_ps(out.taps_weight, _mm256_and_ps(has, _mm256_mul_ps(_mm256_set1_ps(0.25f),
+                                                                    _mm256_mul_ps(share, rest))));
   _mm256_store_ps(out.tap_p[0], _mm256_and_ps(has, _mm256_mul_ps(_mm256_add_ps(tu, s), k)));
   _mm256_store_ps(out.tap_p[1], _mm256_and_ps(has, _mm256_mul_ps(tuv, k)));
   _mm256_store_ps(out.tap_q[0], _mm256_and_ps(has, _mm256_mul_ps(tuv, k)));
@@ -926,7 +855,7 @@ __attribute__((target("avx2"))) void SelectAvx2(const float* dudx, const float* 
   const __m256i along_v[2] = {v_first, v_second};
   // The magnified taps' share; the readings the rest (none where it is 1: their shapes are not
   // computed there, and groups of eight tapped lanes skip them).
-  const __m256 taps_share = MagnifiedTapsAvx2(valid, uu, uv, vv, area, d, out);
+  const __m256 taps_share = MagnifiedTapsAvx2(valid, uu, uv, vv, area, out);
   const __m256 readings = _mm256_sub_ps(one, taps_share);
   const __m256 untapped = _mm256_cmp_ps(readings, zero, _CMP_GT_OQ);
   __m256 read[2] = {_mm256_and_ps(untapped, _mm256_cmp_ps(first, zero, _CMP_GT_OQ)),

@@ -88,8 +88,7 @@ struct CopyBlend {
 // docs/BENCHMARKS.md, issue 3, measures it) and below L = 1.375 the box probes (issue 22): one
 // reading's blend. The sampler reads a footprint whose long half-axis is under a texel by the
 // magnified taps (SelectionLanes::taps_share, from the footprint, not from a reading), fading
-// into the readings' blend between 0.875 and 1 texel; where its sides run along the texture's
-// axes, by the exact box of the bilinear base instead (SelectionLanes::axis_box_share).
+// into the readings' blend between 0.875 and 1 texel.
 CopyBlend SelectCopies(const PrefilteredTable& table, const ApertureShape& shape);
 // The paper's selection alone (with the tilt blend), without the base and box probes.
 CopyBlend SelectTableCopies(const PrefilteredTable& table, const ApertureShape& shape);
@@ -132,11 +131,6 @@ struct SelectionLanes {
   alignas(32) float taps_weight[kLanes];
   alignas(32) float tap_p[2][kLanes];
   alignas(32) float tap_q[2][kLanes];
-  // The axis-aligned box (AxisBoxOfLane in the .cc): the share of the taps' share read as the
-  // exact box of the bilinear base with these half-widths along U and V, in texels
-  // (texture/axis_box_reads.h; the taps' weights are scaled by what it leaves them; 0: none).
-  alignas(32) float axis_box_share[kLanes];
-  alignas(32) float axis_box_half[2][kLanes];
 };
 
 class CopySelector {

@@ -568,15 +568,10 @@ TEST_F(AnisoSamplerTest, ThinAperturesMixInProbesOfTheBase) {
 
 // The covariance (texels^2) of what a magnified sample blends, without the bilinear tent every
 // read shares: the first copy (the 2 x 2 box) adds 1/3 per axis by its weight, each base probe
-// or tap its offset's square; both readings by their weights, the magnified taps and the
-// axis-aligned box.
+// or tap its offset's square; both readings by their weights, and the magnified taps.
 std::array<double, 3> MagnifiedBlendCovariance(const SelectionLanes& s, uint32_t first_copy) {
   std::array<double, 3> c = {0, 0, 0};  // uu, uv, vv
   if (s.taps_share[0] > 0) {
-    // The axis-aligned box: its half-widths' squares over 3 along U and V.
-    const double box = s.axis_box_share[0];
-    c[0] += box * s.axis_box_half[0][0] * s.axis_box_half[0][0] / 3.0;
-    c[2] += box * s.axis_box_half[1][0] * s.axis_box_half[1][0] / 3.0;
     c[0] += s.taps_first[0] / 3.0, c[2] += s.taps_first[0] / 3.0;
     // +-p and +-q: each pair twice its square.
     const double offsets[2][2] = {{s.tap_p[0][0], s.tap_p[1][0]}, {s.tap_q[0][0], s.tap_q[1][0]}};
@@ -607,28 +602,22 @@ std::array<double, 3> MagnifiedBlendCovariance(const SelectionLanes& s, uint32_t
 }
 
 TEST_F(AnisoSamplerTest, MagnifiedTapsTurnWithTheFootprint) {
-  // The taps of a magnified footprint: the first copy's weight det S is the same at every turn
-  // (times what the axis-aligned box leaves the taps, all of it but within atan(1/16) of an
-  // axis), and a quarter turn of the footprint turns its four taps by a quarter turn and keeps
-  // the box's share (the texel axes map to each other: the rule is exactly symmetric under the
-  // texture grid's own symmetries).
+  // The taps of a magnified footprint: the first copy's weight det S is the same at every turn,
+  // and a quarter turn of the footprint turns its four taps by a quarter turn (the texel axes
+  // map to each other: the rule is exactly symmetric under the texture grid's own symmetries).
   Build(Image(kN, kN));
   const CopySelector selector(*table_);
-  struct Taps {
-    double first, box;
-    std::vector<std::array<double, 2>> points;
-  };
   auto taps_of = [&](const double X[2], const double Y[2]) {
     const TextureFootprint f = Footprint(X[0], X[1], Y[0], Y[1]);
     SelectionLanes lanes;
     selector.SelectPortable(&f.dudx, &f.dvdx, &f.dudy, &f.dvdy, 1, lanes);
     EXPECT_EQ(lanes.taps_share[0], 1.0f);
-    Taps out{lanes.taps_first[0], lanes.axis_box_share[0], {}};
+    std::vector<std::array<double, 2>> points;
     for (const double sign : {1.0, -1.0}) {
-      out.points.push_back({sign * lanes.tap_p[0][0], sign * lanes.tap_p[1][0]});
-      out.points.push_back({sign * lanes.tap_q[0][0], sign * lanes.tap_q[1][0]});
+      points.push_back({sign * lanes.tap_p[0][0], sign * lanes.tap_p[1][0]});
+      points.push_back({sign * lanes.tap_q[0][0], sign * lanes.tap_q[1][0]});
     }
-    return out;
+    return std::make_pair(double(lanes.taps_first[0]), points);
   };
   const double shapes[][2] = {{0.6, 0.25}, {0.8, 0.7}, {0.35, 0.1}};
   for (const auto& shape : shapes) {
@@ -639,16 +628,14 @@ TEST_F(AnisoSamplerTest, MagnifiedTapsTurnWithTheFootprint) {
       const double X[2] = {shape[0] * c, shape[0] * s}, Y[2] = {-shape[1] * s, shape[1] * c};
       // A quarter turn: (u, v) -> (-v, u).
       const double Xq[2] = {-X[1], X[0]}, Yq[2] = {-Y[1], Y[0]};
-      const Taps taps = taps_of(X, Y), turned = taps_of(Xq, Yq);
-      // A rectangle along an axis is the box alone; turned 5 degrees or more, the taps alone.
-      EXPECT_EQ(taps.box, degrees % 90 == 0 ? 1.0 : 0.0);
-      EXPECT_EQ(turned.box, taps.box);
-      EXPECT_NEAR(taps.first, want_first * (1 - taps.box), 2e-6);
-      EXPECT_NEAR(turned.first, want_first * (1 - taps.box), 2e-6);
+      const auto [first, points] = taps_of(X, Y);
+      const auto [first_q, points_q] = taps_of(Xq, Yq);
+      EXPECT_NEAR(first, want_first, 2e-6);
+      EXPECT_NEAR(first_q, want_first, 2e-6);
       // Each tap turned is one of the turned footprint's taps.
-      for (const auto& p : taps.points) {
+      for (const auto& p : points) {
         double nearest = INFINITY;
-        for (const auto& q : turned.points)
+        for (const auto& q : points_q)
           nearest = std::min(nearest, std::hypot(-p[1] - q[0], p[0] - q[1]));
         EXPECT_LT(nearest, 2e-6) << p[0] << ", " << p[1];
       }
@@ -693,8 +680,7 @@ TEST_F(AnisoSamplerTest, MagnifiedFootprintsAreReadByTapsCloserToTheBoxThanTheTa
   // magnified taps alone) against the converged box: the first copy by det S and four bilinear
   // taps of the base, against the table's copies below the table (the paper's extension: the
   // base by 1 - H^2 and the first copy by H^2, the same covariance along the long side).
-  // Measured 0.0056 against 0.0229 (edges) and 0.0069 against 0.0277 (noise); the few along an
-  // axis read by the axis-aligned box.
+  // Measured 0.0058 against 0.0229 (edges) and 0.0072 against 0.0277 (noise).
   ExpectCloserThanTheTableAlone(17, RandomFootprints(0.4, 1.7, 0.4, 1.7), "the magnified taps",
                                 0.35, [&](const TextureFootprint& f) {
                                   SelectionLanes lanes;
@@ -702,65 +688,6 @@ TEST_F(AnisoSamplerTest, MagnifiedFootprintsAreReadByTapsCloserToTheBoxThanTheTa
                                                                        &f.dvdy, 1, lanes);
                                   EXPECT_EQ(lanes.taps_share[0], 1.0f);  // the taps alone
                                 });
-}
-
-TEST_F(AnisoSamplerTest, MagnifiedFootprintsAlongTheAxesAreTheExactBoxOfTheBilinearBase) {
-  // A footprint under 7/8 texel whose sides run along U and V, anywhere on random 8-bit texels:
-  // the sample is the mean of the bilinear base over its box (texture/axis_box_reads.h), here
-  // by 600 x 600 midpoints of the box (an independent, converged integral), up to float
-  // rounding; the taps alone (a footprint turned 10 degrees, the same box's moments) miss it
-  // by far more.
-  std::mt19937 rng(29);
-  std::uniform_int_distribution<int> level(0, 255);
-  std::uniform_real_distribution<double> unit(0, 1);
-  const Image image = GreyImage([&](int, int) { return level(rng) / 255.0f; });
-  Build(image);
-  const AnisoSampler sampler(*table_);
-  auto texel = [&](int x, int y) { return double(image.at(x & (kN - 1), y & (kN - 1)).r); };
-  auto bilinear = [&](double x, double y) {  // texel coordinates, centres at +0.5
-    const double fx = x - 0.5, fy = y - 0.5, x0 = std::floor(fx), y0 = std::floor(fy);
-    const double a = fx - x0, b = fy - y0;
-    const int i = int(x0), j = int(y0);
-    return (1 - a) * (1 - b) * texel(i, j) + a * (1 - b) * texel(i + 1, j) +
-           (1 - a) * b * texel(i, j + 1) + a * b * texel(i + 1, j + 1);
-  };
-  constexpr int kMidpoints = 600;
-  double worst = 0, worst_taps = 0;
-  for (int k = 0; k < 24; ++k) {
-    // Half-widths under 0.875: the taps' share whole (above it they fade into the readings).
-    const double hu = 0.05 + 0.8 * unit(rng), hv = 0.05 + 0.8 * unit(rng);
-    const double u = unit(rng), v = unit(rng);
-    // X along U or along V, either sign.
-    const double sign = k % 4 < 2 ? 1 : -1;
-    const TextureFootprint f =
-        k % 2 == 0 ? Footprint(sign * hu, 0, 0, hv, u, v) : Footprint(0, sign * hv, hu, 0, u, v);
-    double want = 0;
-    for (int j = 0; j < kMidpoints; ++j)
-      for (int i = 0; i < kMidpoints; ++i)
-        want += bilinear(u * kN + hu * ((2 * i + 1.0) / kMidpoints - 1),
-                         v * kN + hv * ((2 * j + 1.0) / kMidpoints - 1));
-    want /= double(kMidpoints) * kMidpoints;
-    SCOPED_TRACE(testing::Message()
-                 << "half-widths " << hu << " x " << hv << " at " << u << ", " << v);
-    const double got = sampler.Sample(f).r;
-    EXPECT_NEAR(got, want, 2e-5);
-    worst = std::max(worst, std::abs(got - want));
-    // The same moments turned by 10 degrees (the taps alone) against that box turned likewise.
-    const double a = 10 * M_PI / 180, c = std::cos(a), s = std::sin(a);
-    const TextureFootprint turned = Footprint(hu * c, hu * s, -hv * s, hv * c, u, v);
-    double want_turned = 0;
-    for (int j = 0; j < kMidpoints; ++j)
-      for (int i = 0; i < kMidpoints; ++i) {
-        const double p = hu * ((2 * i + 1.0) / kMidpoints - 1),
-                     q = hv * ((2 * j + 1.0) / kMidpoints - 1);
-        want_turned += bilinear(u * kN + p * c - q * s, v * kN + p * s + q * c);
-      }
-    want_turned /= double(kMidpoints) * kMidpoints;
-    worst_taps = std::max(worst_taps, std::abs(sampler.Sample(turned).r - want_turned));
-  }
-  std::printf("axis-aligned box: largest error %.2e; the taps turned 10 degrees %.2e\n", worst,
-              worst_taps);
-  EXPECT_GT(worst_taps, 100 * worst);
 }
 
 TEST_F(AnisoSamplerTest, ThinAperturesAreCloserToTheReferenceThanTheTableAlone) {
@@ -1015,17 +942,6 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
     const double c = std::cos(a) * 2 / kN, s = std::sin(a) * 2 / kN;
     in.push_back({pos(rng), pos(rng), float(H * c), float(H * s), float(-L * s), float(L * c)});
   }
-  // And magnified footprints along the axes: the axis-aligned box, alone (every third) and
-  // blended with the taps (sides sloped up to 0.12), half-widths 0.05-0.95 texels.
-  std::uniform_real_distribution<double> half(0.05, 0.95), slope(0, 0.12);
-  for (int i = 0; i < 64; ++i) {
-    const double hu = half(rng) * 2 / kN, hv = half(rng) * 2 / kN;
-    const double su = i % 3 == 0 ? 0 : slope(rng), sv = i % 3 == 0 ? 0 : slope(rng);
-    TextureFootprint f = {pos(rng),       pos(rng),        float(hu),
-                          float(su * hu), float(-sv * hv), float(hv)};
-    if (i % 2 == 1) std::swap(f.dudx, f.dvdx), std::swap(f.dudy, f.dvdy);
-    in.push_back(f);
-  }
   // And whole groups of eight that share their derivatives (so mostly their copies: the reads
   // take each copy's fields once, its axis a constant), of every shape above, both axes.
   in.resize((in.size() + 7) / 8 * 8, in.front());
@@ -1048,14 +964,8 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
     sampler.SampleBatch(batch, &batched[first]);
   }
   int differing = 0, differing_batched = 0, probed = 0, boxed = 0, two_rows = 0;
-  int axis_boxed = 0, axis_blended = 0;
-  const CopySelector selector(*table_);
   for (size_t i = 0; i < in.size(); ++i) {
     const Rgba a = sampler.Sample(in[i]);
-    SelectionLanes lanes;
-    selector.SelectPortable(&in[i].dudx, &in[i].dvdx, &in[i].dudy, &in[i].dvdy, 1, lanes);
-    axis_boxed += lanes.axis_box_share[0] > 0;
-    axis_blended += lanes.axis_box_share[0] > 0 && lanes.taps_weight[0] > 0;
     if (std::memcmp(&a, &out[i], sizeof(Rgba)) != 0) ++differing;
     if (std::memcmp(&a, &batched[i], sizeof(Rgba)) != 0) ++differing_batched;
     const CopyBlend blend = SelectCopies(*table_, ApertureFromFootprint(in[i], kN));
@@ -1068,8 +978,6 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
   EXPECT_GT(probed, 50);  // the base probes of thin apertures are among the reads compared
   EXPECT_GT(boxed, 50);   // and the box probes of short ones, in one row and in two
   EXPECT_GT(two_rows, 10);
-  EXPECT_GT(axis_boxed, 30);  // and the axis-aligned box, alone and with the taps
-  EXPECT_GT(axis_blended, 15);
   const ApertureReadings most = ReadingsOfFootprint(most_reads, kN);
   ASSERT_EQ(most.count, 2);
   EXPECT_EQ(SelectCopies(*table_, most.shape[0]).probes, 18);
