@@ -36,17 +36,27 @@ bool ClipParam(const Vec2& p, const Vec2& q, double a, double b, double c, doubl
 }  // namespace
 
 void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
-                           std::span<const double> nearest, double cx, double cy, bool with_moments,
-                           std::vector<CellPiece>& out) {
+                           std::span<const double> nearest, std::span<const int64_t> draw_order,
+                           double cx, double cy, bool with_moments, std::vector<CellPiece>& out) {
   // First which polygons reach the cell and how (no clipping yet): a cell wholly covered by the
   // polygon in front of all the others is then answered without clipping any of them.
   stopped_ = false;
   reach_.clear();
-  size_t crossings = 0;          // crossing_[0, crossings) are used
-  double cover_far = -INFINITY;  // nearest first: the farthest corner of the nearest whole cover
+  size_t crossings = 0;  // crossing_[0, crossings) are used
+  // Nearest first: the farthest corner of the nearest whole-cell cover found, and the order it
+  // is drawn in (of covers equally far within the tolerance, the one drawn last).
+  double cover_far = -INFINITY;
+  int64_t cover_order = 0;
   for (int index : candidates) {
-    // (A margin far above the rounding of both sides: a tie is not taken as hidden.)
-    if (!nearest.empty() && nearest[index] < cover_far - 1e-9 * std::abs(cover_far)) break;
+    if (!nearest.empty() && cover_far > -INFINITY) {
+      // Behind the cover all over the cell by a margin: so is every later candidate (they come
+      // nearest first to within NearestQuantum's resolution, a quarter of the margin).
+      if (nearest[index] < cover_far - 4 * kCoplanarTolerance * std::abs(cover_far)) break;
+      const int sign = DepthSign(nearest[index], cover_far);
+      // Nowhere nearer than the cover (equal within the tolerance at most) and drawn under it: a
+      // coplanar layer under the cover, hidden, skipped without a look at its edges.
+      if (sign == 0 && draw_order[index] < cover_order) continue;
+    }
     const ScreenPolygon& sp = polygons[index];
     if (sp.max_x <= cx - kHalf || sp.min_x >= cx + kHalf || sp.max_y <= cy - kHalf ||
         sp.min_y >= cy + kHalf)
@@ -70,11 +80,17 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
       crossings = first_edge;
       continue;
     }
-    reach_.push_back(
-        {index, {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)}, first_edge, crossings});
+    reach_.push_back({index,
+                      {sp.inv_depth.a, sp.inv_depth.b, sp.inv_depth.At(cx, cy)},
+                      DrawOrder(sp.layer, index),
+                      first_edge,
+                      crossings});
     if (!nearest.empty() && first_edge == crossings) {  // covers the cell
       const ScreenLinear& d = reach_.back().depth;
-      cover_far = std::max(cover_far, d.c - kHalf * (std::abs(d.a) + std::abs(d.b)));
+      const double far = d.c - kHalf * (std::abs(d.a) + std::abs(d.b));
+      const int sign = DepthSign(far, cover_far);
+      if (cover_far == -INFINITY || sign > 0 || (sign == 0 && reach_.back().order > cover_order))
+        cover_far = far, cover_order = reach_.back().order;
     }
   }
   if (reach_.empty()) return;
@@ -96,10 +112,15 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
   // front of all (the test below) is then the first painted, and the polygons that
   // DropHiddenByAFullPolygon drops lie behind the first cover painted, where the painter stops.
   if (PaintStacked(polygons, cx, cy, with_moments, out)) return;
-  if (!nearest.empty()) {  // back to the polygons' order (few: an insertion sort)
-    for (size_t i = 1; i < reach_.size(); ++i)
-      for (size_t j = i; j > 0 && reach_[j - 1].polygon > reach_[j].polygon; --j)
-        std::swap(reach_[j - 1], reach_[j]);
+  if (!nearest.empty()) {  // back to the polygons' order (mostly few: an insertion sort)
+    if (reach_.size() > kCrowdedPieces) {
+      std::sort(reach_.begin(), reach_.end(),
+                [](const Reach& a, const Reach& b) { return a.polygon < b.polygon; });
+    } else {
+      for (size_t i = 1; i < reach_.size(); ++i)
+        for (size_t j = i; j > 0 && reach_[j - 1].polygon > reach_[j].polygon; --j)
+          std::swap(reach_[j - 1], reach_[j]);
+    }
   }
   // The test Resolve makes first, on every polygon that reaches the cell: when it holds here it
   // holds for the clipped pieces too, which are these less the empty ones.
@@ -109,7 +130,10 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     out.push_back({reach_[front].polygon, SquareMoments()});
     return;
   }
-  DropHiddenByAFullPolygon();  // which may leave the rest stacked
+  // The full polygon nearest at the centre hides every polygon it hides at the four corners: those
+  // have no visible part and are dropped before any clipping. Under a few near pieces a crowded
+  // cell mostly holds such. What is left may be stacked.
+  DropHiddenByAFullOne(reach_, [](const Reach& r) { return r.edges_begin == r.edges_end; });
   if (PaintStacked(polygons, cx, cy, with_moments, out)) return;
   pieces_.clear();
   verts_.clear();
@@ -117,6 +141,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
     Piece piece;
     piece.polygon = r.polygon;
     piece.depth = r.depth;
+    piece.order = r.order;
     piece.full = r.edges_begin == r.edges_end;
     piece.begin = verts_.size();
     const std::span<const Vec2> cut = CutSquare(r);
@@ -167,7 +192,7 @@ bool CellCoverage::PaintStacked(std::span<const ScreenPolygon> polygons, double 
     order[k] = i;
   }
   for (size_t k = 0; k + 1 < n; ++k)
-    if (!(farthest[order[k]] > nearest[order[k + 1]])) return false;
+    if (DepthSign(farthest[order[k]], nearest[order[k + 1]]) <= 0) return false;
 
   StartPainting();
   CellMoments rest = SquareMoments();
@@ -185,37 +210,14 @@ bool CellCoverage::PaintStacked(std::span<const ScreenPolygon> polygons, double 
     // The regions left are only needed by a later polygon that does not cover the cell (one that
     // does takes the square less the moments).
     const bool last_cut = k + 1 == n || covers_cell(k + 1);
-    const CellMoments m =
-        PaintInside(std::span(crossing_).subspan(r.edges_begin, r.edges_end - r.edges_begin), box,
-                    with_moments, /*keep_rest=*/!last_cut);
+    CellMoments m;
+    PaintInside(std::span(crossing_).subspan(r.edges_begin, r.edges_end - r.edges_begin), box,
+                with_moments, /*keep_rest=*/!last_cut, /*max_regions=*/SIZE_MAX, m);
     if (m.area > 0) out.push_back({r.polygon, m});
     rest = {rest.area - m.area, rest.mx - m.mx, rest.my - m.my, rest.mxy - m.mxy};
     if (!last_cut && regions_a_.empty()) return true;
   }
   return true;
-}
-
-// The polygon nearest at the centre among those covering the whole cell hides every polygon it is
-// in front of at the four corners (depth differences are linear): those have no visible part and
-// are dropped before any clipping. Under a few near pieces a crowded cell mostly holds such.
-void CellCoverage::DropHiddenByAFullPolygon() {
-  const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
-  int hider = -1;
-  for (size_t i = 0; i < reach_.size(); ++i)
-    if (reach_[i].edges_begin == reach_[i].edges_end &&
-        (hider < 0 || reach_[i].depth.At(xc, yc) > reach_[hider].depth.At(xc, yc)))
-      hider = static_cast<int>(i);
-  if (hider < 0) return;
-  const ScreenLinear front = reach_[hider].depth;  // a copy: reach_ is compacted below
-  size_t kept = 0;
-  for (size_t i = 0; i < reach_.size(); ++i) {
-    bool hidden = static_cast<int>(i) != hider;
-    for (double y : {square_.y0, square_.y1})
-      for (double x : {square_.x0, square_.x1})
-        hidden = hidden && front.At(x, y) > reach_[i].depth.At(x, y);
-    if (!hidden) reach_[kept++] = reach_[i];
-  }
-  reach_.resize(kept);
 }
 
 // The cell's square cut by each of the polygon's crossing edges, in two fixed buffers; should a
@@ -269,12 +271,21 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
     out.push_back({pieces_[front].polygon, SquareMoments()});
     return;
   }
+  // A quadrant's full pieces hide much of a crowded square's rest (coplanar layers under the
+  // one drawn last, a stack under its front plane).
+  if (depth > 0) DropHiddenByAFullOne(pieces_, [](const Piece& p) { return p.full; });
 
-  const bool may_split = depth < kMaxDepth && splittable;
+  const bool may_split = depth < kMaxDepth;
+  // A crowd of pieces on a few planes (layers of decals): painted in the planes' order, whose
+  // regions stay few under the front layers, rather than cut into quadrants piece by piece.
   if (pieces_.size() > kCrowdedPieces && splittable) {
-    if (may_split)
-      Subdivide(depth, with_moments, out);
-    else
+    DepthRanges();
+    if (OrderByPlanes() && PaintFrontToBack(with_moments, out)) return;
+  }
+  if (pieces_.size() > kCrowdedPieces && splittable) {
+    if (may_split) {
+      Subdivide(depth, /*force=*/false, with_moments, out);
+    } else
       FrontAtCentre(out);
     return;
   }
@@ -287,15 +298,19 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
     const Piece& back = pieces_[b];
     if (!back.full) continue;
     // Depth differences are linear, so a piece is in front over all of itself when it is at its
-    // vertices; touching (a wall standing on the ground) counts as in front.
+    // vertices; touching (a wall standing on the ground) counts as in front, and a piece coplanar
+    // with the background is in front when it is drawn over it.
     bool behind = true;
     for (size_t q = 0; q < pieces_.size() && behind; ++q) {
       if (q == b) continue;
+      bool nearer = false;
       for (size_t k = pieces_[q].begin; k < pieces_[q].end && behind; ++k) {
         const Vec2& v = verts_[k];
-        const double front = pieces_[q].depth.At(v.x, v.y), rear = back.depth.At(v.x, v.y);
-        behind = front >= rear - 1e-9 * std::abs(rear);
+        const int sign = DepthSign(pieces_[q].depth.At(v.x, v.y), back.depth.At(v.x, v.y));
+        behind = sign >= 0;
+        nearer = nearer || sign > 0;
       }
+      behind = behind && (nearer || pieces_[q].order > back.order);
     }
     if (!behind) break;
     if (!PairwiseDisjoint(b)) {
@@ -325,17 +340,21 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
   // the pieces do not really have: then the order is sought again with every pair tested.
   Order order = FrontToBackOrder(/*order_by_ranges=*/true);
   if (order == Order::kCyclic) order = FrontToBackOrder(/*order_by_ranges=*/false);
-  if (order == Order::kFound) {
-    PaintFrontToBack(with_moments, out);
+  if (order == Order::kFound && PaintFrontToBack(with_moments, out)) return;
+  // Interpenetrating pieces with no painter's order: the trapezoid decomposition, which costs
+  // about the cube of the pieces, for a handful. More of them, too many to order, or a painting
+  // whose regions would outgrow their bound: quadrants, whose pieces cross fewer edges and are
+  // more often full.
+  const bool no_order = order == Order::kInterpenetrating || order == Order::kCyclic;
+  if (no_order && pieces_.size() <= kDecomposePieces) {
+    Decompose(with_moments, out);
     return;
   }
-  // The trapezoid decomposition costs about the cube of the pieces: a few more than a handful
-  // are split among quadrants first.
-  if (pieces_.size() > kDecomposePieces && may_split) {
-    Subdivide(depth, with_moments, out);
+  if (may_split) {
+    Subdivide(depth, /*force=*/true, with_moments, out);
     return;
   }
-  Decompose(with_moments, out);
+  FrontAtCentre(out);
 }
 
 // The square's four quadrants, each with the pieces clipped to it. A piece is full in a quadrant
@@ -343,7 +362,8 @@ void CellCoverage::Resolve(int depth, bool splittable, bool with_moments,
 // quadrant keeps all of the square's pieces (pieces stacked over the whole square, which no cut
 // separates), the square is resolved whole instead; a quadrant that alone keeps them all (a vertex
 // many pieces share) is cut on, down to kMaxDepth.
-void CellCoverage::Subdivide(int depth, bool with_moments, std::vector<CellPiece>& out) {
+void CellCoverage::Subdivide(int depth, bool force, bool with_moments,
+                             std::vector<CellPiece>& out) {
   subdivided_ = true;
   if (StopNow()) return;
   const Square whole = square_;
@@ -405,7 +425,7 @@ void CellCoverage::Subdivide(int depth, bool with_moments, std::vector<CellPiece
     }
     all_kept = all_kept && pieces.size() == parent.size();
   }
-  if (all_kept) {
+  if (all_kept && !force) {
     pieces_ = std::move(parent);
     verts_ = std::move(parent_verts);
     Resolve(depth, /*splittable=*/false, with_moments, out);
@@ -420,12 +440,14 @@ void CellCoverage::Subdivide(int depth, bool with_moments, std::vector<CellPiece
   square_ = whole;
 }
 
-// At kMaxDepth a still crowded square (a point many pieces share) goes whole to the piece in
-// front at its centre: an error of at most 4^-kMaxDepth of the cell each.
+// At kMaxDepth a square still too crowded to resolve (a point many pieces share, edges crossing
+// every way) goes whole to the piece in front at its centre: an error of at most 4^-kMaxDepth of
+// the cell each.
 void CellCoverage::FrontAtCentre(std::vector<CellPiece>& out) {
   const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
   int front = -1;
   double best = 0;
+  int64_t best_order = 0;
   for (const Piece& p : pieces_) {
     bool inside = true;
     const size_t n = p.end - p.begin;
@@ -434,8 +456,11 @@ void CellCoverage::FrontAtCentre(std::vector<CellPiece>& out) {
       const Vec2& b = verts_[p.begin + (i + 1 == n ? 0 : i + 1)];
       inside = (b.x - a.x) * (yc - a.y) - (b.y - a.y) * (xc - a.x) >= 0;
     }
-    if (inside && (front < 0 || p.depth.At(xc, yc) > best))
-      front = p.polygon, best = p.depth.At(xc, yc);
+    if (!inside) continue;
+    const double w = p.depth.At(xc, yc);
+    const int sign = front < 0 ? 1 : DepthSign(w, best);
+    if (sign > 0 || (sign == 0 && p.order > best_order))
+      front = p.polygon, best = w, best_order = p.order;
   }
   if (front >= 0) out.push_back({front, SquareMoments()});
 }
@@ -446,7 +471,7 @@ void CellCoverage::FrontAtCentre(std::vector<CellPiece>& out) {
 // the nearer one is in front wherever they overlap. Then a topological sort of "in front of"
 // (Kahn's, by counting the pieces still in front of each) gives the painter's order, unless the
 // order is cyclic.
-CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
+void CellCoverage::DepthRanges() {
   const size_t n = pieces_.size();
   nearest_.resize(n);
   farthest_.resize(n);
@@ -461,6 +486,11 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
     farthest_[i] = lo;  // inverse depth: larger is nearer
     nearest_[i] = hi;
   }
+}
+
+CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
+  const size_t n = pieces_.size();
+  DepthRanges();
   if (order_by_ranges) {
     // Depth ranges that, nearest first, each lie wholly in front of the next order every pair
     // by the ranges alone: that order is the only painter's order (the one the pairwise marks and
@@ -472,9 +502,11 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
     });
     bool stacked = true;
     for (size_t k = 0; k + 1 < n && stacked; ++k)
-      stacked = farthest_[order_[k]] > nearest_[order_[k + 1]];
+      stacked = DepthSign(farthest_[order_[k]], nearest_[order_[k + 1]]) > 0;
     if (stacked) return Order::kFound;
+    if (OrderByPlanes()) return Order::kFound;
   }
+  if (n > kPairwisePieces) return Order::kTooMany;
   in_front_.assign(n * n, 0);  // in_front_[i * n + j]: i is in front of j
   blockers_.assign(n, 0);      // how many pieces are in front of each
   auto mark = [&](size_t front, size_t back) {
@@ -483,11 +515,11 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
   };
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = i + 1; j < n; ++j) {
-      if (order_by_ranges && farthest_[i] > nearest_[j]) {
+      if (order_by_ranges && DepthSign(farthest_[i], nearest_[j]) > 0) {
         mark(i, j);
         continue;
       }
-      if (order_by_ranges && farthest_[j] > nearest_[i]) {
+      if (order_by_ranges && DepthSign(farthest_[j], nearest_[i]) > 0) {
         mark(j, i);
         continue;
       }
@@ -496,17 +528,15 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
       for (const Piece* piece : {&pieces_[i], &pieces_[j]}) {
         for (size_t k = piece->begin; k < piece->end; ++k) {
           const Vec2& v = verts_[k];
-          const double wi = pieces_[i].depth.At(v.x, v.y), wj = pieces_[j].depth.At(v.x, v.y);
-          const double tol = 1e-9 * (std::abs(wi) + std::abs(wj));
-          i_front = i_front && wi >= wj - tol;
-          j_front = j_front && wj >= wi - tol;
+          const int sign = DepthSign(pieces_[i].depth.At(v.x, v.y), pieces_[j].depth.At(v.x, v.y));
+          i_front = i_front && sign >= 0;
+          j_front = j_front && sign <= 0;
         }
       }
       if (!i_front && !j_front) return Order::kInterpenetrating;  // decompose
-      // Coplanar (each in front of the other within the tolerance): the first in index order
-      // is in front, as the decomposition decides a tie (its nearest is the first found). Taking
-      // them for interpenetrating sent every cell of overlapping coplanar polygons (decals,
-      // layers of slivers) to the decomposition, about the cube of its pieces.
+      // Coplanar (equal within the tolerance at every vertex): the one drawn over the other is
+      // in front, as the decomposition and the front at a point decide a tie.
+      if (i_front && j_front) i_front = pieces_[i].order > pieces_[j].order;
       if (i_front)
         mark(i, j);
       else
@@ -524,9 +554,66 @@ CellCoverage::Order CellCoverage::FrontToBackOrder(bool order_by_ranges) {
   return order_.size() == n ? Order::kFound : Order::kCyclic;
 }
 
+// Pieces on a few planes, each plane holding any number of overlapping coplanar pieces (layers
+// of decals, 27 polygons deep, or a stack of such layers a millimetre apart): the pieces sorted by
+// their depth at the square's centre put each plane's pieces together; a plane's pieces go front
+// to back by the order they are drawn in, and planes whose depth ranges (over their pieces) are
+// stacked go nearest first. Two sorts, where the pairwise marks cost the square of the pieces.
+bool CellCoverage::OrderByPlanes() {
+  const size_t n = pieces_.size();
+  const double xc = 0.5 * (square_.x0 + square_.x1), yc = 0.5 * (square_.y0 + square_.y1);
+  planes_order_.resize(n);
+  for (size_t i = 0; i < n; ++i) planes_order_[i] = i;
+  std::sort(planes_order_.begin(), planes_order_.end(), [&](size_t a, size_t b) {
+    const double wa = pieces_[a].depth.At(xc, yc), wb = pieces_[b].depth.At(xc, yc);
+    return wa > wb || (wa == wb && a < b);
+  });
+  // Planes: runs of pieces equal within the tolerance, at the square's corners, to the run's first.
+  planes_.clear();
+  plane_rank_.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const Piece& piece = pieces_[planes_order_[k]];
+    bool same = !planes_.empty();
+    if (same) {
+      const Piece& first = pieces_[planes_order_[planes_.back().first]];
+      for (double y : {square_.y0, square_.y1})
+        for (double x : {square_.x0, square_.x1})
+          same = same && DepthSign(piece.depth.At(x, y), first.depth.At(x, y)) == 0;
+    }
+    if (!same) planes_.push_back({k, -INFINITY, INFINITY});
+    Plane& plane = planes_.back();
+    plane.nearest = std::max(plane.nearest, nearest_[planes_order_[k]]);
+    plane.farthest = std::min(plane.farthest, farthest_[planes_order_[k]]);
+    plane_rank_[planes_order_[k]] = planes_.size() - 1;
+  }
+  if (planes_.size() == n) return false;  // no two coplanar: the ranges' order already failed
+  // The planes nearest first by their ranges, each wholly in front of the next.
+  std::vector<Plane>& planes = planes_;
+  order_.resize(planes.size());
+  for (size_t g = 0; g < planes.size(); ++g) order_[g] = g;
+  std::sort(order_.begin(), order_.end(),
+            [&](size_t a, size_t b) { return planes[a].nearest > planes[b].nearest; });
+  for (size_t k = 0; k + 1 < order_.size(); ++k)
+    if (DepthSign(planes[order_[k]].farthest, planes[order_[k + 1]].nearest) <= 0) return false;
+  // Each plane's rank in depth, then the pieces by that rank and, within a plane, the one drawn
+  // last first.
+  std::vector<size_t>& depth_rank = blockers_;
+  depth_rank.resize(planes.size());
+  for (size_t k = 0; k < order_.size(); ++k) depth_rank[order_[k]] = k;
+  order_.resize(n);
+  for (size_t i = 0; i < n; ++i) order_[i] = i;
+  std::sort(order_.begin(), order_.end(), [&](size_t a, size_t b) {
+    const size_t ra = depth_rank[plane_rank_[a]], rb = depth_rank[plane_rank_[b]];
+    return ra < rb || (ra == rb && pieces_[a].order > pieces_[b].order);
+  });
+  return true;
+}
+
 // Painter's algorithm front to back with exact convex clipping: each piece sees what the pieces
 // in front of it left of the cell; what it covers is removed from the rest.
-void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out) {
+bool CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& out) {
+  const size_t first = out.size();
+  const size_t max_regions = kRegionsAtLeast + kRegionsPerPiece * pieces_.size();
   StartPainting();
   for (size_t index : order_) {
     const Piece& piece = pieces_[index];
@@ -549,10 +636,15 @@ void CellCoverage::PaintFrontToBack(bool with_moments, std::vector<CellPiece>& o
       if (a == 0 && b == 0) continue;
       lines_.push_back({a, b, -(a * p.x + b * p.y)});
     }
-    const CellMoments visible = PaintInside(lines_, box, with_moments, /*keep_rest=*/true);
-    if (visible.area > 0) out.push_back({piece.polygon, visible});
+    CellMoments visible;
+    if (!PaintInside(lines_, box, with_moments, /*keep_rest=*/true, max_regions, visible)) {
+      out.resize(first);
+      return false;
+    }
+    if (visible.area > kSliverArea * SquareMoments().area) out.push_back({piece.polygon, visible});
     if (regions_a_.empty()) break;
   }
+  return true;
 }
 
 void CellCoverage::StartPainting() {
@@ -563,9 +655,10 @@ void CellCoverage::StartPainting() {
   regions_a_[0] = {0, 4};
 }
 
-CellMoments CellCoverage::PaintInside(std::span<const ScreenLinear> lines, const Box& box,
-                                      bool with_moments, bool keep_rest) {
-  CellMoments visible;
+bool CellCoverage::PaintInside(std::span<const ScreenLinear> lines, const Box& box,
+                               bool with_moments, bool keep_rest, size_t max_regions,
+                               CellMoments& visible) {
+  visible = {};
   if (!keep_rest) {  // only what lies inside: clipped, not split
     for (const auto& [begin, end] : regions_a_) {
       const std::span<const Vec2> region(pool_a_.data() + begin, end - begin);
@@ -586,8 +679,9 @@ CellMoments CellCoverage::PaintInside(std::span<const ScreenLinear> lines, const
         ClipByHalfPlane(clip_, lines[i].a, lines[i].b, lines[i].c, scratch_);
       if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
     }
-    return visible;
+    return true;
   }
+  const double sliver = kSliverArea * (square_.x1 - square_.x0) * (square_.y1 - square_.y0);
   pool_b_.clear();
   regions_b_.clear();
   auto keep = [&](std::span<const Vec2> region) {
@@ -626,14 +720,16 @@ CellMoments CellCoverage::PaintInside(std::span<const ScreenLinear> lines, const
         if (!SplitByLine(inside, count, e.a, e.b, e.c, next, in_count, outside, out_count,
                          kClipBuffer))
           break;
-        // A sliver of no area (a vertex on the line) is nothing left to paint.
+        // A sliver (a vertex on the line, an edge along one painted before) is nothing left to
+        // paint.
         const std::span<const Vec2> outside_part(outside, out_count);
-        if (out_count >= 3 && PolygonMoments(outside_part, false).area > 0) keep(outside_part);
+        if (out_count >= 3 && PolygonMoments(outside_part, false).area > sliver) keep(outside_part);
         count = in_count;
         std::swap(inside, next);
       }
       if (i == lines.size() || count < 3) {
         if (count >= 3) Accumulate(visible, PolygonMoments({inside, count}, with_moments));
+        if (regions_b_.size() > max_regions) return false;
         continue;
       }
       clip_.assign(inside, inside + count);
@@ -644,14 +740,15 @@ CellMoments CellCoverage::PaintInside(std::span<const ScreenLinear> lines, const
       const ScreenLinear& e = lines[i];
       outside_.assign(clip_.begin(), clip_.end());
       ClipByHalfPlane(outside_, -e.a, -e.b, -e.c, scratch_);
-      if (outside_.size() >= 3 && PolygonMoments(outside_, false).area > 0) keep(outside_);
+      if (outside_.size() >= 3 && PolygonMoments(outside_, false).area > sliver) keep(outside_);
       ClipByHalfPlane(clip_, e.a, e.b, e.c, scratch_);
     }
     if (!clip_.empty()) Accumulate(visible, PolygonMoments(clip_, with_moments));
+    if (regions_b_.size() > max_regions) return false;
   }
   std::swap(pool_a_, pool_b_);
   std::swap(regions_a_, regions_b_);
-  return visible;
+  return true;
 }
 
 // Only pairs whose bounding boxes overlap are tested, so a mesh's pieces cost about k log k, not
@@ -824,7 +921,9 @@ void CellCoverage::Decompose(bool with_moments, std::vector<CellPiece>& out) {
       for (size_t p = 0; p < pieces_.size(); ++p) {
         if (!inside_[p]) continue;
         const double d = pieces_[p].depth.At(xc, ym);
-        if (front < 0 || d > best) front = static_cast<int>(p), best = d;
+        const int sign = front < 0 ? 1 : DepthSign(d, best);
+        if (sign > 0 || (sign == 0 && pieces_[p].order > pieces_[front].order))
+          front = static_cast<int>(p), best = d;
       }
       if (front < 0) continue;
       const Vec2 trapezoid[4] = {{l.xa, ya}, {r.xa, ya}, {r.xb, yb}, {l.xb, yb}};

@@ -101,6 +101,7 @@ class PolygonProjector {
     const Material& mat = scene_.materials[poly.material];
     sp.material = poly.material;
     sp.scene_polygon = static_cast<int>(index);
+    sp.layer = poly.layer;
     sp.transparent = mat.Transparent();
     // The side facing the camera is lit: every polygon is two-sided.
     sp.light = SurfaceLight(scene_, mat, h < 0 ? poly.normal : -poly.normal);

@@ -34,6 +34,9 @@ struct ScreenPolygon {
   ScreenLinear u_num, v_num;
   int material = 0;
   int scene_polygon = 0;
+  // Its object's layer: of two coplanar polygons, the higher layer is drawn over the lower
+  // (raster/depth_order.h).
+  int layer = 0;
   // Its material has an alpha mode (MASK or BLEND): it hides nothing for certain, so it is never
   // a window's cover and cells composite what lies behind it (render/leaf_renderer).
   bool transparent = false;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raster/depth_order.h"
+
 namespace aperture {
 namespace {
 
@@ -91,26 +93,39 @@ class Subdivider {
   }
 
  private:
-  // A polygon containing the whole influence rectangle and nearer than every other polygon at
-  // its four corners (depth differences are screen-linear, so that holds over the rectangle).
+  // An opaque polygon containing the whole influence rectangle that hides every other polygon
+  // there (raster/depth_order.h, at the rectangle's corners: depth differences are
+  // screen-linear). Only the one nearest at the centre can be it; found, then checked: each
+  // polygon is looked at twice, however many coplanar layers are stacked in the window.
   int FrontCover(const std::vector<int>& inside, const Rect& r) const {
-    const double xs[4] = {r.x0, r.x1, r.x1, r.x0}, ys[4] = {r.y0, r.y0, r.y1, r.y1};
+    const double xc = 0.5 * (r.x0 + r.x1), yc = 0.5 * (r.y0 + r.y1);
+    int cover = -1;
+    double nearest = 0;
     for (int c : inside) {
       const ScreenPolygon& p = geo_.polygons[c];
       if (p.transparent) continue;  // what lies behind it may show through
-      if (!p.ContainsRect(r.x0, r.y0, r.x1, r.y1)) continue;
-      bool front = true;
-      for (int o : inside) {
-        if (o == c) continue;
-        const ScreenPolygon& q = geo_.polygons[o];
-        for (int k = 0; k < 4 && front; ++k)
-          front = p.inv_depth.At(xs[k], ys[k]) > q.inv_depth.At(xs[k], ys[k]);
-        if (!front) break;
+      const double w = p.inv_depth.At(xc, yc);
+      if (cover >= 0) {
+        const int s = DepthSign(w, nearest);
+        if (s < 0 || (s == 0 && DrawOrder(p.layer, c) < Order(cover))) continue;
       }
-      if (front) return c;
+      if (!p.ContainsRect(r.x0, r.y0, r.x1, r.y1)) continue;
+      cover = c, nearest = w;
     }
-    return -1;
+    if (cover < 0) return -1;
+    const ScreenPolygon& front = geo_.polygons[cover];
+    const double xs[4] = {r.x0, r.x1, r.x1, r.x0}, ys[4] = {r.y0, r.y0, r.y1, r.y1};
+    for (int o : inside) {
+      if (o == cover) continue;
+      const ScreenPolygon& q = geo_.polygons[o];
+      int signs[4];
+      for (int k = 0; k < 4; ++k)
+        signs[k] = DepthSign(front.inv_depth.At(xs[k], ys[k]), q.inv_depth.At(xs[k], ys[k]));
+      if (!HidesAt(signs, Order(cover) > DrawOrder(q.layer, o))) return -1;
+    }
+    return cover;
   }
+  int64_t Order(int polygon) const { return DrawOrder(geo_.polygons[polygon].layer, polygon); }
 
   const FrameGeometry& geo_;
   const AaFilterShape& aa_;

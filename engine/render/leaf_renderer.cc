@@ -4,6 +4,9 @@
 #include <cmath>
 #include <utility>
 
+#include "raster/depth_order.h"
+#include "raster/identical_polygons.h"
+
 namespace aperture {
 
 bool LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
@@ -228,9 +231,22 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
     for (const Vec2& v : polygon.vertices) w = std::max(w, polygon.inv_depth.At(v.x, v.y));
     nearest_[p] = w;
   }
+  // Nearest first by the nearest values' leading 30 bits (a tie in them is a tie of depth within
+  // about the coplanar tolerance), ties drawn last first: under a stack of coplanar layers the
+  // first whole-cell cover a cell's scan meets is the layer drawn over the rest, which hides them.
+  if (quantum_.size() < geo_.polygons.size()) {
+    quantum_.resize(geo_.polygons.size());
+    draw_order_.resize(geo_.polygons.size());
+  }
+  for (int p : polygons) {
+    quantum_[p] = NearestQuantum(nearest_[p]);
+    draw_order_[p] = DrawOrder(geo_.polygons[p].layer, p);
+  }
   std::sort(by_depth_.begin(), by_depth_.end(), [&](int a, int b) {
-    return nearest_[a] > nearest_[b] || (nearest_[a] == nearest_[b] && a < b);
+    return quantum_[a] > quantum_[b] ||
+           (quantum_[a] == quantum_[b] && draw_order_[a] > draw_order_[b]);
   });
+  DropHiddenCopies();
   bins_.Build(geo_.polygons, by_depth_, r.x0, r.y0, shape_.cell_offset, nx_, ny);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx_; ++i) {
@@ -239,8 +255,8 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
       if (bins_.Cell(i, j).empty()) continue;  // nothing reaches it (most of a sparse frame)
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;
       const double cy = r.y0 + j + shape_.cell_offset + 0.5;
-      coverage_.Compute(geo_.polygons, bins_.Cell(i, j), nearest_, cx, cy, shape_.needs_moments,
-                        pieces_);
+      coverage_.Compute(geo_.polygons, bins_.Cell(i, j), nearest_, draw_order_, cx, cy,
+                        shape_.needs_moments, pieces_);
       if (coverage_.Stopped()) return false;
       if (colour_sums) {  // the cell's pieces are summed at once, not kept
         cell_sums_[static_cast<size_t>(j) * nx_ + i] = ColourSum(before);
@@ -256,6 +272,42 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
   }
   cell_begin_.back() = pieces_.size();
   return true;
+}
+
+// Identical polygons have equal nearest values, so copies lie in runs of one quantum in
+// by_depth_ (a run of one, most of a frame, costs a comparison). In a longer run, the polygons
+// identical to one drawn over them are hidden by it wherever they are (the leaf is opaque) and
+// leave the leaf's list: ten thousand copies cost one polygon's cells.
+void LeafRenderer::DropHiddenCopies() {
+  auto order = [&](int p) { return DrawOrder(geo_.polygons[p].layer, p); };
+  size_t kept = 0;
+  for (size_t i = 0; i < by_depth_.size();) {
+    size_t end = i + 1;
+    while (end < by_depth_.size() && quantum_[by_depth_[end]] == quantum_[by_depth_[i]]) ++end;
+    if (end - i > 1) {
+      // The run by hash, each hash's polygons drawn last first; then back in the run's order.
+      copies_.clear();
+      for (size_t k = i; k < end; ++k)
+        copies_.push_back({ScreenPolygonHash(geo_.polygons[by_depth_[k]]), by_depth_[k]});
+      std::sort(copies_.begin(), copies_.end(), [&](const auto& a, const auto& b) {
+        return a.first < b.first || (a.first == b.first && order(a.second) > order(b.second));
+      });
+      size_t unique = 0;
+      for (size_t k = 0; k < copies_.size(); ++k) {
+        const bool hidden = unique > 0 && copies_[unique - 1].first == copies_[k].first &&
+                            SameScreenPolygon(geo_.polygons[copies_[unique - 1].second],
+                                              geo_.polygons[copies_[k].second]);
+        if (!hidden) copies_[unique++] = copies_[k];
+      }
+      std::sort(copies_.begin(), copies_.begin() + static_cast<long>(unique),
+                [&](const auto& a, const auto& b) { return order(a.second) > order(b.second); });
+      for (size_t k = 0; k < unique; ++k) by_depth_[kept++] = copies_[k].second;
+    } else {
+      by_depth_[kept++] = by_depth_[i];
+    }
+    i = end;
+  }
+  by_depth_.resize(kept);
 }
 
 void LeafRenderer::GatherPixel(int px, int py) {

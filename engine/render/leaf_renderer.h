@@ -100,9 +100,14 @@ class LeafRenderer {
   std::function<bool()> stop_;
   CellBins bins_;  // the leaf's polygons by cell
   std::vector<CellPiece> pieces_;
-  int nx_ = 0;                   // cells per row of the leaf being rendered
-  std::vector<double> nearest_;  // per polygon of the frame: its largest 1/depth (set per leaf)
-  std::vector<int> by_depth_;    // the leaf's polygons, nearest first
+  int nx_ = 0;                       // cells per row of the leaf being rendered
+  std::vector<double> nearest_;      // per polygon of the frame: its largest 1/depth (set per leaf)
+  std::vector<uint64_t> quantum_;    // per polygon of the frame: NearestQuantum of nearest_
+  std::vector<int64_t> draw_order_;  // per polygon of the frame: its DrawOrder
+  std::vector<int> by_depth_;        // the leaf's polygons, nearest first
+  std::vector<std::pair<uint64_t, int>> copies_;  // DropHiddenCopies: (hash, polygon)
+  // Drops from by_depth_ the polygons that an identical one drawn over them hides.
+  void DropHiddenCopies();
   std::vector<size_t> cell_begin_;
   std::vector<int> reached_from_, reached_to_;  // per row of cells: its first, last + 1 with pieces
   // A polygon's weight in one pixel of the leaf, (px, py) from the leaf's top-left corner (the

@@ -191,8 +191,10 @@ absl::Status PlacePolygon(const LocalPolygon& poly, const ObjectPlacement& place
 
 absl::Status PlaceMesh(const ObjectMesh& mesh, const ObjectPlacement& placement,
                        std::vector<ScenePolygon>* out) {
+  const size_t first = out->size();
   for (const LocalPolygon& poly : mesh.polygons)
     if (auto s = PlacePolygon(poly, placement, out); !s.ok()) return s;
+  for (size_t i = first; i < out->size(); ++i) (*out)[i].layer = mesh.layer;
   return absl::OkStatus();
 }
 

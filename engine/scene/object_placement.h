@@ -27,6 +27,7 @@ struct LocalPolygon {
 // A mesh as one object instances it (its material override and texture transforms applied).
 struct ObjectMesh {
   std::vector<LocalPolygon> polygons;
+  int layer = 0;  // the object's Object.layer, given to every polygon it places
 };
 
 // Where an object stands: world = linear * local + translation.

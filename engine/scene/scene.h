@@ -73,6 +73,7 @@ struct ScenePolygon {
   std::vector<Vec3> vertices;
   Vec3 normal;  // unit, from the vertex order
   int material = 0;
+  int layer = 0;  // its object's Object.layer: which coplanar polygon is drawn over which
   TextureMapping mapping;
 };
 

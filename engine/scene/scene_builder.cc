@@ -232,6 +232,7 @@ class Builder {
       auto mesh = MakeObjectMesh(it->second, o.material_id(),
                                  absl::StrCat(where, " mesh '", o.mesh_id(), "'"));
       if (!mesh.ok()) return mesh.status();
+      mesh->layer = o.layer();
       if (o.name().empty()) {
         if (auto s = PlaceMesh(*mesh, *placement, &scene_.polygons); !s.ok()) return s;
         continue;

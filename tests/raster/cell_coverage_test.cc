@@ -22,6 +22,13 @@ ScreenPolygon Triangle(Vec2 a, Vec2 b, Vec2 c, ScreenLinear inv_depth) {
   return p;
 }
 
+// Whether polygon k is seen over polygon `best` at (x, y): nearer, or coplanar and drawn later.
+bool SeenOver(const std::vector<ScreenPolygon>& polys, int k, int best, double x, double y) {
+  const int sign = DepthSign(polys[k].inv_depth.At(x, y), polys[best].inv_depth.At(x, y));
+  return sign > 0 ||
+         (sign == 0 && DrawOrder(polys[k].layer, k) > DrawOrder(polys[best].layer, best));
+}
+
 // Visible area of each polygon in the cell by n x n point samples.
 std::vector<double> SampledAreas(const std::vector<ScreenPolygon>& polys, double cx, double cy,
                                  int n) {
@@ -32,7 +39,7 @@ std::vector<double> SampledAreas(const std::vector<ScreenPolygon>& polys, double
       int best = -1;
       for (size_t k = 0; k < polys.size(); ++k)
         if (polys[k].Contains(x, y) &&
-            (best < 0 || polys[k].inv_depth.At(x, y) > polys[best].inv_depth.At(x, y)))
+            (best < 0 || SeenOver(polys, static_cast<int>(k), best, x, y)))
           best = static_cast<int>(k);
       if (best >= 0) area[best] += 1.0 / (double(n) * n);
     }
@@ -166,14 +173,17 @@ TEST(CellCoverage, NearestFirstScanStopsBehindACoverWithTheSamePieces) {
       for (const Vec2& v : polys[k].vertices)
         nearest[k] = std::max(nearest[k], polys[k].inv_depth.At(v.x, v.y));
     }
+    std::vector<int64_t> draw_order(polys.size());
+    for (size_t k = 0; k < polys.size(); ++k) draw_order[k] = DrawOrder(0, static_cast<int>(k));
     std::vector<int> by_depth = in_order;
     std::sort(by_depth.begin(), by_depth.end(), [&](int a, int b) {
-      return nearest[a] > nearest[b] || (nearest[a] == nearest[b] && a < b);
+      const uint64_t qa = NearestQuantum(nearest[a]), qb = NearestQuantum(nearest[b]);
+      return qa > qb || (qa == qb && a > b);
     });
     for (const Vec2 centre : {Vec2{0, 0}, Vec2{0.7, -0.4}}) {
       std::vector<CellPiece> plain, sorted;
       coverage.Compute(polys, in_order, centre.x, centre.y, true, plain);
-      coverage.Compute(polys, by_depth, nearest, centre.x, centre.y, true, sorted);
+      coverage.Compute(polys, by_depth, nearest, draw_order, centre.x, centre.y, true, sorted);
       // Per polygon: the same moments, to rounding (a hidden polygon the plain scan clips may
       // leave a sliver of rounding in the painter's regions).
       std::vector<CellMoments> a(polys.size()), b(polys.size());
@@ -222,7 +232,8 @@ std::vector<double> DepthBufferAreas(const std::vector<ScreenPolygon>& polys, in
         const size_t s = static_cast<size_t>(j) * n + i;
         if (!p.Contains(x, y)) continue;
         const double w = p.inv_depth.At(x, y);
-        if (w > best[s]) best[s] = w, id[s] = static_cast<int>(k);
+        if (id[s] < 0 || SeenOver(polys, static_cast<int>(k), id[s], x, y))
+          best[s] = w, id[s] = static_cast<int>(k);
       }
     }
   }
@@ -274,6 +285,40 @@ TEST(CellCoverage, ThousandsOfInterpenetratingPiecesMatchSampling) {
   EXPECT_LT(WorstAreaError(polys, 2048, coverage), 1e-3);
 }
 
+// Coplanar crowds: a cell that a few hundred overlapping triangles of about its size reach, all
+// in one plane (decals 27 deep), on a few planes a hair apart (layers of decals 1 mm apart), and
+// with every triangle placed twice at one place: each polygon's area against a depth buffer of
+// 2048^2 samples that decides ties by the same rule (the one drawn later is seen).
+void CheckCoplanarCrowd(uint32_t seed, int count, int planes, bool copies, double size) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> centre(-0.7, 0.7), corner(-size, size);
+  std::vector<ScreenPolygon> polys;
+  const ScreenLinear tilted{0.01, -0.02, 1.0};
+  while (static_cast<int>(polys.size()) < count) {
+    const Vec2 c{centre(rng), centre(rng)};
+    const Vec2 a{c.x + corner(rng), c.y + corner(rng)}, b{c.x + corner(rng), c.y + corner(rng)},
+        d{c.x + corner(rng), c.y + corner(rng)};
+    if (std::abs(SignedArea(std::vector<Vec2>{a, b, d})) < 1e-4) continue;
+    // Plane k lies 1e-3 of its depth in front of plane k - 1.
+    const int plane = static_cast<int>(rng() % planes);
+    ScreenLinear w = tilted;
+    w.c += 1e-3 * plane;
+    polys.push_back(Triangle(a, b, d, w));
+    if (copies) polys.push_back(polys.back());
+  }
+  CellCoverage coverage;
+  EXPECT_LT(WorstAreaError(polys, 2048, coverage), 2e-3)
+      << "seed " << seed << ", " << count << " triangles on " << planes << " planes";
+}
+
+TEST(CellCoverage, CoplanarCrowdsMatchSampling) {
+  CheckCoplanarCrowd(1, 150, 1, false, 0.6);
+  CheckCoplanarCrowd(2, 400, 1, false, 0.3);
+  CheckCoplanarCrowd(3, 200, 20, false, 0.6);
+  CheckCoplanarCrowd(4, 300, 1, true, 0.6);
+  CheckCoplanarCrowd(5, 120, 3, true, 1.5);
+}
+
 TEST(CellCoverage, ThousandsOfStackedAndFannedPiecesMatchSampling) {
   std::vector<ScreenPolygon> polys;
   // A fan of 1,200 thin triangles meeting at one point inside the cell: every square around the
@@ -299,11 +344,11 @@ TEST(CellCoverage, ThousandsOfStackedAndFannedPiecesMatchSampling) {
   EXPECT_LT(WorstAreaError(polys, 1024, coverage), 2e-3);
 }
 
-// Overlapping coplanar pieces (decals, layers of slivers) are ordered, the first in index order
-// in front, as the decomposition and the dense sampling decide a tie: no decomposition (which
+// Overlapping coplanar pieces (decals, layers of slivers) are ordered, the one drawn later over
+// the earlier, as the decomposition and the dense sampling decide a tie: no decomposition (which
 // would ask the stop test between its slabs, or cut the cell into quadrants), and the areas of the
 // sampling. Flat and tilted planes, with pieces on other planes among them.
-TEST(CellCoverage, CoplanarOverlapsTakeTheFirstInIndexOrderWithoutDecomposing) {
+TEST(CellCoverage, CoplanarOverlapsTakeTheOneDrawnLastWithoutDecomposing) {
   std::mt19937 rng(91);
   std::uniform_real_distribution<double> pos(-1.2, 1.2);
   for (const ScreenLinear plane : {ScreenLinear{0, 0, 2}, ScreenLinear{0.1, -0.2, 2}}) {
@@ -369,7 +414,7 @@ TEST(CellCoverage, StackedPolygonsAreaAndMomentsMatchSampling) {
         int best = -1;
         for (size_t k = 0; k < polys.size(); ++k)
           if (polys[k].Contains(x, y) &&
-              (best < 0 || polys[k].inv_depth.At(x, y) > polys[best].inv_depth.At(x, y)))
+              (best < 0 || SeenOver(polys, static_cast<int>(k), best, x, y)))
             best = static_cast<int>(k);
         if (best >= 0) Accumulate(sampled[best], {w, w * x, w * y, w * x * y});
       }

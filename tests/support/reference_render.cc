@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "raster/depth_order.h"
+
 namespace aperture::testing {
 
 Camera OriginCamera() {
@@ -49,7 +51,10 @@ Rgba DenseReferencePixel(const FrameGeometry& geo, const FlatColour& colour, Rgb
       const ScreenPolygon& p = geo.polygons[k];
       if (x < p.min_x || x > p.max_x || y < p.min_y || y > p.max_y || !p.Contains(x, y)) continue;
       const double d = p.inv_depth.At(x, y);
-      if (best < 0 || d > best_depth) best = static_cast<int>(k), best_depth = d;
+      const int sign = best < 0 ? 1 : DepthSign(d, best_depth);
+      if (sign > 0 || (sign == 0 && DrawOrder(p.layer, static_cast<int>(k)) >
+                                        DrawOrder(geo.polygons[best].layer, best)))
+        best = static_cast<int>(k), best_depth = d;
     }
     const Rgba c = best < 0 ? sky : colour(best);
     r += w * c.r, g += w * c.g, b += w * c.b;
@@ -70,7 +75,16 @@ Rgba DenseCompositedPixel(const FrameGeometry& geo, const FlatColour& colour, Rg
       if (x < p.min_x || x > p.max_x || y < p.min_y || y > p.max_y || !p.Contains(x, y)) continue;
       hits.push_back({p.inv_depth.At(x, y), static_cast<int>(k)});
     }
-    std::sort(hits.begin(), hits.end(), [](const auto& u, const auto& v) { return u > v; });
+    // Front to back; coplanar surfaces (equal within the tolerance) by the order they are drawn.
+    // (A selection: the tolerance makes "in front" no strict weak order for std::sort.)
+    auto over = [&](const std::pair<double, int>& u, const std::pair<double, int>& v) {
+      const int sign = DepthSign(u.first, v.first);
+      return sign > 0 || (sign == 0 && DrawOrder(geo.polygons[u.second].layer, u.second) >
+                                           DrawOrder(geo.polygons[v.second].layer, v.second));
+    };
+    for (size_t i = 0; i < hits.size(); ++i)
+      for (size_t j = i + 1; j < hits.size(); ++j)
+        if (over(hits[j], hits[i])) std::swap(hits[i], hits[j]);
     double transmitted = 1, sr = 0, sg = 0, sb = 0, sa = 0;
     for (const auto& [depth, k] : hits) {
       const Rgba c = colour(k);
