@@ -19,6 +19,7 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "gltf_accessor.h"
 
 namespace aperture {
 namespace {
@@ -91,95 +92,6 @@ absl::StatusOr<Mat4> LocalTransform(const tinygltf::Node& node, const std::strin
     if (!std::isfinite(v)) return Invalid(where, "transform is NaN or infinite");
   return m;
 }
-
-// Reads one accessor's elements as doubles, every range checked against its buffer view and
-// buffer.
-class AccessorReader {
- public:
-  static absl::StatusOr<AccessorReader> Open(const tinygltf::Model& model, int index,
-                                             const std::string& where) {
-    if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-      return Invalid(where, absl::StrCat("accessor ", index, " does not exist"));
-    const tinygltf::Accessor& a = model.accessors[index];
-    const std::string at = absl::StrCat(where, " (accessors[", index, "])");
-    if (a.sparse.isSparse) return Invalid(at, "sparse accessors are not supported");
-    if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
-      return Invalid(at, "has no buffer view");
-    const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
-    if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()))
-      return Invalid(at, "its buffer view has no buffer");
-    const std::vector<unsigned char>& data = model.buffers[view.buffer].data;
-    AccessorReader r;
-    r.components_ = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
-    r.component_size_ = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
-    if (r.components_ <= 0 || r.component_size_ <= 0)
-      return Invalid(at, "has an unknown type or component type");
-    r.type_ = a.componentType;
-    r.normalized_ = a.normalized;
-    r.count_ = a.count;
-    const size_t element = static_cast<size_t>(r.components_) * r.component_size_;
-    r.stride_ = view.byteStride != 0 ? view.byteStride : element;
-    if (r.stride_ < element) return Invalid(at, "byteStride is smaller than an element");
-    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-      return Invalid(at, absl::StrCat("buffer view ", a.bufferView, " (", view.byteOffset, " + ",
-                                      view.byteLength, " bytes) goes beyond its buffer of ",
-                                      data.size(), " bytes"));
-    if (a.count > 0) {
-      const size_t last = a.byteOffset + (a.count - 1) * r.stride_ + element;
-      if (a.byteOffset > view.byteLength || (a.count - 1) > view.byteLength / r.stride_ ||
-          last > view.byteLength)
-        return Invalid(at, absl::StrCat(a.count, " elements from byte ", a.byteOffset,
-                                        " go beyond buffer view ", a.bufferView, " of ",
-                                        view.byteLength, " bytes"));
-    }
-    r.base_ = data.data() + view.byteOffset + a.byteOffset;
-    return r;
-  }
-
-  size_t count() const { return count_; }
-  int components() const { return components_; }
-  bool is_float() const { return type_ == TINYGLTF_COMPONENT_TYPE_FLOAT; }
-
-  // Component c of element i; normalized integers in [0, 1] (uvs), others as they are.
-  double At(size_t i, int c) const {
-    const unsigned char* p = base_ + i * stride_ + static_cast<size_t>(c) * component_size_;
-    switch (type_) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-        float f;
-        std::memcpy(&f, p, sizeof f);
-        return f;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized_ ? p[0] / 255.0 : p[0];
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t v;
-        std::memcpy(&v, p, sizeof v);
-        return normalized_ ? v / 65535.0 : v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        uint32_t v;
-        std::memcpy(&v, p, sizeof v);
-        return v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_BYTE:
-        return normalized_ ? std::max(static_cast<int8_t>(p[0]) / 127.0, -1.0)
-                           : static_cast<int8_t>(p[0]);
-      case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        int16_t v;
-        std::memcpy(&v, p, sizeof v);
-        return normalized_ ? std::max(v / 32767.0, -1.0) : v;
-      }
-      default:
-        return 0;
-    }
-  }
-
- private:
-  const unsigned char* base_ = nullptr;
-  size_t count_ = 0, stride_ = 0;
-  int components_ = 0, component_size_ = 0, type_ = 0;
-  bool normalized_ = false;
-};
 
 // The uv map of KHR_texture_transform: offset, rotation, scale.
 struct UvTransform {
