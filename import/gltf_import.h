@@ -36,7 +36,7 @@ struct ImportedModel {
   std::vector<std::string> notes;
 };
 
-// The default triangle budget of an import: aperture-server's default --max_scene_polygons, so
+// The default triangle budget of an import: aperture-server's default --max-scene-polygons, so
 // that a model the client imports is one a server with default limits loads.
 inline constexpr uint64_t kDefaultGltfMaxTriangles = 4'000'000;
 
