@@ -112,7 +112,8 @@ TEST(GltfJsonStructure, TheDefaultSceneMustExist) {
   EXPECT_EQ(imported.status().message(), "scene: scene 3 does not exist (1 scenes)");
 }
 
-// tinygltf turns `extras` into its own values recursively: 100,000 levels overflowed the stack.
+// tinygltf turns `extras` into its own values recursively, which 100,000 levels would overflow
+// the stack with.
 TEST(GltfJsonStructure, NestingIsBoundedNamingWhereItIsTooDeep) {
   auto nested = [](int levels) { return std::string(levels, '[') + std::string(levels, ']'); };
   // The document is level 1.

@@ -324,8 +324,8 @@ TEST_F(GltfModel, BadGraphsBudgetsAndStructuresExitWithStatus2) {
   }
 }
 
-// 100,000 nested nodes render: no walk of the tree uses the call stack (a recursive one
-// overflowed it at 20,000).
+// 100,000 nested nodes render: no walk of the tree uses the call stack, which a recursive one
+// would overflow near 20,000 levels.
 TEST_F(GltfModel, ADeepChainOfNodesRenders) {
   std::ofstream(Path("chain.gltf")) << aperture::testing::NestedChain(100'000);
   // The triangle at z = -100 (0.001 per level), seen from z = -99.
