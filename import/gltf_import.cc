@@ -19,6 +19,10 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "gltf_accessor.h"
+#include "gltf_json_structure.h"
+#include "gltf_node_tree.h"
+#include "gltf_triangle_count.h"
 
 namespace aperture {
 namespace {
@@ -92,95 +96,6 @@ absl::StatusOr<Mat4> LocalTransform(const tinygltf::Node& node, const std::strin
   return m;
 }
 
-// Reads one accessor's elements as doubles, every range checked against its buffer view and
-// buffer.
-class AccessorReader {
- public:
-  static absl::StatusOr<AccessorReader> Open(const tinygltf::Model& model, int index,
-                                             const std::string& where) {
-    if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-      return Invalid(where, absl::StrCat("accessor ", index, " does not exist"));
-    const tinygltf::Accessor& a = model.accessors[index];
-    const std::string at = absl::StrCat(where, " (accessors[", index, "])");
-    if (a.sparse.isSparse) return Invalid(at, "sparse accessors are not supported");
-    if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
-      return Invalid(at, "has no buffer view");
-    const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
-    if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()))
-      return Invalid(at, "its buffer view has no buffer");
-    const std::vector<unsigned char>& data = model.buffers[view.buffer].data;
-    AccessorReader r;
-    r.components_ = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
-    r.component_size_ = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
-    if (r.components_ <= 0 || r.component_size_ <= 0)
-      return Invalid(at, "has an unknown type or component type");
-    r.type_ = a.componentType;
-    r.normalized_ = a.normalized;
-    r.count_ = a.count;
-    const size_t element = static_cast<size_t>(r.components_) * r.component_size_;
-    r.stride_ = view.byteStride != 0 ? view.byteStride : element;
-    if (r.stride_ < element) return Invalid(at, "byteStride is smaller than an element");
-    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-      return Invalid(at, absl::StrCat("buffer view ", a.bufferView, " (", view.byteOffset, " + ",
-                                      view.byteLength, " bytes) goes beyond its buffer of ",
-                                      data.size(), " bytes"));
-    if (a.count > 0) {
-      const size_t last = a.byteOffset + (a.count - 1) * r.stride_ + element;
-      if (a.byteOffset > view.byteLength || (a.count - 1) > view.byteLength / r.stride_ ||
-          last > view.byteLength)
-        return Invalid(at, absl::StrCat(a.count, " elements from byte ", a.byteOffset,
-                                        " go beyond buffer view ", a.bufferView, " of ",
-                                        view.byteLength, " bytes"));
-    }
-    r.base_ = data.data() + view.byteOffset + a.byteOffset;
-    return r;
-  }
-
-  size_t count() const { return count_; }
-  int components() const { return components_; }
-  bool is_float() const { return type_ == TINYGLTF_COMPONENT_TYPE_FLOAT; }
-
-  // Component c of element i; normalized integers in [0, 1] (uvs), others as they are.
-  double At(size_t i, int c) const {
-    const unsigned char* p = base_ + i * stride_ + static_cast<size_t>(c) * component_size_;
-    switch (type_) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-        float f;
-        std::memcpy(&f, p, sizeof f);
-        return f;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized_ ? p[0] / 255.0 : p[0];
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t v;
-        std::memcpy(&v, p, sizeof v);
-        return normalized_ ? v / 65535.0 : v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        uint32_t v;
-        std::memcpy(&v, p, sizeof v);
-        return v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_BYTE:
-        return normalized_ ? std::max(static_cast<int8_t>(p[0]) / 127.0, -1.0)
-                           : static_cast<int8_t>(p[0]);
-      case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        int16_t v;
-        std::memcpy(&v, p, sizeof v);
-        return normalized_ ? std::max(v / 32767.0, -1.0) : v;
-      }
-      default:
-        return 0;
-    }
-  }
-
- private:
-  const unsigned char* base_ = nullptr;
-  size_t count_ = 0, stride_ = 0;
-  int components_ = 0, component_size_ = 0, type_ = 0;
-  bool normalized_ = false;
-};
-
 // The uv map of KHR_texture_transform: offset, rotation, scale.
 struct UvTransform {
   double offset[2] = {0, 0}, rotation = 0, scale[2] = {1, 1};
@@ -227,23 +142,42 @@ void SetOrientation(const double r[3][3], v1::Camera& camera) {
 class Importer {
  public:
   Importer(const tinygltf::Model& model,
-           const std::map<int, std::vector<unsigned char>>& image_bytes)
-      : model_(model), image_bytes_(image_bytes) {}
+           const std::map<int, std::vector<unsigned char>>& image_bytes,
+           const GltfImportOptions& options)
+      : model_(model), image_bytes_(image_bytes), options_(options) {}
 
   absl::StatusOr<ImportedModel> Run(const std::string& name) {
     out_.scene.set_name(name);
-    if (auto s = Materials(); !s.ok()) return s;
+    // The node graph is a forest and the triangles fit the budget before anything is built.
+    auto tree = NodeTree::Check(model_);
+    if (!tree.ok()) return tree.status();
     std::vector<int> roots;
-    if (model_.defaultScene >= 0 && model_.defaultScene < static_cast<int>(model_.scenes.size()))
+    if (model_.defaultScene >= static_cast<int>(model_.scenes.size()))
+      return Invalid("scene", absl::StrCat("scene ", model_.defaultScene, " does not exist (",
+                                           model_.scenes.size(), " scenes)"));
+    if (model_.defaultScene >= 0)
       roots = model_.scenes[model_.defaultScene].nodes;
     else if (!model_.scenes.empty())
       roots = model_.scenes[0].nodes;
     else
-      for (size_t n = 0; n < model_.nodes.size(); ++n)
-        if (!IsChild(static_cast<int>(n))) roots.push_back(static_cast<int>(n));
-    std::vector<bool> on_path(model_.nodes.size(), false);
-    for (int root : roots)
-      if (auto s = Visit(root, kIdentity, on_path); !s.ok()) return s;
+      roots = tree->Roots();
+    const std::vector<int> nodes = tree->DepthFirst(roots);
+    auto triangles = CountTriangles(model_, nodes);
+    if (!triangles.ok()) return triangles.status();
+    if (*triangles > options_.max_triangles)
+      return absl::InvalidArgumentError(absl::StrCat(
+          "the model's nodes place ", *triangles,
+          " triangles (a mesh counted once for each node that places it), above the budget of ",
+          options_.max_triangles, " triangles per model"));
+    if (auto s = Materials(); !s.ok()) return s;
+    // Parents come before their children in `nodes`: each node's world transform is its
+    // parent's times its own.
+    std::vector<Mat4> world(model_.nodes.size());
+    for (const int node : nodes) {
+      const int parent = tree->parent(node);
+      if (auto s = Visit(node, parent >= 0 ? world[parent] : kIdentity, world[node]); !s.ok())
+        return s;
+    }
     Note(dropped_degenerate_, "degenerate triangles (zero area) skipped");
     Note(static_cast<int>(model_.skins.size()), "skins ignored: meshes drawn in their bind pose");
     Note(static_cast<int>(model_.animations.size()), "animations ignored");
@@ -264,12 +198,6 @@ class Importer {
  private:
   void Note(int count, const std::string& what) {
     if (count > 0) out_.notes.push_back(absl::StrCat(count, " ", what));
-  }
-
-  bool IsChild(int node) const {
-    for (const tinygltf::Node& n : model_.nodes)
-      if (std::find(n.children.begin(), n.children.end(), node) != n.children.end()) return true;
-    return false;
   }
 
   // alphaMode, alphaCutoff and baseColorFactor's alpha (glTF 2.0, 3.9.4 "Alpha Coverage").
@@ -386,23 +314,16 @@ class Importer {
     return id;
   }
 
-  absl::Status Visit(int node, const Mat4& parent, std::vector<bool>& on_path) {
-    const std::string where = absl::StrCat("nodes[", node, "]");
-    if (node < 0 || node >= static_cast<int>(model_.nodes.size()))
-      return Invalid(where, "does not exist");
-    if (on_path[node]) return Invalid(where, "is its own ancestor (the node graph has a cycle)");
+  // One node: its world transform (`parent`'s times its own) into `world`, its mesh and camera.
+  absl::Status Visit(int node, const Mat4& parent, Mat4& world) {
     const tinygltf::Node& n = model_.nodes[node];
-    auto local = LocalTransform(n, where);
+    auto local = LocalTransform(n, absl::StrCat("nodes[", node, "]"));
     if (!local.ok()) return local.status();
-    const Mat4 world = Multiply(parent, *local);
+    world = Multiply(parent, *local);
     if (n.mesh >= 0)
       if (auto s = Mesh(node, n.mesh, world); !s.ok()) return s;
     if (n.camera >= 0)
       if (auto s = Camera(node, n.camera, world); !s.ok()) return s;
-    on_path[node] = true;
-    for (int child : n.children)
-      if (auto s = Visit(child, world, on_path); !s.ok()) return s;
-    on_path[node] = false;
     return absl::OkStatus();
   }
 
@@ -594,6 +515,7 @@ class Importer {
 
   const tinygltf::Model& model_;
   const std::map<int, std::vector<unsigned char>>& image_bytes_;
+  const GltfImportOptions options_;
   ImportedModel out_;
   std::vector<UvTransform> uv_transforms_;  // per glTF material
   std::set<int> images_added_;
@@ -649,7 +571,8 @@ bool IsGltfPath(const std::string& path) {
   return ext == ".gltf" || ext == ".glb";
 }
 
-absl::StatusOr<ImportedModel> ImportGltf(const std::string& path) {
+absl::StatusOr<ImportedModel> ImportGltf(const std::string& path,
+                                         const GltfImportOptions& options) {
   std::ifstream in(path, std::ios::binary);
   std::error_code ec;
   if (!in || !fs::is_regular_file(path, ec))
@@ -658,7 +581,7 @@ absl::StatusOr<ImportedModel> ImportGltf(const std::string& path) {
   const bool binary = absl::AsciiStrToLower(fs::path(path).extension().string()) == ".glb";
   auto imported = ImportGltfBytes(
       std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()), binary,
-      fs::absolute(path).parent_path().string(), fs::path(path).stem().string());
+      fs::absolute(path).parent_path().string(), fs::path(path).stem().string(), options);
   if (!imported.ok())
     return absl::Status(imported.status().code(),
                         absl::StrCat(path, ": ", imported.status().message()));
@@ -666,10 +589,19 @@ absl::StatusOr<ImportedModel> ImportGltf(const std::string& path) {
 }
 
 absl::StatusOr<ImportedModel> ImportGltfBytes(std::span<const uint8_t> bytes, bool binary,
-                                              const std::string& folder, const std::string& name) {
+                                              const std::string& folder, const std::string& name,
+                                              const GltfImportOptions& options) {
   // tinygltf takes the length as an unsigned int.
   if (bytes.size() > std::numeric_limits<unsigned int>::max())
     return absl::InvalidArgumentError("the model file is larger than 4 GiB");
+  // The structure first: tinygltf passes over fields of the wrong type without a word.
+  std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (binary) {
+    auto chunk = GlbJsonChunk(bytes);
+    if (!chunk.ok()) return chunk.status();
+    json = *chunk;
+  }
+  if (auto s = CheckGltfJsonStructure(json); !s.ok()) return s;
   std::error_code ec;
   Containment containment;
   containment.folder = fs::weakly_canonical(fs::absolute(folder), ec);
@@ -696,12 +628,12 @@ absl::StatusOr<ImportedModel> ImportGltfBytes(std::span<const uint8_t> bytes, bo
     while (!message.empty() && message.back() == '\n') message.pop_back();
     return absl::InvalidArgumentError(absl::StrCat("not a valid glTF file: ", message));
   }
-  Importer importer(model, image_bytes);
+  Importer importer(model, image_bytes, options);
   return importer.Run(name);
 }
 
 absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool allow_any_path,
-                          std::vector<std::string>* notes) {
+                          std::vector<std::string>* notes, const GltfImportOptions& options) {
   if (scene.models_size() == 0) {
     for (int i = 0; i < scene.objects_size(); ++i)
       if (!scene.objects(i).model_id().empty())
@@ -716,6 +648,7 @@ absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool a
   std::error_code ec;
   const fs::path base = scene_dir.empty() ? fs::path(".") : fs::path(scene_dir);
   const fs::path base_canonical = fs::weakly_canonical(fs::absolute(base), ec);
+  uint64_t triangles = 0;  // of the models read so far
   for (int k = 0; k < scene.models_size(); ++k) {
     const v1::Model& model = scene.models(k);
     const std::string where = absl::StrCat("models[", k, "] ('", model.id(), "')");
@@ -728,10 +661,17 @@ absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool a
                      absl::StrCat("'", model.file(), "' is outside the scene file's folder"));
     if (!IsGltfPath(file.string()))
       return Invalid(where + ".file", absl::StrCat("'", model.file(), "' is not .gltf or .glb"));
-    auto imported = ImportGltf(file.string());
+    // Each model within the budget as it is read, and the scene's models together after.
+    auto imported = ImportGltf(file.string(), options);
     if (!imported.ok())
       return absl::Status(imported.status().code(),
                           absl::StrCat(where, ": ", imported.status().message()));
+    for (const v1::Mesh& part : imported->scene.meshes())
+      triangles += static_cast<uint64_t>(part.polygons_size());
+    if (triangles > options.max_triangles)
+      return Invalid(where, absl::StrCat("the scene's models make ", triangles,
+                                         " triangles with this one, above the budget of ",
+                                         options.max_triangles, " triangles"));
     if (notes != nullptr)
       for (const std::string& note : imported->notes)
         notes->push_back(absl::StrCat(model.file(), ": ", note));

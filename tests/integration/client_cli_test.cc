@@ -28,6 +28,7 @@
 #include "aperture/v1/client_reports.pb.h"
 #include "integration/server_process.h"
 #include "integration/service_fixture.h"
+#include "support/gltf_test_models.h"
 
 namespace aperture::testing {
 namespace {
@@ -273,6 +274,41 @@ TEST_F(ClientTest, AGltfModelRendersAsItDoesLocally) {
   EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
   EXPECT_THAT(unknown.err, HasSubstr("is neither X,Y,Z,YAW,PITCH,ROLL nor a camera of the model "
                                      "(gate)"));
+}
+
+// A model whose node graph is not a tree, one over the triangle budget and one of the wrong JSON
+// structure are refused by the client before anything is sent: status 2 and the importer's
+// message, within 2 GB of address space (the DAG of depth 40 as a tree is 2^40 triangles).
+TEST_F(ClientTest, AGltfModelThatIsNotATreeIsRefusedWithStatus2) {
+  std::string bad_array = GltfFile(R"([{"mesh": 0}])", R"([{"nodes": [0]}])");
+  bad_array.replace(bad_array.find("[{\"attributes\""), 1, "");
+  bad_array.replace(bad_array.find("}}]"), 3, "}}");
+  const struct {
+    const char* file;
+    std::string content;
+    std::string message;
+  } cases[] = {
+      {"dag40.gltf", DuplicatedChildDag(40),
+       "dag40.gltf: nodes[40]: listed twice as a child by nodes[39]; glTF nodes form a tree"},
+      {"cycle.gltf",
+       GltfFile(R"([{"mesh": 0}, {"name": "a", "children": [2]}, {"children": [1]}])"),
+       "cycle.gltf: nodes[1] ('a'): is its own ancestor"},
+      {"budget.gltf", InstancedMesh(20'000, ByteStripMesh(100'000)),
+       "budget.gltf: the model's nodes place 2000000000 triangles"},
+      {"bad_array.gltf", bad_array, "bad_array.gltf: meshes[0].primitives: expected an array"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.file);
+    const std::string path = (dir_ / c.file).string();
+    std::ofstream(path) << c.content;
+    const CommandResult r = RunCommand(
+        {"/bin/sh", "-c", "ulimit -v 2000000; exec \"$0\" \"$@\"", APERTURE_CLIENT_BIN, "render",
+         "--scene=" + path, "-o=" + (dir_ / "x.exr").string(), "--server=" + server_->address()},
+        60);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("aperture render: error: " + path));
+    EXPECT_THAT(r.err, HasSubstr(c.message));
+  }
 }
 
 // The ground scene with a textured sphere on it: only the raytrace mode draws it.

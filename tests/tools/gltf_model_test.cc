@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gltf_test_models.h"
 #include "support/run_process.h"
 
 namespace {
@@ -264,7 +265,7 @@ TEST_F(GltfModel, MalformedModelsAreRefusedNamingTheElement) {
       {"an index out of range", "\"count\": 24", "\"count\": 20",
        "meshes[0].primitives[0].indices: index 20 out of range 0..19"},
       {"a node that is its own ancestor", "\"children\": [\n    2\n   ]",
-       "\"children\": [\n    1\n   ]", "nodes[1]: is its own ancestor"},
+       "\"children\": [\n    1\n   ]", "nodes[1] ('hangar'): is its own ancestor"},
       {"a buffer outside the model's folder", "\"uri\": \"hangar.bin\"",
        "\"uri\": \"../../../../etc/hostname\"", "is outside the model's folder"},
       {"a missing buffer file", "\"uri\": \"hangar.bin\"", "\"uri\": \"missing.bin\"",
@@ -280,6 +281,61 @@ TEST_F(GltfModel, MalformedModelsAreRefusedNamingTheElement) {
     EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos);
   }
+}
+
+// Node graphs that are not trees, a model over the triangle budget and a structure of the wrong
+// JSON type: aperture-render exits with status 2 and the message, within 2 GB of address space
+// (the DAG of depth 40 expanded as a tree is 2^40 triangles, the budget model 2 * 10^9).
+TEST_F(GltfModel, BadGraphsBudgetsAndStructuresExitWithStatus2) {
+  namespace t = aperture::testing;
+  const std::string two_parents = t::GltfFile(
+      R"([{"children": [1, 2]}, {"children": [3]}, {"children": [3]}, {"name": "wheel", "mesh": 0}])",
+      R"([{"nodes": [0]}])");
+  std::string bad_array = t::GltfFile(R"([{"mesh": 0}])", R"([{"nodes": [0]}])");
+  bad_array.replace(bad_array.find("[{\"attributes\""), 1, "");
+  bad_array.replace(bad_array.find("}}]"), 3, "}}");
+  const struct {
+    const char* file;
+    std::string content;
+    std::string message;
+  } cases[] = {
+      {"dag40.gltf", t::DuplicatedChildDag(40),
+       "dag40.gltf: nodes[40]: listed twice as a child by nodes[39]; glTF nodes form a tree"},
+      {"two_parents.gltf", two_parents,
+       "two_parents.gltf: nodes[3] ('wheel'): listed as a child by nodes[1] and nodes[2]; glTF "
+       "nodes form a tree"},
+      {"cycle.gltf", t::GltfFile(R"([{"mesh": 0}, {"children": [2]}, {"children": [1]}])"),
+       "cycle.gltf: nodes[1]: is its own ancestor (nodes[1] -> nodes[2] -> nodes[1], parent to "
+       "child: a cycle of 2 nodes)"},
+      {"budget.gltf", t::InstancedMesh(20'000, t::ByteStripMesh(100'000)),
+       "budget.gltf: the model's nodes place 2000000000 triangles (a mesh counted once for each "
+       "node that places it), above the budget of 4000000 triangles per model"},
+      {"bad_array.gltf", bad_array, "bad_array.gltf: meshes[0].primitives: expected an array"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.file);
+    std::ofstream(Path(c.file)) << c.content;
+    const Result r = aperture::testing::RunProcess(
+        "ulimit -v 2000000; " + std::string(APERTURE_RENDER_BIN) + " --scene " + Path(c.file) +
+        " --size 64x48 --nopreview --store none -o " + Path("x.exr"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("aperture-render: error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
+  }
+}
+
+// 100,000 nested nodes render: no walk of the tree uses the call stack, which a recursive one
+// would overflow near 20,000 levels.
+TEST_F(GltfModel, ADeepChainOfNodesRenders) {
+  std::ofstream(Path("chain.gltf")) << aperture::testing::NestedChain(100'000);
+  // The triangle at z = -100 (0.001 per level), seen from z = -99.
+  const Result r = Render(Path("chain.gltf"), "--camera 0.3,0.3,-99,0,0,0 --fov 60", "chain.exr");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::vector<float> pixels = Pixels("chain.exr");
+  ASSERT_EQ(pixels.size(), 320u * 240 * 4);
+  // The triangle (white, unlit as the default material is drawn) covers the centre.
+  const size_t centre = (120 * 320 + 160) * 4;
+  EXPECT_GT(pixels[centre], 0.5f);
 }
 
 }  // namespace
