@@ -3,7 +3,7 @@
 #include <thread>
 #include <utility>
 
-#include "scene/scene_update.h"
+#include "stop_check.h"
 
 namespace aperture {
 namespace {
@@ -12,14 +12,25 @@ namespace {
 // encoded and sent while the next renders, never a backlog of finished frames.
 constexpr int kRenderedAhead = 1;
 
+// How often a reader held back by flow control looks whether the client has gone.
+constexpr std::chrono::milliseconds kCancelPoll{50};
+
+// A scene id is 64 hex digits: what the log needs of a longer one.
+constexpr size_t kSummaryIdChars = 64;
+
 double MillisecondsSince(LiveClock::time_point start) {
   return std::chrono::duration<double, std::milli>(LiveClock::now() - start).count();
+}
+
+LiveClock::time_point FrameDeadline(const LiveAnswer& answer, uint32_t deadline_ms) {
+  return deadline_ms > 0 ? answer.received + std::chrono::milliseconds(deadline_ms)
+                         : LiveClock::time_point::max();
 }
 
 }  // namespace
 
 LiveStream::LiveStream(grpc::ServerContext* context, Stream* stream, CheckFrameFn check,
-                       RenderFrameFn render, std::function<void(const LiveFrame&)> answered)
+                       RenderFrameFn render, std::function<void(const LiveAnswer&)> answered)
     : context_(context),
       stream_(stream),
       check_(std::move(check)),
@@ -36,41 +47,58 @@ LiveStreamCounts LiveStream::Run() {
   return counts_;
 }
 
-void LiveStream::Skip(LiveFrame& frame, v1::FrameOutcome outcome, uint64_t superseded_by) {
-  frame.state = LiveFrame::State::kAnswered;
-  frame.response.set_frame_index(frame.request.frame_index());
-  frame.response.set_outcome(outcome);
-  frame.response.set_superseded_by(superseded_by);
-  frame.response.mutable_timings()->set_total_ms(MillisecondsSince(frame.received));
+bool LiveStream::RoomToRead() const {
+  return writing_failed_ || answers_.size() < kMaxUnwrittenAnswers;
+}
+
+void LiveStream::Skip(std::unique_ptr<HeldRequest> held, v1::FrameOutcome outcome,
+                      uint64_t superseded_by) {
+  LiveAnswer& answer = *held->answer;
+  answer.state = LiveAnswer::State::kAnswered;
+  answer.response.set_frame_index(answer.frame_index);
+  answer.response.set_outcome(outcome);
+  answer.response.set_superseded_by(superseded_by);
+  answer.response.mutable_timings()->set_total_ms(MillisecondsSince(answer.received));
   // Its update holds from its frame on: the next request rendered applies it first.
-  if (frame.request.has_update()) {
-    if (!carried_) carried_.emplace();
-    MergeSceneUpdate(frame.request.update(), &*carried_);
-  }
+  if (held->request.has_update()) carried_.Merge(held->request.update());
 }
 
 void LiveStream::ReadRequests() {
-  auto frame = std::make_shared<LiveFrame>();
-  while (stream_->Read(&frame->request)) {
-    frame->received = LiveClock::now();
-    absl::Status checked = check_(frame->request);
+  for (;;) {
+    {
+      // Flow control: while the writer is behind, nothing is read, so the client's requests wait
+      // in its own buffers. A reader held here is not in Read, so it looks for the client's
+      // cancellation itself.
+      std::unique_lock lock(mutex_);
+      while (!RoomToRead() && !context_->IsCancelled()) changed_.wait_for(lock, kCancelPoll);
+      if (writing_failed_ || context_->IsCancelled()) break;
+    }
+    auto held = std::make_unique<HeldRequest>();
+    if (!stream_->Read(&held->request)) break;
+    auto answer = std::make_shared<LiveAnswer>();
+    answer->received = LiveClock::now();
+    answer->frame_index = held->request.frame_index();
+    answer->summary.scene_id = held->request.scene_id().substr(0, kSummaryIdChars);
+    answer->summary.width = held->request.options().width();
+    answer->summary.height = held->request.options().height();
+    answer->summary.mode = held->request.options().mode();
+    StopCheck stop(context_, FrameDeadline(*answer, held->request.deadline_ms()));
+    auto checked = check_(held->request, [&] { return stop(); });
     {
       std::lock_guard lock(mutex_);
+      answers_.push_back(answer);
       if (!checked.ok()) {  // never rendered, supersedes nothing: answered in its turn
-        frame->status = std::move(checked);
-        frame->state = LiveFrame::State::kAnswered;
-        answers_.push_back(frame);
-        changed_.notify_all();
-        frame = std::make_shared<LiveFrame>();
-        continue;
+        answer->status = WhyStopped(checked.status(), stop, "while its scene update was checked");
+        answer->state = LiveAnswer::State::kAnswered;
+      } else {
+        held->scene = *std::move(checked);
+        held->answer = answer;
+        if (waiting_)
+          Skip(std::move(waiting_), v1::FRAME_OUTCOME_SKIPPED_SUPERSEDED, answer->frame_index);
+        waiting_ = std::move(held);
       }
-      if (waiting_)
-        Skip(*waiting_, v1::FRAME_OUTCOME_SKIPPED_SUPERSEDED, frame->request.frame_index());
-      answers_.push_back(frame);
-      waiting_ = frame;
     }
     changed_.notify_all();
-    frame = std::make_shared<LiveFrame>();
   }
   {
     std::lock_guard lock(mutex_);
@@ -81,7 +109,7 @@ void LiveStream::ReadRequests() {
 
 void LiveStream::RenderNewest() {
   for (;;) {
-    std::shared_ptr<LiveFrame> frame;
+    std::unique_ptr<HeldRequest> held;
     {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] {
@@ -89,38 +117,35 @@ void LiveStream::RenderNewest() {
                (reading_done_ && !waiting_);
       });
       if (writing_failed_ || !waiting_) break;
-      frame = std::exchange(waiting_, nullptr);
-      const uint32_t deadline_ms = frame->request.deadline_ms();
-      if (deadline_ms > 0 &&
-          LiveClock::now() > frame->received + std::chrono::milliseconds(deadline_ms)) {
-        Skip(*frame, v1::FRAME_OUTCOME_SKIPPED_LATE, 0);
+      held = std::move(waiting_);
+      if (LiveClock::now() > FrameDeadline(*held->answer, held->request.deadline_ms())) {
+        Skip(std::move(held), v1::FRAME_OUTCOME_SKIPPED_LATE, 0);
         changed_.notify_all();
         continue;
       }
-      if (carried_) {  // the skipped requests' updates first, then its own
-        MergeSceneUpdate(frame->request.update(), &*carried_);
-        *frame->request.mutable_update() = *std::move(carried_);
-        carried_.reset();
+      if (!carried_.empty()) {  // the skipped requests' updates first, then its own
+        carried_.Merge(held->request.update());
+        *held->request.mutable_update() = carried_.Take();
       }
-      frame->state = LiveFrame::State::kRendering;
+      held->answer->state = LiveAnswer::State::kRendering;
+      held->answer->in_pipeline = true;
       ++rendered_unwritten_;
     }
-    const uint32_t deadline_ms = frame->request.deadline_ms();
-    const LiveClock::time_point stop_at =
-        deadline_ms > 0 ? frame->received + std::chrono::milliseconds(deadline_ms)
-                        : LiveClock::time_point::max();
-    auto encode = render_(frame->request, stop_at, &frame->response);
+    LiveAnswer& answer = *held->answer;
+    auto encode = render_(held->request, held->scene,
+                          FrameDeadline(answer, held->request.deadline_ms()), &answer.response);
     {
       std::lock_guard lock(mutex_);
       if (encode.ok()) {
-        frame->encode = std::move(*encode);
-        frame->state = LiveFrame::State::kRendered;
+        answer.encode = std::move(*encode);
+        answer.state = LiveAnswer::State::kRendered;
       } else {
-        frame->status = encode.status();
-        frame->state = LiveFrame::State::kAnswered;
+        answer.status = encode.status();
+        answer.state = LiveAnswer::State::kAnswered;
       }
     }
     changed_.notify_all();
+    held.reset();  // the request's body; its scene stays held by the renderer's LiveScene
   }
   {
     std::lock_guard lock(mutex_);
@@ -131,44 +156,42 @@ void LiveStream::RenderNewest() {
 
 void LiveStream::WriteAnswers() {
   for (;;) {
-    std::shared_ptr<LiveFrame> frame;
+    std::shared_ptr<LiveAnswer> answer;
     {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] {
         if (answers_.empty()) return rendering_done_;
-        const LiveFrame::State state = answers_.front()->state;
-        return state == LiveFrame::State::kRendered || state == LiveFrame::State::kAnswered;
+        const LiveAnswer::State state = answers_.front()->state;
+        return state == LiveAnswer::State::kRendered || state == LiveAnswer::State::kAnswered;
       });
       if (answers_.empty()) break;
-      frame = answers_.front();
+      answer = answers_.front();
     }
-    // Not skipped: it held a place in the pipeline (rendered, or failed while rendering).
-    const bool rendered = frame->response.outcome() == v1::FRAME_OUTCOME_RENDERED;
-    if (frame->state == LiveFrame::State::kRendered) {
-      frame->status = frame->encode(&frame->response);
-      frame->encode = nullptr;  // the rendered image goes with it
+    if (answer->state == LiveAnswer::State::kRendered) {
+      answer->status = answer->encode(&answer->response);
+      answer->encode = nullptr;  // the rendered image goes with it
     }
-    v1::RenderFrameResponse& response = frame->response;
-    response.set_frame_index(frame->request.frame_index());
-    if (!frame->status.ok()) {
+    v1::RenderFrameResponse& response = answer->response;
+    response.set_frame_index(answer->frame_index);
+    if (!answer->status.ok()) {
       response.Clear();
-      response.set_frame_index(frame->request.frame_index());
-      response.set_status_code(static_cast<int>(frame->status.code()));
-      response.set_status_message(std::string(frame->status.message()));
+      response.set_frame_index(answer->frame_index);
+      response.set_status_code(static_cast<int>(answer->status.code()));
+      response.set_status_message(std::string(answer->status.message()));
     }
     const bool written = !context_->IsCancelled() && stream_->Write(response);
     ++counts_.frames;
     if (response.outcome() != v1::FRAME_OUTCOME_RENDERED)
       ++counts_.skipped;
-    else if (frame->status.ok())
+    else if (answer->status.ok())
       ++counts_.rendered;
     else
       ++counts_.failed;
-    answered_(*frame);
+    answered_(*answer);
     {
       std::lock_guard lock(mutex_);
       answers_.pop_front();
-      if (rendered) --rendered_unwritten_;
+      if (answer->in_pipeline) --rendered_unwritten_;
       if (!written) writing_failed_ = true;
     }
     changed_.notify_all();

@@ -59,11 +59,13 @@ class RenderService final : public v1::Render::Service {
                            v1::PlanRegionsResponse* response) override;
 
  private:
-  // Validation, the request's scene update (on `live`), admission, rendering on the shared arena
-  // (stopped at `stop_at` too); fills the response's timings and returns what encodes the frame
-  // into it.
+  // Validation, the request's scene update (on `live`, from the stored scene `stored` a stream's
+  // check found, or found now when null), admission, rendering on the shared arena (stopped at
+  // `stop_at` too; the update as well); fills the response's timings and returns what encodes the
+  // frame into it.
   absl::StatusOr<EncodeFrameFn> RenderImage(grpc::ServerContext* context,
                                             const v1::RenderFrameRequest& request, LiveScene& live,
+                                            std::shared_ptr<const Scene> stored,
                                             LiveClock::time_point stop_at,
                                             v1::RenderFrameResponse* response);
   // RenderImage, then the encode; fills `response`.

@@ -4,10 +4,11 @@
 
 namespace aperture {
 
-bool SceneStore::EvictOne() {
+bool SceneStore::EvictOne(const std::string& keep) {
   auto oldest = scenes_.end();
   for (auto it = scenes_.begin(); it != scenes_.end(); ++it)
     if (it->second.scene.use_count() == 1 &&  // no frame, stream or load holds it
+        it->first != keep &&
         (oldest == scenes_.end() || it->second.last_use < oldest->second.last_use))
       oldest = it;
   if (oldest == scenes_.end()) return false;
@@ -31,12 +32,8 @@ void SceneStore::Put(const std::string& id, std::shared_ptr<const Scene> scene,
                      std::optional<v1::Camera> default_camera, ByteReservation room) {
   std::lock_guard lock(mutex_);
   scenes_[id] = {std::move(scene), std::move(default_camera), ++clock_, std::move(room)};
-  while (scenes_.size() > capacity_) {
-    auto oldest = scenes_.begin();
-    for (auto it = scenes_.begin(); it != scenes_.end(); ++it)
-      if (it->second.last_use < oldest->second.last_use) oldest = it;
-    scenes_.erase(oldest);
-    ++evicted_;
+  // Held scenes stay: past the count only while streams and frames hold every other one.
+  while (scenes_.size() > capacity_ && EvictOne(id)) {
   }
 }
 

@@ -1,7 +1,10 @@
 // Built scenes by id, shared by the requests that render them. Bounded by count and by bytes
 // (issue 23, part 2): a load reserves its scene's estimated bytes before it builds; to make room
-// the scenes no frame or stream holds are dropped, least recently used first. Frames already
-// rendering a dropped scene keep their reference.
+// (bytes or count) the scenes no frame or stream holds are dropped, least recently used first. A
+// scene is held while someone keeps the pointer Find gave: a frame while it renders, a
+// RenderStream from its first request naming the scene until the stream ends, so a stream's scene
+// is never dropped under it. While every scene is held, a load past the byte budget is refused
+// and one past the count is kept until a scene is let go.
 #pragma once
 
 #include <cstdint>
@@ -47,8 +50,9 @@ class SceneStore {
     uint64_t last_use = 0;
     ByteReservation room;
   };
-  // Drops the least recently used scene nobody else holds; false when there is none.
-  bool EvictOne();
+  // Drops the least recently used scene nobody else holds, other than `keep`; false when there is
+  // none.
+  bool EvictOne(const std::string& keep = {});
 
   const size_t capacity_;
   ByteBudget budget_;

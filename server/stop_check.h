@@ -9,6 +9,9 @@
 #include <atomic>
 #include <chrono>
 
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+
 namespace aperture {
 
 class StopCheck {
@@ -51,5 +54,16 @@ class StopCheck {
   std::atomic<bool> stopped_{false};
   std::atomic<int64_t> next_check_{0};
 };
+
+// `status` as the client should read it: a CANCELLED that a passed deadline caused becomes
+// DEADLINE_EXCEEDED saying which deadline passed and `during` what ("while its scene update was
+// applied"), followed by the engine's account of how far it got. Anything else is returned as is.
+inline absl::Status WhyStopped(const absl::Status& status, const StopCheck& stop,
+                               const char* during) {
+  if (!absl::IsCancelled(status) || !stop.DeadlinePassed()) return status;
+  return absl::DeadlineExceededError(
+      absl::StrCat(stop.FrameDeadlinePassed() ? "the frame's deadline_ms" : "the call's deadline",
+                   " passed ", during, "; nothing of it applies (", status.message(), ")"));
+}
 
 }  // namespace aperture

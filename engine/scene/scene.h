@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "absl/container/flat_hash_map.h"
 #include "aperture/v1/scene.pb.h"
 #include "base/image.h"
 #include "scene/vec.h"
@@ -116,7 +117,11 @@ struct Scene {
   std::vector<std::shared_ptr<const SceneTexture>> textures;
   std::vector<Material> materials;
   std::vector<ScenePolygon> polygons;
-  std::vector<SceneObject> objects;     // the named ones only
+  std::vector<SceneObject> objects;  // the named ones only
+  // Each named object's index in `objects`, by name: an update finds what it names in constant
+  // time. Built with the scene; updates never add or remove objects, so it stays valid (and a
+  // copy of the scene copies it with the objects).
+  absl::flat_hash_map<std::string, size_t> object_index;
   std::vector<CurvedPrimitive> curved;  // spheres, then cylinders (raytrace mode only)
   Vec3 sun_direction{0, 1, 0};          // unit, towards the sun
   Rgba sun_color{0, 0, 0, 1};

@@ -250,6 +250,7 @@ class Builder {
         object.count = placed.size();
         for (ScenePolygon& p : placed) scene_.polygons.push_back(std::move(p));
       }
+      scene_.object_index.emplace(object.name, scene_.objects.size());
       scene_.objects.push_back(std::move(object));
     }
     return absl::OkStatus();

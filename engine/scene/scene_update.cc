@@ -1,6 +1,8 @@
 #include "scene/scene_update.h"
 
+#include <algorithm>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -11,8 +13,15 @@
 namespace aperture {
 namespace {
 
+// An object name quoted in an error is cut to this many characters, so that an error stays small
+// whatever a request holds.
+constexpr size_t kQuotedNameChars = 64;
+
 std::string Where(int i, const std::string& name) {
-  return absl::StrCat("update.objects[", i, "] ('", name, "')");
+  if (name.size() <= kQuotedNameChars)
+    return absl::StrCat("update.objects[", i, "] ('", name, "')");
+  return absl::StrCat("update.objects[", i, "] ('", name.substr(0, kQuotedNameChars), "...', ",
+                      name.size(), " characters)");
 }
 
 absl::Status Prefixed(const absl::Status& s, const std::string& prefix) {
@@ -20,9 +29,33 @@ absl::Status Prefixed(const absl::Status& s, const std::string& prefix) {
 }
 
 int ObjectIndex(const Scene& scene, const std::string& name) {
-  for (size_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].name == name) return static_cast<int>(i);
-  return -1;
+  auto it = scene.object_index.find(name);
+  return it == scene.object_index.end() ? -1 : static_cast<int>(it->second);
+}
+
+// Asks a stop test once per kUnits units of work (entries checked, polygons placed), so that a
+// long update stops within a fraction of a millisecond of being told.
+class StopEvery {
+ public:
+  explicit StopEvery(const std::function<bool()>& stop) : stop_(stop) {}
+  bool operator()(size_t units) {
+    if (!stop_) return false;
+    done_ += units;
+    if (done_ < kUnits) return false;
+    done_ = 0;
+    return stop_();
+  }
+
+ private:
+  static constexpr size_t kUnits = 4096;
+  const std::function<bool()>& stop_;
+  size_t done_ = 0;
+};
+
+absl::Status StoppedError(const char* step, int entry, int entries) {
+  return absl::CancelledError(
+      absl::StrCat("the scene update was stopped (deadline or cancellation) ", step,
+                   " at update.objects[", entry, "] of ", entries));
 }
 
 // The scene-wide values of `update` applied to `scene`, errors prefixed "update.".
@@ -44,28 +77,52 @@ struct ObjectChange {
   std::optional<std::vector<ScenePolygon>> polygons;
 };
 
-// Replaces object `index`'s polygon range by `polygons`; the later objects' ranges shift.
-void ReplaceRange(size_t index, std::vector<ScenePolygon> polygons, Scene* scene) {
-  SceneObject& object = scene->objects[index];
-  auto first = scene->polygons.begin() + static_cast<ptrdiff_t>(object.first);
-  if (polygons.size() == object.count) {
-    std::move(polygons.begin(), polygons.end(), first);
-    return;
+// The changed objects in scene order, by index into Scene::objects.
+using OrderedChanges = std::vector<std::pair<size_t, ObjectChange>>;
+
+// Lays the polygon array out again in one pass: each changed object's range becomes its new
+// polygons, the polygons between the ranges (unnamed objects) move along, and every range after
+// the first change starts where it now lies.
+void LayOutRanges(OrderedChanges& changes, Scene* scene) {
+  std::vector<ScenePolygon> old = std::move(scene->polygons);
+  size_t total = old.size();
+  for (const auto& [index, change] : changes)
+    if (change.polygons) total = total - scene->objects[index].count + change.polygons->size();
+  std::vector<ScenePolygon>& out = scene->polygons;
+  out.clear();
+  out.reserve(total);
+  auto move_old = [&](size_t from, size_t to) {
+    out.insert(out.end(), std::make_move_iterator(old.begin() + static_cast<ptrdiff_t>(from)),
+               std::make_move_iterator(old.begin() + static_cast<ptrdiff_t>(to)));
+  };
+  size_t next_old = 0;  // the first polygon of `old` not moved yet
+  auto change = changes.begin();
+  for (size_t index = 0; index < scene->objects.size(); ++index) {
+    SceneObject& object = scene->objects[index];
+    const size_t old_first = object.first;
+    move_old(next_old, old_first);  // the unnamed objects' polygons before its range
+    next_old = old_first + object.count;
+    object.first = out.size();
+    if (change != changes.end() && change->first == index && change->second.polygons) {
+      std::vector<ScenePolygon>& placed = *change->second.polygons;
+      out.insert(out.end(), std::make_move_iterator(placed.begin()),
+                 std::make_move_iterator(placed.end()));
+      object.count = placed.size();
+    } else {
+      move_old(old_first, next_old);
+    }
+    if (change != changes.end() && change->first == index) ++change;
   }
-  const auto count = static_cast<ptrdiff_t>(object.count);
-  scene->polygons.erase(first, first + count);
-  scene->polygons.insert(scene->polygons.begin() + static_cast<ptrdiff_t>(object.first),
-                         std::make_move_iterator(polygons.begin()),
-                         std::make_move_iterator(polygons.end()));
-  for (size_t later = index + 1; later < scene->objects.size(); ++later)
-    scene->objects[later].first = scene->objects[later].first - object.count + polygons.size();
-  object.count = polygons.size();
+  move_old(next_old, old.size());
 }
 
 }  // namespace
 
-absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update) {
+absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update,
+                              const std::function<bool()>& stop) {
+  StopEvery stopped(stop);
   for (int i = 0; i < update.objects_size(); ++i) {
+    if (stopped(1)) return StoppedError("while it was checked", i, update.objects_size());
     const v1::ObjectUpdate& o = update.objects(i);
     if (ObjectIndex(scene, o.name()) < 0)
       return absl::InvalidArgumentError(
@@ -82,15 +139,20 @@ absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update)
   return SetEnvironment(update, &scratch);
 }
 
-absl::Status ApplySceneUpdate(const v1::SceneUpdate& update, Scene* scene) {
+absl::Status ApplySceneUpdate(const v1::SceneUpdate& update, Scene* scene,
+                              const std::function<bool()>& stop) {
   // Checked first: names, transforms and the environment's values cannot fail below.
-  if (auto s = CheckSceneUpdate(*scene, update); !s.ok()) return s;
+  if (auto s = CheckSceneUpdate(*scene, update, stop); !s.ok()) return s;
+  const int entries = update.objects_size();
+  StopEvery stopped(stop);
   // The final state of each object the update names (its last transform and visibility win).
-  absl::flat_hash_map<size_t, ObjectChange> changes;
-  for (int i = 0; i < update.objects_size(); ++i) {
+  absl::flat_hash_map<size_t, ObjectChange> named;
+  named.reserve(std::min(static_cast<size_t>(entries), scene->objects.size()));
+  for (int i = 0; i < entries; ++i) {
+    if (stopped(1)) return StoppedError("while it was gathered", i, entries);
     const v1::ObjectUpdate& o = update.objects(i);
     const auto index = static_cast<size_t>(ObjectIndex(*scene, o.name()));
-    auto [it, inserted] = changes.try_emplace(index);
+    auto [it, inserted] = named.try_emplace(index);
     ObjectChange& change = it->second;
     if (inserted) change.visible = scene->objects[index].visible;
     if (o.visibility() != v1::VISIBILITY_UNCHANGED)
@@ -98,57 +160,80 @@ absl::Status ApplySceneUpdate(const v1::SceneUpdate& update, Scene* scene) {
     if (o.has_transform()) change.transform = &o.transform();
     change.entry = i;
   }
+  OrderedChanges changes(std::make_move_iterator(named.begin()),
+                         std::make_move_iterator(named.end()));
+  named.clear();
+  std::sort(changes.begin(), changes.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+
   // Every object's polygons are placed before any is changed, so an object that cannot be placed
   // (its polygons degenerate under a new scale) leaves the scene as it was.
+  bool ranges_change = false;  // a range grows or shrinks: the array is laid out again
   for (auto& [index, change] : changes) {
     const SceneObject& object = scene->objects[index];
+    if (stopped(object.mesh->polygons.size() + 1))
+      return StoppedError("while its objects were placed", change.entry, entries);
     if (!change.visible) {
-      if (object.visible) change.polygons.emplace();  // hidden: its range empties
-      continue;
+      if (object.visible) change.polygons.emplace();   // hidden: its range empties
+    } else if (change.transform || !object.visible) {  // moved, or shown
+      const std::string where = Where(change.entry, update.objects(change.entry).name());
+      // A shown object without a new transform stands where its last one put it.
+      auto placement =
+          PlacementFromProto(change.transform ? *change.transform : object.transform, where);
+      if (!placement.ok()) return placement.status();
+      std::vector<ScenePolygon> placed;
+      placed.reserve(object.mesh->polygons.size());
+      if (auto s = PlaceMesh(*object.mesh, *placement, &placed); !s.ok())
+        return Prefixed(s, where + ": ");
+      change.polygons = std::move(placed);
     }
-    if (!change.transform && object.visible) continue;  // shown already, not moved
-    const std::string where = Where(change.entry, update.objects(change.entry).name());
-    // A shown object without a new transform stands where its last one put it.
-    auto placement =
-        PlacementFromProto(change.transform ? *change.transform : object.transform, where);
-    if (!placement.ok()) return placement.status();
-    std::vector<ScenePolygon> placed;
-    placed.reserve(object.mesh->polygons.size());
-    if (auto s = PlaceMesh(*object.mesh, *placement, &placed); !s.ok())
-      return Prefixed(s, where + ": ");
-    change.polygons = std::move(placed);
+    if (change.polygons && change.polygons->size() != object.count) ranges_change = true;
   }
 
-  // Commit: a moved object that keeps its polygon count is overwritten in place; otherwise its
-  // range is replaced and the later objects' ranges shift.
+  // Commit: a moved object that keeps its polygon count is overwritten in place; when a range
+  // grows or shrinks, the whole array is laid out again once.
+  if (ranges_change) LayOutRanges(changes, scene);
   for (auto& [index, change] : changes) {
     SceneObject& object = scene->objects[index];
     if (change.transform) object.transform = *change.transform;
-    if (change.polygons) ReplaceRange(index, *std::move(change.polygons), scene);
+    if (change.polygons && !ranges_change)
+      std::move(change.polygons->begin(), change.polygons->end(),
+                scene->polygons.begin() + static_cast<ptrdiff_t>(object.first));
     object.visible = change.visible;
   }
   return SetEnvironment(update, scene);  // checked above: it cannot fail
 }
 
-void MergeSceneUpdate(const v1::SceneUpdate& later, v1::SceneUpdate* earlier) {
-  // One entry per object: a stream whose frames are all superseded carries a bounded update.
-  absl::flat_hash_map<std::string, int> entry;
-  for (int i = 0; i < earlier->objects_size(); ++i) entry[earlier->objects(i).name()] = i;
+void MergedSceneUpdate::Merge(const v1::SceneUpdate& later) {
   for (const v1::ObjectUpdate& o : later.objects()) {
-    auto it = entry.find(o.name());
-    if (it == entry.end()) {
-      entry[o.name()] = earlier->objects_size();
-      *earlier->add_objects() = o;
+    auto [it, inserted] = entry_.try_emplace(o.name(), merged_.objects_size());
+    if (inserted) {
+      *merged_.add_objects() = o;
       continue;
     }
-    v1::ObjectUpdate& merged = *earlier->mutable_objects(it->second);
+    v1::ObjectUpdate& merged = *merged_.mutable_objects(it->second);
     if (o.has_transform()) *merged.mutable_transform() = o.transform();
     if (o.visibility() != v1::VISIBILITY_UNCHANGED) merged.set_visibility(o.visibility());
   }
-  if (later.has_sun()) *earlier->mutable_sun() = later.sun();
-  if (later.has_ambient()) *earlier->mutable_ambient() = later.ambient();
-  if (later.has_fog()) *earlier->mutable_fog() = later.fog();
-  if (later.has_sky()) *earlier->mutable_sky() = later.sky();
+  if (later.has_sun()) *merged_.mutable_sun() = later.sun();
+  if (later.has_ambient()) *merged_.mutable_ambient() = later.ambient();
+  if (later.has_fog()) *merged_.mutable_fog() = later.fog();
+  if (later.has_sky()) *merged_.mutable_sky() = later.sky();
+  empty_ = empty_ && later.objects_size() == 0 && !later.has_sun() && !later.has_ambient() &&
+           !later.has_fog() && !later.has_sky();
+}
+
+v1::SceneUpdate MergedSceneUpdate::Take() {
+  entry_.clear();
+  empty_ = true;
+  return std::exchange(merged_, v1::SceneUpdate());
+}
+
+void MergeSceneUpdate(const v1::SceneUpdate& later, v1::SceneUpdate* earlier) {
+  MergedSceneUpdate merged;
+  merged.Merge(*earlier);
+  merged.Merge(later);
+  *earlier = merged.Take();
 }
 
 }  // namespace aperture

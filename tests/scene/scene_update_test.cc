@@ -4,9 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "render/frame_renderer.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
@@ -259,6 +265,144 @@ TEST(SceneUpdate, MergedUpdatesEqualTheUpdatesInTurn) {
   ASSERT_TRUE(ApplySceneUpdate(merged, &at_once).ok());
   ExpectSameScene(at_once, in_turn);
   EXPECT_EQ(at_once.objects.back().transform.translation().x(), -30.5);
+}
+
+// Many named objects of one L-shaped mesh (4 triangles), every third one between two unnamed
+// ones, some hidden as loaded: ranges of every size, shifted by what lies between them.
+v1::Scene ManyNamedObjects(int objects) {
+  v1::Scene proto;
+  v1::Mesh* mesh = proto.add_meshes();
+  mesh->set_id("l");
+  v1::Polygon* p = mesh->add_polygons();
+  for (const auto& [x, z] :
+       std::vector<std::pair<double, double>>{{0, 0}, {2, 0}, {2, -1}, {1, -1}, {1, -2}, {0, -2}}) {
+    v1::Vec3* v = p->add_vertices();
+    v->set_x(x), v->set_z(z);
+  }
+  for (int i = 0; i < objects; ++i) {
+    if (i % 3 == 0) proto.add_objects()->set_mesh_id("l");  // unnamed
+    v1::Object* o = proto.add_objects();
+    o->set_mesh_id("l");
+    o->set_name(absl::StrCat("o", i));
+    o->mutable_transform()->mutable_translation()->set_x(3 * i);
+    o->set_hidden(i % 7 == 3);
+  }
+  return proto;
+}
+
+v1::Object* Named(v1::Scene& proto, int i) {
+  for (v1::Object& o : *proto.mutable_objects())
+    if (o.name() == absl::StrCat("o", i)) return &o;
+  return nullptr;
+}
+
+// An update that shows, hides and moves objects all over the scene lays the polygon array out
+// again in one pass: the result is a fresh build of the changed scene, polygon for polygon.
+TEST(SceneUpdate, ManyShownHiddenAndMovedObjectsEqualAFreshBuild) {
+  constexpr int kObjects = 600;
+  v1::Scene proto = ManyNamedObjects(kObjects);
+  Scene live = Build(proto);
+  ASSERT_EQ(live.objects.size(), static_cast<size_t>(kObjects));
+  v1::SceneUpdate update;
+  for (int i = kObjects - 1; i >= 0; i -= 2) {  // out of scene order, every other object
+    v1::ObjectUpdate* o = update.add_objects();
+    o->set_name(absl::StrCat("o", i));
+    v1::Object& loaded = *Named(proto, i);
+    if (i % 5 == 0) {
+      o->set_visibility(loaded.hidden() ? v1::VISIBILITY_SHOWN : v1::VISIBILITY_HIDDEN);
+      loaded.set_hidden(!loaded.hidden());
+    }
+    if (i % 4 == 1) {
+      *o->mutable_transform() = Moved();
+      *loaded.mutable_transform() = Moved();
+    }
+  }
+  // One object named many times: the last transform and visibility win.
+  for (int k = 0; k < 50; ++k) {
+    v1::ObjectUpdate* o = update.add_objects();
+    o->set_name("o2");
+    o->mutable_transform()->mutable_translation()->set_z(-k);
+    o->set_visibility(k % 2 == 0 ? v1::VISIBILITY_HIDDEN : v1::VISIBILITY_SHOWN);
+  }
+  Named(proto, 2)->mutable_transform()->mutable_translation()->set_z(-49);
+  Named(proto, 2)->mutable_transform()->mutable_translation()->set_x(0);
+  Named(proto, 2)->set_hidden(false);
+  ASSERT_TRUE(ApplySceneUpdate(update, &live).ok());
+  ExpectSameScene(live, Build(proto));
+}
+
+// The scene's name index finds every named object, and a copy of the scene keeps it.
+TEST(SceneUpdate, TheNameIndexFindsEveryObjectOfACopy) {
+  const Scene built = Build(ManyNamedObjects(100));
+  const Scene copy = built;
+  ASSERT_EQ(copy.object_index.size(), copy.objects.size());
+  for (size_t i = 0; i < copy.objects.size(); ++i)
+    EXPECT_EQ(copy.object_index.at(copy.objects[i].name), i);
+}
+
+// A stop test that says stop ends the check or the update, CANCELLED naming how far it got, and
+// leaves the scene as it was.
+TEST(SceneUpdate, AStoppedUpdateChangesNothing) {
+  constexpr int kObjects = 3000;
+  Scene live = Build(ManyNamedObjects(kObjects));
+  const Scene original = live;
+  v1::SceneUpdate update;
+  for (int repeat = 0; repeat < 4; ++repeat)
+    for (int i = 0; i < kObjects; ++i) {
+      v1::ObjectUpdate* o = update.add_objects();
+      o->set_name(absl::StrCat("o", i));
+      *o->mutable_transform() = Moved();
+    }
+  int asked = 0;
+  const std::function<bool()> stop = [&] { return ++asked > 1; };
+  const absl::Status check = CheckSceneUpdate(live, update, stop);
+  EXPECT_TRUE(absl::IsCancelled(check)) << check;
+  EXPECT_NE(check.message().find("stopped (deadline or cancellation) while it was checked at "
+                                 "update.objects[8191] of 12000"),
+            std::string::npos)
+      << check;
+  for (int allowed : {1, 3, 4}) {  // stopped while checking, gathering, placing
+    asked = 0;
+    const std::function<bool()> later = [&] { return ++asked > allowed; };
+    const absl::Status apply = ApplySceneUpdate(update, &live, later);
+    EXPECT_TRUE(absl::IsCancelled(apply)) << apply;
+    ExpectSameScene(live, original);
+  }
+  EXPECT_TRUE(ApplySceneUpdate(update, &live, [] { return false; }).ok());
+}
+
+TEST(SceneUpdate, ALongNameIsCutInTheError) {
+  Scene live = Build(MakeDemoScene());
+  v1::SceneUpdate update;
+  update.add_objects()->set_name(std::string(100000, 'x'));
+  const absl::Status status = CheckSceneUpdate(live, update);
+  EXPECT_TRUE(absl::IsInvalidArgument(status));
+  EXPECT_LT(status.message().size(), 300u);
+  EXPECT_NE(status.message().find("100000 characters"), std::string::npos) << status;
+}
+
+// Merging costs in proportion to what is merged: 2,000 merges of a one-object update into an
+// update of 20,000 objects stay one entry per object and finish at once.
+TEST(SceneUpdate, MergingIntoABigUpdateCostsTheSmallOne) {
+  MergedSceneUpdate merged;
+  v1::SceneUpdate big;
+  for (int i = 0; i < 20000; ++i) big.add_objects()->set_name(absl::StrCat("o", i));
+  merged.Merge(big);
+  v1::SceneUpdate small;
+  small.add_objects()->set_name("o7");
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < 2000; ++k) {
+    small.mutable_objects(0)->mutable_transform()->mutable_translation()->set_x(k);
+    merged.Merge(small);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 0.5);  // tens of microseconds in all; a rebuild per merge takes seconds
+  EXPECT_FALSE(merged.empty());
+  const v1::SceneUpdate taken = merged.Take();
+  EXPECT_TRUE(merged.empty());
+  ASSERT_EQ(taken.objects_size(), 20000);
+  EXPECT_EQ(taken.objects(7).transform().translation().x(), 1999);
 }
 
 }  // namespace

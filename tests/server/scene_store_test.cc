@@ -57,5 +57,28 @@ TEST(SceneStore, BytesMakeRoomFromScenesNobodyHolds) {
   EXPECT_NE(alone.status().message().find("this request alone needs"), std::string::npos);
 }
 
+// A scene somebody holds (a stream renders it) is not dropped for the count either: the least
+// recently used one nobody holds goes instead, and while all are held the count is exceeded.
+TEST(SceneStore, TheCountDropsOnlyScenesNobodyHolds) {
+  SceneStore store(2, 1000);
+  Load(store, "a", 1);
+  std::shared_ptr<const Scene> held = store.Find("a");
+  Load(store, "b", 1);
+  Load(store, "c", 1);  // "a" is the least recently used, but held: "b" goes
+  EXPECT_NE(store.Find("a"), nullptr);
+  EXPECT_EQ(store.Find("b"), nullptr);
+  EXPECT_EQ(store.evicted(), 1u);
+  std::shared_ptr<const Scene> also_held = store.Find("c");
+  Load(store, "d", 1);  // every other scene held: "d" is kept past the count
+  EXPECT_EQ(store.size(), 3u);
+  EXPECT_NE(store.Find("d"), nullptr);
+  held.reset();
+  also_held.reset();
+  Load(store, "e", 1);  // let go: back to the count, the least recently used first
+  EXPECT_EQ(store.size(), 2u);
+  EXPECT_NE(store.Find("e"), nullptr);
+  EXPECT_NE(store.Find("d"), nullptr);
+}
+
 }  // namespace
 }  // namespace aperture
