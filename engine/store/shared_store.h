@@ -98,9 +98,13 @@ class SharedStore {
   // `validate` (when given) refuses is unusable too: it is counted as rejected, deleted and
   // rebuilt (processes that have it mapped keep their pages). Every entry returned has passed
   // `validate`; one this call built and `validate` refuses is returned as validate's error.
-  absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuild(
-      const std::string& key, EntryKind kind, const Builder& build,
-      const Validator& validate = nullptr) const;
+  // `payload_bytes`, when the payload's size is known before building (0: not known): an entry
+  // that cannot fit the budget is refused (ResourceExhausted naming both sizes) before `build`
+  // runs, so a table of gigabytes is not built only to be thrown away.
+  absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuild(const std::string& key,
+                                                               EntryKind kind, const Builder& build,
+                                                               const Validator& validate = nullptr,
+                                                               uint64_t payload_bytes = 0) const;
 
   // Publishes `payload` unless a usable entry exists already.
   absl::StatusOr<std::shared_ptr<const StoreEntry>> Put(const std::string& key, EntryKind kind,
@@ -122,6 +126,8 @@ class SharedStore {
   StoreCounters counters() const;
 
  private:
+  // ResourceExhausted when an entry of `payload_bytes` cannot fit the budget.
+  absl::Status CheckFitsBudget(uint64_t payload_bytes) const;
   explicit SharedStore(std::string directory) : directory_(std::move(directory)) {}
 
   std::string EntryPath(const std::string& key) const;
