@@ -2,10 +2,12 @@
 
 #include "absl/strings/str_cat.h"
 #include "scene/scene_update.h"
+#include "scene_id.h"
 
 namespace aperture {
 
 absl::StatusOr<std::shared_ptr<const Scene>> LiveScene::Stored(const std::string& id) const {
+  if (absl::Status form = CheckSceneId(id); !form.ok()) return form;
   std::shared_ptr<const Scene> scene = scenes_.Find(id);
   if (!scene)
     return absl::NotFoundError(absl::StrCat("scene_id '", id, "' is not loaded (LoadScene first)"));

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "scene/scene_update.h"
+#include "status_mapping.h"
 
 namespace aperture {
 namespace {
@@ -154,7 +155,7 @@ void LiveStream::WriteAnswers() {
       response.Clear();
       response.set_frame_index(frame->request.frame_index());
       response.set_status_code(static_cast<int>(frame->status.code()));
-      response.set_status_message(std::string(frame->status.message()));
+      response.set_status_message(StatusMessageForClient(frame->status.message()));
     }
     const bool written = !context_->IsCancelled() && stream_->Write(response);
     ++counts_.frames;

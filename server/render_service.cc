@@ -11,6 +11,7 @@
 #include "log_text.h"
 #include "region_plan_request.h"
 #include "render/frame_renderer.h"
+#include "scene_id.h"
 #include "scene_request.h"
 #include "status_mapping.h"
 #include "stop_check.h"
@@ -405,11 +406,13 @@ grpc::Status RenderService::PlanRegions(grpc::ServerContext* context,
   if (absl::Status auth = Authorize(*context, "PlanRegions"); !auth.ok()) return ToGrpcStatus(auth);
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
-  std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
-  const absl::Status status =
-      scene ? PlanRegionsForRequest(*scene, *request, limits_.max_pixels, response)
-            : absl::NotFoundError(absl::StrCat("scene_id '", request->scene_id(),
-                                               "' is not loaded (LoadScene first)"));
+  absl::Status status = CheckSceneId(request->scene_id());
+  if (status.ok()) {
+    std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
+    status = scene ? PlanRegionsForRequest(*scene, *request, limits_.max_pixels, response)
+                   : absl::NotFoundError(absl::StrCat("scene_id '", request->scene_id(),
+                                                      "' is not loaded (LoadScene first)"));
+  }
   spdlog::info(
       "req={} rpc=PlanRegions peer={} scene={} size={}x{} regions={} ms={:.2f} status={}{}", id,
       context->peer(), LogText(Short(request->scene_id())), request->options().width(),
