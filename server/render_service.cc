@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
 #include "frame_request.h"
@@ -37,13 +38,12 @@ std::string ErrorText(const absl::Status& status) {
   return status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'");
 }
 
-// The summed-area tables of a raytraced frame refused by the store's budget (the engine names
-// the sizes; the flag is the server's).
+// A raytraced frame whose summed-area tables the store's budget refused (the engine's message
+// names the tables' size, the budget and its flag), counted as such in the refusal log.
 absl::Status StoreBudgetRefusal(const absl::Status& status) {
-  if (!absl::IsResourceExhausted(status)) return status;
-  return MarkRefusal(
-      absl::ResourceExhaustedError(absl::StrCat(status.message(), " (--max-store-mb)")),
-      kStoreBudgetRefusal);
+  return absl::IsResourceExhausted(status) && absl::StrContains(status.message(), "--max-store-mb")
+             ? MarkRefusal(status, kStoreBudgetRefusal)
+             : status;
 }
 
 }  // namespace

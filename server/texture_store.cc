@@ -91,7 +91,7 @@ size_t TextureStore::size() const {
 }
 
 void TextureStore::SetBudget(uint64_t budget_bytes) {
-  if (shared_) shared_->SetBudget(budget_bytes);
+  if (shared_) shared_->SetBudget(budget_bytes, "--max-store-mb");
   std::lock_guard lock(mutex_);
   budget_bytes_ = budget_bytes;
 }

@@ -181,12 +181,19 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
   return *published;
 }
 
+void SharedStore::SetBudget(uint64_t budget_bytes, std::string setting) const {
+  std::lock_guard lock(budget_mutex_);
+  budget_bytes_ = budget_bytes;
+  budget_setting_ = std::move(setting);
+}
+
 absl::Status SharedStore::CheckFitsBudget(uint64_t payload_bytes) const {
   const uint64_t budget = budget_bytes_.load();
   if (budget == 0 || payload_bytes + kEntryOverheadBytes <= budget) return absl::OkStatus();
-  return absl::ResourceExhaustedError(absl::StrCat("an entry of ", payload_bytes >> 20,
-                                                   " MiB does not fit in the texture store's ",
-                                                   "budget of ", budget >> 20, " MiB"));
+  std::lock_guard lock(budget_mutex_);
+  return absl::ResourceExhaustedError(absl::StrCat(
+      "an entry of ", payload_bytes >> 20, " MiB does not fit in the texture store's budget of ",
+      budget >> 20, " MiB", budget_setting_.empty() ? "" : " (" + budget_setting_ + ")"));
 }
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::Put(

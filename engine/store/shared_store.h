@@ -121,8 +121,9 @@ class SharedStore {
   // forgets its mapping, so the memory goes when its last user does. Entries being built stay.
   StoreTrim Trim(uint64_t budget_bytes) const;
   // With a budget (0: none), each entry this process publishes first trims the store to leave
-  // room for it, and one larger than the budget is refused with ResourceExhausted.
-  void SetBudget(uint64_t budget_bytes) const { budget_bytes_ = budget_bytes; }
+  // room for it, and one larger than the budget is refused with ResourceExhausted; `setting`
+  // names where the budget is set ("--max-store-mb"), for the message.
+  void SetBudget(uint64_t budget_bytes, std::string setting = "") const;
   StoreCounters counters() const;
 
  private:
@@ -152,6 +153,8 @@ class SharedStore {
   mutable std::map<std::string, std::shared_ptr<const StoreEntry>, std::less<>> mapped_;
   mutable std::atomic<uint64_t> attached_{0}, built_{0}, rejected_{0}, evicted_{0};
   mutable std::atomic<uint64_t> budget_bytes_{0};
+  mutable std::mutex budget_mutex_;
+  mutable std::string budget_setting_;  // guarded by budget_mutex_
   mutable std::mutex publish_mutex_;
 };
 

@@ -113,7 +113,7 @@ TEST_F(SharedStoreTest, WithABudgetRoomIsMadeBeforeAnEntryIsWritten) {
 
 TEST_F(SharedStoreTest, AnEntryKnownTooLargeForTheBudgetIsRefusedBeforeItIsBuilt) {
   auto store = OpenStore();
-  store->SetBudget(1 << 20);
+  store->SetBudget(1 << 20, "--max-store-mb");
   int builds = 0;
   auto builder = [&]() -> absl::StatusOr<std::vector<std::byte>> {
     ++builds;
@@ -124,7 +124,7 @@ TEST_F(SharedStoreTest, AnEntryKnownTooLargeForTheBudgetIsRefusedBeforeItIsBuilt
   ASSERT_FALSE(refused.ok());
   EXPECT_TRUE(absl::IsResourceExhausted(refused.status())) << refused.status();
   EXPECT_NE(refused.status().message().find("3072 MiB"), std::string::npos) << refused.status();
-  EXPECT_NE(refused.status().message().find("budget of 1 MiB"), std::string::npos)
+  EXPECT_NE(refused.status().message().find("budget of 1 MiB (--max-store-mb)"), std::string::npos)
       << refused.status();
   EXPECT_EQ(builds, 0);
   EXPECT_EQ(store->TotalBytes(), 0u);  // not even a temporary file
