@@ -6,6 +6,7 @@
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
 #include "cli_usage.h"
+#include "client_flags.h"
 #include "commands.h"
 #include "flag_names.h"
 #include "large_buffers.h"
@@ -32,6 +33,10 @@ int main(int argc, char** argv) {
   aperture::DashedFlagNames dashed(argc, argv);
   std::vector<char*> args = absl::ParseCommandLine(dashed.argc(), dashed.argv());
   const std::string command = args.size() > 1 ? args[1] : "";
+  if (absl::Status flags = aperture::CheckClientFlags(); !flags.ok()) {
+    std::fprintf(stderr, "aperture: error: %s\n", std::string(flags.message()).c_str());
+    return 2;
+  }
   if (command == "batch") {
     if (args.size() != 3) {
       std::fprintf(stderr, "aperture batch: give one JOB.json\n");

@@ -24,6 +24,7 @@
 #include "client_flags.h"
 #include "commands.h"
 #include "contact_sheet.h"
+#include "exit_status.h"
 #include "grpc_status.h"
 #include "request_flags.h"
 #include "scene_upload.h"
@@ -167,12 +168,9 @@ int CheckFrames(const std::string& out_dir, const std::vector<size_t>& frames,
 }  // namespace
 
 int RunBatch(const std::string& job_path) {
-  auto fail = [](const absl::Status& status) {
-    std::fprintf(stderr, "aperture batch: error: %s\n", std::string(status.message()).c_str());
-    return absl::IsInvalidArgument(status) ? 2 : 1;
-  };
+  auto fail = [](const absl::Status& status) { return Fail("batch", status); };
   auto job = ReadBatchJob(job_path);
-  if (!job.ok()) return fail(job.status());
+  if (!job.ok()) return fail(InputError(job.status()));
   auto shard = ParseShard(absl::GetFlag(FLAGS_shard));
   if (!shard.ok()) return fail(shard.status());
   absl::SetFlag(&FLAGS_scene, job->scene);
@@ -192,15 +190,28 @@ int RunBatch(const std::string& job_path) {
 
   std::error_code error;
   fs::create_directories(out_dir, error);
-  if (error) return fail(absl::InternalError(absl::StrCat("cannot create ", out_dir)));
+  if (error)
+    return fail(InputError(absl::InvalidArgumentError(
+        absl::StrCat("-o ", out_dir, ": cannot create the folder: ", error.message()))));
 
   // Every server gets the scene (its textures uploaded when missing); the id is the same on all.
+  // A server that cannot be reached is left out; when none can, the addresses were wrong (or
+  // every server is down): bad input, like a scene file that cannot be read.
   const std::vector<std::string> servers = ResolveServers(absl::GetFlag(FLAGS_servers));
   std::vector<std::string> ready;
+  size_t reached = 0;
   SceneOnServer loaded;
   for (const std::string& server : servers) {
-    auto stub = v1::Render::NewStub(MakeChannel(server));
+    auto channel = ConnectChannel(server);
+    if (!channel.ok()) {
+      std::fprintf(stderr, "aperture batch: %s; not used\n",
+                   std::string(channel.status().message()).c_str());
+      continue;
+    }
+    ++reached;
+    auto stub = v1::Render::NewStub(*channel);
     auto scene = LoadSceneOnServer(*stub, job->scene);
+    if (!scene.ok() && IsInputError(scene.status())) return fail(scene.status());
     if (!scene.ok()) {
       std::fprintf(stderr, "aperture batch: %s: %s; not used\n", server.c_str(),
                    std::string(scene.status().message()).c_str());
@@ -209,6 +220,9 @@ int RunBatch(const std::string& job_path) {
     loaded = *std::move(scene);
     ready.push_back(server);
   }
+  if (reached == 0)
+    return fail(InputError(absl::UnavailableError(
+        absl::StrCat("--servers ", absl::GetFlag(FLAGS_servers), ": no server could be reached"))));
   if (ready.empty()) return fail(absl::UnavailableError("no server could load the scene"));
   auto base = FrameRequestFromFlags(loaded);
   if (!base.ok()) return fail(base.status());
@@ -226,8 +240,9 @@ int RunBatch(const std::string& job_path) {
       "name": [{"service": "aperture.v1.Render", "method": "RenderFrame"}],
       "retryPolicy": {"maxAttempts": 4, "initialBackoff": "0.05s", "maxBackoff": "1s",
                       "backoffMultiplier": 2, "retryableStatusCodes": ["UNAVAILABLE"]}}]})");
-  auto stub =
-      v1::Render::NewStub(MakeChannel(absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), args));
+  auto frames_channel = MakeChannel(absl::StrCat("ipv4:", absl::StrJoin(ready, ",")), args);
+  if (!frames_channel.ok()) return fail(frames_channel.status());
+  auto stub = v1::Render::NewStub(*frames_channel);
 
   const size_t frames = owned.size();
   const uint32_t width = base->options().width(), height = base->options().height();

@@ -1,6 +1,9 @@
 #include "client_flags.h"
 
+#include <cmath>
+
 #include "absl/flags/flag.h"
+#include "absl/strings/str_cat.h"
 
 ABSL_FLAG(std::string, server, "127.0.0.1:50051", "server address HOST:PORT");
 ABSL_FLAG(std::string, tls_ca, "",
@@ -50,3 +53,32 @@ ABSL_FLAG(int, channels, 1,
           "(1..16)");
 ABSL_FLAG(std::string, last_frames, "",
           "sim: write each channel's last rendered frame to DIR/channel-K.exr");
+
+namespace aperture {
+
+absl::Status CheckClientFlags() {
+  auto bad = [](const char* flag, auto value, const char* range) {
+    return absl::InvalidArgumentError(absl::StrCat(flag, " is ", value, "; it must be ", range));
+  };
+  const double deadline = absl::GetFlag(FLAGS_deadline_s);
+  if (!(deadline > 0) || !std::isfinite(deadline))
+    return bad("--deadline-s", deadline, "a positive number of seconds");
+  if (const int n = absl::GetFlag(FLAGS_concurrency); n < 1)
+    return bad("--concurrency", n, "at least 1");
+  if (const int n = absl::GetFlag(FLAGS_repeat); n < 1) return bad("--repeat", n, "at least 1");
+  if (const int n = absl::GetFlag(FLAGS_requests); n < 0)
+    return bad("--requests", n, "0 (run for --duration) or more");
+  const double duration = absl::GetFlag(FLAGS_duration);
+  if (!(duration > 0) || !std::isfinite(duration))
+    return bad("--duration", duration, "a positive number of seconds");
+  const double rate = absl::GetFlag(FLAGS_rate);
+  if (!(rate > 0) || !std::isfinite(rate)) return bad("--rate", rate, "a positive rate in Hz");
+  if (const int n = absl::GetFlag(FLAGS_frames); n < 1) return bad("--frames", n, "at least 1");
+  if (const int n = absl::GetFlag(FLAGS_channels); n < 1 || n > 16)
+    return bad("--channels", n, "in 1..16");
+  if (const int n = absl::GetFlag(FLAGS_split); n < 0)
+    return bad("--split", n, "0 (one server) or more");
+  return absl::OkStatus();
+}
+
+}  // namespace aperture

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "absl/flags/declare.h"
+#include "absl/status/status.h"
 #include "frame_flags.h"  // the frame flags aperture-render shares
 
 ABSL_DECLARE_FLAG(std::string, server);
@@ -29,3 +30,11 @@ ABSL_DECLARE_FLAG(int, frames);
 ABSL_DECLARE_FLAG(std::string, path);
 ABSL_DECLARE_FLAG(int, channels);
 ABSL_DECLARE_FLAG(std::string, last_frames);
+
+namespace aperture {
+
+// The numeric flags within their ranges (--deadline-s > 0, --concurrency >= 1, ...), whichever
+// command runs: INVALID_ARGUMENT naming the flag and its value.
+absl::Status CheckClientFlags();
+
+}  // namespace aperture

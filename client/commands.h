@@ -1,5 +1,5 @@
-// The commands of `aperture`. Each returns the process exit status: 0 success, 1 the server said
-// no (or is not serving), 2 bad usage or input.
+// The commands of `aperture`. Each returns the process exit status (exit_status.h): 0 success, 1
+// the server said no (or is not serving), 2 bad usage or input.
 #pragma once
 
 #include <string>

@@ -1,17 +1,27 @@
+#include <algorithm>
 #include <cstdio>
 
 #include "absl/flags/flag.h"
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
+#include "exit_status.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 
 namespace aperture {
 
 int RunHealth() {
-  auto stub = grpc::health::v1::Health::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
+  // A probe's answer: a server that cannot be reached is not healthy (1, as Docker's HEALTHCHECK
+  // and other probes read it; they reserve 2); a flag or file that cannot be used is bad input.
+  const double timeout_s = std::min(absl::GetFlag(FLAGS_deadline_s), 5.0);
+  auto channel = ConnectChannel(absl::GetFlag(FLAGS_server), timeout_s);
+  if (!channel.ok()) {
+    Fail("health", channel.status());
+    return absl::IsUnavailable(channel.status()) ? 1 : 2;
+  }
+  auto stub = grpc::health::v1::Health::NewStub(*channel);
   grpc::ClientContext context;
-  context.set_deadline(DeadlineIn(std::min(absl::GetFlag(FLAGS_deadline_s), 5.0)));
+  context.set_deadline(DeadlineIn(timeout_s));
   grpc::health::v1::HealthCheckRequest request;
   grpc::health::v1::HealthCheckResponse response;
   const grpc::Status status = stub->Check(&context, request, &response);

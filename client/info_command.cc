@@ -1,5 +1,6 @@
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "absl/flags/flag.h"
@@ -7,20 +8,22 @@
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
+#include "exit_status.h"
 #include "grpc_status.h"
 
 namespace aperture {
 
 int RunInfo() {
-  auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
+  auto channel = ConnectChannel(absl::GetFlag(FLAGS_server));
+  if (!channel.ok()) return Fail("info", channel.status());
+  auto stub = v1::Render::NewStub(*channel);
   grpc::ClientContext context;
-  context.set_deadline(DeadlineIn(10));
+  context.set_deadline(DeadlineIn(std::min(absl::GetFlag(FLAGS_deadline_s), 10.0)));
   v1::GetServerInfoResponse response;
-  const grpc::Status status = stub->GetServerInfo(&context, {}, &response);
-  if (!status.ok()) {
-    std::fprintf(stderr, "aperture info: %s\n", status.error_message().c_str());
-    return 1;
-  }
+  if (absl::Status status =
+          FromGrpcStatus(stub->GetServerInfo(&context, {}, &response), "GetServerInfo");
+      !status.ok())
+    return Fail("info", status);
   std::string json;
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;

@@ -12,6 +12,7 @@
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
+#include "exit_status.h"
 #include "latency_stats.h"
 #include "report_json.h"
 #include "request_flags.h"
@@ -21,16 +22,14 @@ namespace aperture {
 
 int RunLoad() {
   using Clock = std::chrono::steady_clock;
-  auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
+  auto channel = ConnectChannel(absl::GetFlag(FLAGS_server));
+  if (!channel.ok()) return Fail("load", channel.status());
+  auto stub = v1::Render::NewStub(*channel);
   auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
-  auto request = scene.ok() ? FrameRequestFromFlags(*scene)
-                            : absl::StatusOr<v1::RenderFrameRequest>(scene.status());
-  if (!request.ok()) {
-    std::fprintf(stderr, "aperture load: error: %s\n",
-                 std::string(request.status().message()).c_str());
-    return absl::IsInvalidArgument(request.status()) ? 2 : 1;
-  }
-  const int concurrency = std::max(1, absl::GetFlag(FLAGS_concurrency));
+  if (!scene.ok()) return Fail("load", scene.status());
+  auto request = FrameRequestFromFlags(*scene);
+  if (!request.ok()) return Fail("load", request.status());
+  const int concurrency = absl::GetFlag(FLAGS_concurrency);
   const int total = absl::GetFlag(FLAGS_requests);
   const auto start = Clock::now();
   const auto end =

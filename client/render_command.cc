@@ -7,6 +7,7 @@
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
+#include "exit_status.h"
 #include "grpc_status.h"
 #include "request_flags.h"
 #include "scene_upload.h"
@@ -14,12 +15,11 @@
 namespace aperture {
 
 int RunRender() {
-  auto fail = [](const absl::Status& status) {
-    std::fprintf(stderr, "aperture render: error: %s\n", std::string(status.message()).c_str());
-    return absl::IsInvalidArgument(status) ? 2 : 1;
-  };
+  auto fail = [](const absl::Status& status) { return Fail("render", status); };
   if (absl::GetFlag(FLAGS_split) != 0) return RunSplitRender();
-  auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
+  auto channel = ConnectChannel(absl::GetFlag(FLAGS_server));
+  if (!channel.ok()) return fail(channel.status());
+  auto stub = v1::Render::NewStub(*channel);
   auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
   if (!scene.ok()) return fail(scene.status());
   auto request = FrameRequestFromFlags(*scene);

@@ -2,7 +2,9 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "channel.h"
 #include "client_flags.h"
+#include "exit_status.h"
 #include "gltf_import.h"
 #include "grpc_status.h"
 #include "texture_upload.h"
@@ -21,7 +24,8 @@ namespace {
 
 absl::StatusOr<std::string> ReadFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return absl::NotFoundError(absl::StrCat("cannot read ", path));
+  if (!in)
+    return absl::NotFoundError(absl::StrCat("cannot read ", path, ": ", std::strerror(errno)));
   std::ostringstream content;
   content << in.rdbuf();
   return std::move(content).str();
@@ -113,17 +117,18 @@ absl::StatusOr<SceneOnServer> LoadSceneOnServer(v1::Render::Stub& stub,
     request.set_builtin_scene(scene_argument);  // the server builds it
     return Load(stub, request, result);
   }
+  // What the scene file, its textures and models say is the command's input: bad, it exits 2.
   auto scene = ReadScene(scene_argument, &result.model_cameras);
-  if (!scene.ok()) return scene.status();
+  if (!scene.ok()) return InputError(scene.status());
   const std::filesystem::path base = std::filesystem::path(scene_argument).parent_path();
   for (int i = 0; i < scene->textures_size(); ++i) {
     v1::Texture& texture = *scene->mutable_textures(i);
     std::string bytes;
     if (texture.source_case() == v1::Texture::kFile) {
       auto path = TexturePath(scene_argument, i, texture, absl::GetFlag(FLAGS_allow_any_path));
-      if (!path.ok()) return path.status();
+      if (!path.ok()) return InputError(path.status());
       auto read = ReadFile(path->string());
-      if (!read.ok()) return read.status();
+      if (!read.ok()) return InputError(read.status());
       bytes = *std::move(read);
     } else if (texture.source_case() == v1::Texture::kEncoded) {
       bytes = texture.encoded();

@@ -12,6 +12,7 @@
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
+#include "exit_status.h"
 #include "latency_stats.h"
 #include "report_json.h"
 #include "request_flags.h"
@@ -166,14 +167,12 @@ absl::Status WriteLastFrames(const std::vector<ChannelReport>& reports, const st
 }  // namespace
 
 int RunSim() {
-  auto fail = [](const absl::Status& status) {
-    std::fprintf(stderr, "aperture sim: error: %s\n", std::string(status.message()).c_str());
-    return absl::IsInvalidArgument(status) ? 2 : 1;
-  };
-  const double rate = absl::GetFlag(FLAGS_rate);
-  if (!(rate > 0)) return fail(absl::InvalidArgumentError("--rate must be > 0"));
+  auto fail = [](const absl::Status& status) { return Fail("sim", status); };
+  const double rate = absl::GetFlag(FLAGS_rate);  // > 0 (CheckClientFlags)
   const int channels = absl::GetFlag(FLAGS_channels);
-  auto stub = v1::Render::NewStub(MakeChannel(absl::GetFlag(FLAGS_server)));
+  auto channel = ConnectChannel(absl::GetFlag(FLAGS_server));
+  if (!channel.ok()) return fail(channel.status());
+  auto stub = v1::Render::NewStub(*channel);
   auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
   if (!scene.ok()) return fail(scene.status());
   auto base = FrameRequestFromFlags(*scene);

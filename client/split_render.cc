@@ -18,6 +18,7 @@
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
+#include "exit_status.h"
 #include "grpc_status.h"
 #include "request_flags.h"
 #include "scene_upload.h"
@@ -76,21 +77,21 @@ absl::StatusOr<OIIO::ImageBuf> ReadRegion(const RegionResult& r, const v1::Rende
 }  // namespace
 
 int RunSplitRender() {
-  auto fail = [](const absl::Status& status) {
-    std::fprintf(stderr, "aperture render --split: error: %s\n",
-                 std::string(status.message()).c_str());
-    return absl::IsInvalidArgument(status) ? 2 : 1;
-  };
+  auto fail = [](const absl::Status& status) { return Fail("render --split", status); };
   const int k = absl::GetFlag(FLAGS_split);
   std::vector<Server> servers;
   const std::vector<std::string> addresses =
       absl::StrSplit(absl::GetFlag(FLAGS_servers), ',', absl::SkipEmpty());
   for (const std::string& address : addresses) {
-    Server server{address, v1::Render::NewStub(MakeChannel(address)), {}};
+    auto channel = ConnectChannel(address);
+    if (!channel.ok()) return fail(channel.status());
+    Server server{address, v1::Render::NewStub(*channel), {}};
     auto scene = LoadSceneOnServer(*server.stub, absl::GetFlag(FLAGS_scene));
-    if (!scene.ok())
-      return fail(absl::Status(scene.status().code(),
-                               absl::StrCat(address, ": ", scene.status().message())));
+    if (!scene.ok()) {
+      absl::Status named(scene.status().code(),
+                         absl::StrCat(address, ": ", scene.status().message()));
+      return fail(IsInputError(scene.status()) ? InputError(named) : named);
+    }
     server.scene = *std::move(scene);
     servers.push_back(std::move(server));
   }

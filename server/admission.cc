@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
+#include "refusal_log.h"
 
 namespace aperture {
 
@@ -19,9 +20,10 @@ absl::StatusOr<AdmissionControl::Ticket> AdmissionControl::Enter(
   }
   if (static_cast<int>(waiting_.size()) >= max_queue_) {
     ++rejected_;
-    return absl::ResourceExhaustedError(
-        absl::StrCat("server busy: ", running_, " frames rendering and ", waiting_.size(),
-                     " waiting (--max-queue ", max_queue_, "); retry later"));
+    return MarkRefusal(absl::ResourceExhaustedError(absl::StrCat(
+                           "server busy: ", running_, " frames rendering and ", waiting_.size(),
+                           " waiting (--max-queue ", max_queue_, "); retry later")),
+                       kQueueFullRefusal);
   }
   const uint64_t number = next_number_++;
   waiting_.insert(number);

@@ -1,6 +1,7 @@
 #include "byte_budget.h"
 
 #include "absl/strings/str_cat.h"
+#include "refusal_log.h"
 
 namespace aperture {
 namespace {
@@ -28,14 +29,17 @@ void ByteReservation::Release() {
 
 absl::StatusOr<ByteReservation> ByteBudget::Reserve(uint64_t bytes) {
   std::lock_guard<std::mutex> lock(mutex_);
+  const std::string kind = absl::StrCat("over the budget of ", what_);
   if (bytes > limit_)
-    return absl::ResourceExhaustedError(absl::StrCat("this request alone needs ", MiB(bytes),
-                                                     ", above the budget of ", what_, ", ",
-                                                     MiB(limit_)));
+    return MarkRefusal(absl::ResourceExhaustedError(
+                           absl::StrCat("this request alone needs ", MiB(bytes),
+                                        ", above the budget of ", what_, ", ", MiB(limit_))),
+                       kind);
   if (used_ + bytes > limit_)
-    return absl::ResourceExhaustedError(absl::StrCat(what_, ": ", MiB(used_), " of ", MiB(limit_),
-                                                     " in use, ", MiB(bytes),
-                                                     " more do not fit; try again later"));
+    return MarkRefusal(absl::ResourceExhaustedError(
+                           absl::StrCat(what_, ": ", MiB(used_), " of ", MiB(limit_), " in use, ",
+                                        MiB(bytes), " more do not fit; try again later")),
+                       kind);
   used_ += bytes;
   return ByteReservation(this, bytes);
 }

@@ -2,6 +2,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "scene/scene_update.h"
+#include "scene_id.h"
 
 namespace aperture {
 namespace {
@@ -12,6 +13,7 @@ constexpr size_t kQuotedIdChars = 64;
 }  // namespace
 
 absl::StatusOr<std::shared_ptr<const Scene>> LiveScene::Stored(const std::string& id) const {
+  if (absl::Status form = CheckSceneId(id); !form.ok()) return form;
   std::shared_ptr<const Scene> scene = scenes_.Find(id);
   if (!scene)
     return absl::NotFoundError(absl::StrCat("scene_id '", id.substr(0, kQuotedIdChars),

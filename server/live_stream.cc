@@ -3,6 +3,8 @@
 #include <thread>
 #include <utility>
 
+#include "scene/scene_update.h"
+#include "status_mapping.h"
 #include "stop_check.h"
 
 namespace aperture {
@@ -177,7 +179,7 @@ void LiveStream::WriteAnswers() {
       response.Clear();
       response.set_frame_index(answer->frame_index);
       response.set_status_code(static_cast<int>(answer->status.code()));
-      response.set_status_message(std::string(answer->status.message()));
+      response.set_status_message(StatusMessageForClient(answer->status.message()));
     }
     const bool written = !context_->IsCancelled() && stream_->Write(response);
     ++counts_.frames;

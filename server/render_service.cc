@@ -1,16 +1,19 @@
 #include "render_service.h"
 
 #include <malloc.h>
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include <string>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
 #include "frame_request.h"
 #include "log_text.h"
 #include "region_plan_request.h"
 #include "render/frame_renderer.h"
+#include "scene_id.h"
 #include "scene_request.h"
 #include "status_mapping.h"
 #include "stop_check.h"
@@ -32,6 +35,18 @@ const char* ModeName(const v1::RenderOptions& options) {
   return options.mode() == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster";
 }
 
+std::string ErrorText(const absl::Status& status) {
+  return status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'");
+}
+
+// A raytraced frame whose summed-area tables the store's budget refused (the engine's message
+// names the tables' size, the budget and its flag), counted as such in the refusal log.
+absl::Status StoreBudgetRefusal(const absl::Status& status) {
+  return absl::IsResourceExhausted(status) && absl::StrContains(status.message(), "--max-store-mb")
+             ? MarkRefusal(status, kStoreBudgetRefusal)
+             : status;
+}
+
 }  // namespace
 
 RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures,
@@ -46,14 +61,30 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
       traced_(kTracedScenes, textures.shared()),
       uploads_in_flight_("uploads in flight (--max-upload-inflight-mb)",
                          limits.max_upload_inflight_bytes),
-      upload_watchdog_(limits.upload_idle) {}
+      upload_watchdog_(limits.upload_idle),
+      refusals_([](const std::string& line) { spdlog::info("{}", line); }),
+      auth_refusals_([](const std::string& line) { spdlog::warn("{}", line); }) {
+  refusals_.StartFlushing();
+  auth_refusals_.StartFlushing();
+}
+
+void RenderService::LogAnswer(const absl::Status& status, absl::string_view thing,
+                              std::string line) {
+  if (absl::IsResourceExhausted(status)) {
+    // A client that retries at once must not get a line per attempt.
+    refusals_.Refused(RefusalKind(status).value_or("resource exhausted"), thing, std::move(line));
+    return;
+  }
+  spdlog::info("{}", line);
+}
 
 absl::Status RenderService::Authorize(const grpc::ServerContext& context, const char* rpc) {
   if (auth_ == nullptr) return absl::OkStatus();
   absl::Status status = auth_->Check(context);
   if (!status.ok())
-    spdlog::warn("rpc={} peer={} status=UNAUTHENTICATED error='{}'", rpc, context.peer(),
-                 LogText(status.message()));
+    auth_refusals_.Refused("unauthenticated", "call",
+                           fmt::format("rpc={} peer={} status=UNAUTHENTICATED error='{}'", rpc,
+                                       context.peer(), LogText(status.message())));
   return status;
 }
 
@@ -75,12 +106,12 @@ grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
   auto finish = [&](const absl::Status& status, const std::string& sha256, bool skipped) {
-    spdlog::info(
-        "req={} rpc=UploadTexture peer={} sha256={} bytes={} skipped={} ms={:.2f} "
-        "status={}{}",
-        id, context->peer(), LogText(Short(sha256)), response->size(), skipped,
-        MillisecondsSince(start), absl::StatusCodeToString(status.code()),
-        status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'"));
+    LogAnswer(status, "upload",
+              fmt::format("req={} rpc=UploadTexture peer={} sha256={} bytes={} skipped={} "
+                          "ms={:.2f} status={}{}",
+                          id, context->peer(), LogText(Short(sha256)), response->size(), skipped,
+                          MillisecondsSince(start), absl::StatusCodeToString(status.code()),
+                          ErrorText(status)));
     return ToGrpcStatus(status);
   };
   v1::UploadTextureRequest message;
@@ -155,10 +186,11 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
   ByteReservation room;  // the scene's estimated bytes in the loaded scenes' budget
   auto admit = [&](const SceneMemory& memory) -> absl::Status {
     if (textures_.shared() && memory.table_bytes > limits_.max_store_bytes)
-      return absl::ResourceExhaustedError(
-          absl::StrCat("the scene's seed 000 tables would take ", memory.table_bytes >> 20,
-                       " MiB of the texture store, above its budget of ",
-                       limits_.max_store_bytes >> 20, " MiB (--max-store-mb)"));
+      return MarkRefusal(absl::ResourceExhaustedError(absl::StrCat(
+                             "the scene's seed 000 tables would take ", memory.table_bytes >> 20,
+                             " MiB of the texture store, above its budget of ",
+                             limits_.max_store_bytes >> 20, " MiB (--max-store-mb)")),
+                         kStoreBudgetRefusal);
     auto reserved = scenes_.Reserve(memory.total(), memory.ToString());
     if (!reserved.ok()) return reserved.status();
     room = *std::move(reserved);
@@ -185,13 +217,15 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
       named.set_hidden(!object.visible);
     }
   }
-  spdlog::info(
-      "req={} rpc=LoadScene peer={} scene={}{} name='{}' ms={:.2f} status={}{}", id,
-      context->peer(), loaded.ok() ? Short(loaded->id) : "-", reused ? " (loaded before)" : "",
-      LogText(request->builtin_scene().empty() ? request->scene().name()
-                                               : "builtin:" + request->builtin_scene()),
-      MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),
-      loaded.ok() ? "" : absl::StrCat(" error='", LogText(loaded.status().message()), "'"));
+  LogAnswer(
+      loaded.status(), "scene load",
+      fmt::format("req={} rpc=LoadScene peer={} scene={}{} name='{}' ms={:.2f} status={}{}", id,
+                  context->peer(), loaded.ok() ? Short(loaded->id) : "-",
+                  reused ? " (loaded before)" : "",
+                  LogText(request->builtin_scene().empty() ? request->scene().name()
+                                                           : "builtin:" + request->builtin_scene()),
+                  MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),
+                  ErrorText(loaded.status())));
   return ToGrpcStatus(loaded.status());
 }
 
@@ -253,7 +287,7 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
         traced = traced_.Get(request.scene_id(), scene, &traced_build_ms, [&] { return stop(); });
       }
       if (!traced.ok()) {
-        *frame = traced.status();
+        *frame = StoreBudgetRefusal(traced.status());
         return;
       }
       *frame = (*traced)->Render(job->camera, job->settings, job->mode.trace, nullptr,
@@ -309,15 +343,15 @@ grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
   absl::Status status = RenderOne(context, *request, response);
   (status.ok() ? frames_rendered_ : frames_failed_)++;
   const v1::FrameTimings& t = response->timings();
-  spdlog::info(
-      "req={} rpc=RenderFrame peer={} scene={} size={}x{} mode={} queue_ms={:.2f} "
-      "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
-      "status={}{}",
-      id, context->peer(), LogText(Short(request->scene_id())), request->options().width(),
-      request->options().height(), ModeName(request->options()), t.queue_ms(), t.setup_ms(),
-      t.raster_ms(), t.encode_ms(), MillisecondsSince(start), response->exr().size(),
-      absl::StatusCodeToString(status.code()),
-      status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'"));
+  LogAnswer(status, "frame",
+            fmt::format("req={} rpc=RenderFrame peer={} scene={} size={}x{} mode={} "
+                        "queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} "
+                        "total_ms={:.2f} bytes={} status={}{}",
+                        id, context->peer(), LogText(Short(request->scene_id())),
+                        request->options().width(), request->options().height(),
+                        ModeName(request->options()), t.queue_ms(), t.setup_ms(), t.raster_ms(),
+                        t.encode_ms(), MillisecondsSince(start), response->exr().size(),
+                        absl::StatusCodeToString(status.code()), ErrorText(status)));
   if (!status.ok()) response->Clear();
   return ToGrpcStatus(status);
 }
@@ -352,16 +386,17 @@ grpc::Status RenderService::RenderStream(
       return;
     }
     (answer.status.ok() ? frames_rendered_ : frames_failed_)++;
-    spdlog::info(
-        "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} update_ms={:.3f} queue_ms={:.2f} "
-        "setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
-        "status={}{}",
-        id, answer.frame_index, LogText(Short(request.scene_id)), request.width, request.height,
-        request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster", t.update_ms(),
-        t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
-        MillisecondsSince(answer.received), response.exr().size(),
-        absl::StatusCodeToString(answer.status.code()),
-        answer.status.ok() ? "" : absl::StrCat(" error='", LogText(answer.status.message()), "'"));
+    LogAnswer(answer.status, "frame",
+              fmt::format("req={}.{} rpc=RenderStream scene={} size={}x{} mode={} "
+                          "update_ms={:.3f} queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} "
+                          "encode_ms={:.2f} total_ms={:.2f} bytes={} status={}{}",
+                          id, answer.frame_index, LogText(Short(request.scene_id)),
+                          request.width, request.height,
+                          request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster",
+                          t.update_ms(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
+                          MillisecondsSince(answer.received), response.exr().size(),
+                          absl::StatusCodeToString(answer.status.code()),
+                          ErrorText(answer.status)));
   };
   const LiveStreamCounts counts = LiveStream(context, stream, check, render, answered).Run();
   // What the stream's threads allocated (requests, answers, frames) glibc keeps in its arenas
@@ -383,17 +418,18 @@ grpc::Status RenderService::PlanRegions(grpc::ServerContext* context,
   if (absl::Status auth = Authorize(*context, "PlanRegions"); !auth.ok()) return ToGrpcStatus(auth);
   const uint64_t id = next_request_id_++;
   const auto start = Clock::now();
-  std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
-  const absl::Status status =
-      scene ? PlanRegionsForRequest(*scene, *request, limits_.max_pixels, response)
-            : absl::NotFoundError(absl::StrCat("scene_id '", request->scene_id(),
-                                               "' is not loaded (LoadScene first)"));
+  absl::Status status = CheckSceneId(request->scene_id());
+  if (status.ok()) {
+    std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
+    status = scene ? PlanRegionsForRequest(*scene, *request, limits_.max_pixels, response)
+                   : absl::NotFoundError(absl::StrCat("scene_id '", request->scene_id(),
+                                                      "' is not loaded (LoadScene first)"));
+  }
   spdlog::info(
       "req={} rpc=PlanRegions peer={} scene={} size={}x{} regions={} ms={:.2f} status={}{}", id,
       context->peer(), LogText(Short(request->scene_id())), request->options().width(),
       request->options().height(), request->regions(), MillisecondsSince(start),
-      absl::StatusCodeToString(status.code()),
-      status.ok() ? "" : absl::StrCat(" error='", LogText(status.message()), "'"));
+      absl::StatusCodeToString(status.code()), ErrorText(status));
   if (!status.ok()) response->Clear();
   return ToGrpcStatus(status);
 }

@@ -1,5 +1,6 @@
 // The aperture.v1.Render service: validates each request, hands it to the engine, maps the
-// engine's absl::Status to a gRPC status, and logs one line per request.
+// engine's absl::Status to a gRPC status, and logs one line per request; refused requests
+// (RESOURCE_EXHAUSTED, UNAUTHENTICATED) at most a line a second per kind of refusal, with counts.
 #pragma once
 
 #include <tbb/task_arena.h>
@@ -15,6 +16,7 @@
 #include "idle_watchdog.h"
 #include "live_scene.h"
 #include "live_stream.h"
+#include "refusal_log.h"
 #include "scene/scene_builder.h"
 #include "scene_store.h"
 #include "texture_store.h"
@@ -74,6 +76,9 @@ class RenderService final : public v1::Render::Service {
 
   // OK, or UNAUTHENTICATED (logged with the peer, never the token) when tokens are required.
   absl::Status Authorize(const grpc::ServerContext& context, const char* rpc);
+  // A request's log line: a refusal (RESOURCE_EXHAUSTED) of a `thing` ("frame") goes to the
+  // refusal log, counted by its kind; anything else is written at once.
+  void LogAnswer(const absl::Status& status, absl::string_view thing, std::string line);
 
   const ServiceLimits limits_;
   const AuthTokens* const auth_;
@@ -89,6 +94,8 @@ class RenderService final : public v1::Render::Service {
   TracedSceneCache traced_;
   ByteBudget uploads_in_flight_;
   IdleWatchdog upload_watchdog_;
+  RefusalLog refusals_;       // RESOURCE_EXHAUSTED, at info level
+  RefusalLog auth_refusals_;  // UNAUTHENTICATED, at warn level
 };
 
 }  // namespace aperture

@@ -1,6 +1,7 @@
 #include "scene_store.h"
 
 #include "absl/strings/str_cat.h"
+#include "refusal_log.h"
 
 namespace aperture {
 
@@ -23,8 +24,9 @@ absl::StatusOr<ByteReservation> SceneStore::Reserve(uint64_t bytes, const std::s
     auto room = budget_.Reserve(bytes);
     if (room.ok()) return room;
     if (bytes > budget_.limit() || !EvictOne())
-      return absl::ResourceExhaustedError(
-          absl::StrCat("the scene would hold about ", what, ": ", room.status().message()));
+      return MarkRefusal(absl::ResourceExhaustedError(absl::StrCat(
+                             "the scene would hold about ", what, ": ", room.status().message())),
+                         RefusalKind(room.status()).value_or("over the loaded scenes' budget"));
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
+#include "refusal_log.h"
 #include "scene/encoded_texture.h"
 
 namespace aperture {
@@ -33,9 +34,11 @@ absl::Status TextureStore::Put(const std::string& sha256, std::string bytes) {
   if (shared_) {
     // Published whole or not at all (engine/store): a crash mid-upload leaves nothing usable.
     auto entry = shared_->Put(KeyOf(sha256), EntryKind::kBlob, std::as_bytes(std::span(bytes)));
-    if (!entry.ok())
-      return absl::Status(entry.status().code(),
+    if (!entry.ok()) {
+      absl::Status status(entry.status().code(),
                           absl::StrCat("texture store: ", entry.status().message()));
+      return absl::IsResourceExhausted(status) ? MarkRefusal(status, kStoreBudgetRefusal) : status;
+    }
   }
   if (shared_) {
     std::lock_guard lock(mutex_);
@@ -44,11 +47,10 @@ absl::Status TextureStore::Put(const std::string& sha256, std::string bytes) {
   }
   const uint64_t size = bytes.size();
   if (budget_bytes_ > 0 && size > budget_bytes_)
-    return absl::ResourceExhaustedError(
-        absl::StrCat("an upload of ", size >> 20,
-                     " MiB does not fit in the texture store's budget "
-                     "of ",
-                     budget_bytes_ >> 20, " MiB (--max-store-mb)"));
+    return MarkRefusal(absl::ResourceExhaustedError(absl::StrCat(
+                           "an upload of ", size >> 20, " MiB does not fit in the texture store's ",
+                           "budget of ", budget_bytes_ >> 20, " MiB (--max-store-mb)")),
+                       kStoreBudgetRefusal);
   if (budget_bytes_ > 0) Trim(budget_bytes_ - size);  // room first
   std::lock_guard lock(mutex_);
   textures_[sha256] = {std::make_shared<const std::string>(std::move(bytes)), ++clock_};
@@ -89,7 +91,7 @@ size_t TextureStore::size() const {
 }
 
 void TextureStore::SetBudget(uint64_t budget_bytes) {
-  if (shared_) shared_->SetBudget(budget_bytes);
+  if (shared_) shared_->SetBudget(budget_bytes, "--max-store-mb");
   std::lock_guard lock(mutex_);
   budget_bytes_ = budget_bytes;
 }

@@ -371,9 +371,10 @@ absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
     auto entry = GetOrBuildSummedAreaTables(*store, *t.pyramid, channels);
     auto views = entry.ok() ? ViewSummedAreaLevels((*entry)->payload()) : entry.status();
     if (!views.ok())
-      return absl::Status(
-          views.status().code(),
-          absl::StrCat("summed-area tables of texture '", t.id, "': ", views.status().message()));
+      return absl::Status(views.status().code(),
+                          absl::StrCat("summed-area tables of texture '", t.id, "' (", base.width(),
+                                       " x ", base.height(), " texels, ", channels,
+                                       " channels): ", views.status().message()));
     ts->entries_.push_back(*std::move(entry));
     for (auto& table : *views) ts->tables_[i].push_back(std::move(table));
   }

@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 
 constexpr char kEntrySuffix[] = ".entry";
 constexpr char kTemporaryInfix[] = ".entry.tmp.";
+constexpr uint64_t kEntryOverheadBytes = 4096;  // an entry's header and alignment
 
 }  // namespace
 
@@ -130,7 +131,8 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::AttachValid(
 }
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
-    const std::string& key, EntryKind kind, const Builder& build, const Validator& validate) const {
+    const std::string& key, EntryKind kind, const Builder& build, const Validator& validate,
+    uint64_t payload_bytes) const {
   auto entry = AttachValid(key, kind, validate);
   if (entry.ok() || (!absl::IsNotFound(entry.status()) && !absl::IsDataLoss(entry.status())))
     return entry;
@@ -147,6 +149,8 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
     unlink(path.c_str());
   }
   SweepTemporaries(key);
+  if (payload_bytes > 0)
+    if (absl::Status fits = CheckFitsBudget(payload_bytes); !fits.ok()) return fits;
 
   auto writer = EntryWriter::Begin(absl::StrCat(path, ".tmp.", getpid()), key, kind);
   if (!writer.ok()) return writer.status();
@@ -160,14 +164,9 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
     // Room first: within this process, trim and publish one entry at a time, so the store's
     // files never exceed the budget (other processes sharing the directory trim for themselves).
     std::lock_guard publishing(publish_mutex_);
-    if (const uint64_t budget = budget_bytes_.load(); budget > 0) {
-      const uint64_t bytes = payload->size() + 4096;  // the entry's header and alignment
-      if (bytes > budget)
-        return absl::ResourceExhaustedError(absl::StrCat(
-            "an entry of ", payload->size() >> 20, " MiB does not fit in the texture store's ",
-            "budget of ", budget >> 20, " MiB"));
-      Trim(budget - bytes);
-    }
+    if (absl::Status fits = CheckFitsBudget(payload->size()); !fits.ok()) return fits;
+    if (const uint64_t budget = budget_bytes_.load(); budget > 0)
+      Trim(budget - (payload->size() + kEntryOverheadBytes));
     if (auto status = writer->Publish(*payload, static_cast<uint64_t>(micros), path); !status.ok())
       return status;
   }
@@ -180,6 +179,21 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::GetOrBuild(
   if (validate)
     if (absl::Status valid = validate((*published)->payload()); !valid.ok()) return valid;
   return *published;
+}
+
+void SharedStore::SetBudget(uint64_t budget_bytes, std::string setting) const {
+  std::lock_guard lock(budget_mutex_);
+  budget_bytes_ = budget_bytes;
+  budget_setting_ = std::move(setting);
+}
+
+absl::Status SharedStore::CheckFitsBudget(uint64_t payload_bytes) const {
+  const uint64_t budget = budget_bytes_.load();
+  if (budget == 0 || payload_bytes + kEntryOverheadBytes <= budget) return absl::OkStatus();
+  std::lock_guard lock(budget_mutex_);
+  return absl::ResourceExhaustedError(absl::StrCat(
+      "an entry of ", payload_bytes >> 20, " MiB does not fit in the texture store's budget of ",
+      budget >> 20, " MiB", budget_setting_.empty() ? "" : " (" + budget_setting_ + ")"));
 }
 
 absl::StatusOr<std::shared_ptr<const StoreEntry>> SharedStore::Put(

@@ -98,9 +98,13 @@ class SharedStore {
   // `validate` (when given) refuses is unusable too: it is counted as rejected, deleted and
   // rebuilt (processes that have it mapped keep their pages). Every entry returned has passed
   // `validate`; one this call built and `validate` refuses is returned as validate's error.
-  absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuild(
-      const std::string& key, EntryKind kind, const Builder& build,
-      const Validator& validate = nullptr) const;
+  // `payload_bytes`, when the payload's size is known before building (0: not known): an entry
+  // that cannot fit the budget is refused (ResourceExhausted naming both sizes) before `build`
+  // runs, so a table of gigabytes is not built only to be thrown away.
+  absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuild(const std::string& key,
+                                                               EntryKind kind, const Builder& build,
+                                                               const Validator& validate = nullptr,
+                                                               uint64_t payload_bytes = 0) const;
 
   // Publishes `payload` unless a usable entry exists already.
   absl::StatusOr<std::shared_ptr<const StoreEntry>> Put(const std::string& key, EntryKind kind,
@@ -117,11 +121,14 @@ class SharedStore {
   // forgets its mapping, so the memory goes when its last user does. Entries being built stay.
   StoreTrim Trim(uint64_t budget_bytes) const;
   // With a budget (0: none), each entry this process publishes first trims the store to leave
-  // room for it, and one larger than the budget is refused with ResourceExhausted.
-  void SetBudget(uint64_t budget_bytes) const { budget_bytes_ = budget_bytes; }
+  // room for it, and one larger than the budget is refused with ResourceExhausted; `setting`
+  // names where the budget is set ("--max-store-mb"), for the message.
+  void SetBudget(uint64_t budget_bytes, std::string setting = "") const;
   StoreCounters counters() const;
 
  private:
+  // ResourceExhausted when an entry of `payload_bytes` cannot fit the budget.
+  absl::Status CheckFitsBudget(uint64_t payload_bytes) const;
   explicit SharedStore(std::string directory) : directory_(std::move(directory)) {}
 
   std::string EntryPath(const std::string& key) const;
@@ -146,6 +153,8 @@ class SharedStore {
   mutable std::map<std::string, std::shared_ptr<const StoreEntry>, std::less<>> mapped_;
   mutable std::atomic<uint64_t> attached_{0}, built_{0}, rejected_{0}, evicted_{0};
   mutable std::atomic<uint64_t> budget_bytes_{0};
+  mutable std::mutex budget_mutex_;
+  mutable std::string budget_setting_;  // guarded by budget_mutex_
   mutable std::mutex publish_mutex_;
 };
 

@@ -23,6 +23,28 @@ constexpr int kMaxLevels = 32;
 
 size_t RoundUp8(size_t n) { return (n + 7) & ~size_t{7}; }
 
+// Where each level's block lies in the levels block (offset, size per level), and its total size:
+// known from the levels' sizes alone, before any table is built.
+struct LevelsLayout {
+  std::vector<uint64_t> index;
+  size_t total = 0;
+};
+
+LevelsLayout LayOut(const MipPyramid& pyramid, int channels) {
+  LevelsLayout layout;
+  const int levels = SummedAreaLevelCount(pyramid);
+  size_t offset = RoundUp8(sizeof(LevelsHeader) + 2 * sizeof(uint64_t) * levels);
+  for (int l = 0; l < levels; ++l) {
+    const Image& level = pyramid.level(l);
+    const size_t bytes = SummedAreaTable::BlockBytes(level.width(), level.height(), channels);
+    layout.index.push_back(offset);
+    layout.index.push_back(bytes);
+    offset = RoundUp8(offset + bytes);
+  }
+  layout.total = offset;
+  return layout;
+}
+
 }  // namespace
 
 int SummedAreaLevelCount(const MipPyramid& pyramid) {
@@ -42,27 +64,22 @@ std::vector<std::unique_ptr<SummedAreaTable>> BuildSummedAreaLevels(const MipPyr
 }
 
 std::vector<std::byte> SummedAreaLevelsToBytes(const MipPyramid& pyramid, int channels) {
-  std::vector<std::vector<std::byte>> blocks;
-  for (const auto& table : BuildSummedAreaLevels(pyramid, channels))
-    blocks.push_back(table->ToBytes());
+  const LevelsLayout layout = LayOut(pyramid, channels);
   LevelsHeader h{};
   std::memcpy(h.magic, kMagic, sizeof(kMagic));
   h.version = kSummedAreaTableVersion;
-  h.levels = static_cast<int32_t>(blocks.size());
-  const size_t index_bytes = 2 * sizeof(uint64_t) * blocks.size();
-  size_t offset = RoundUp8(sizeof(h) + index_bytes);
-  std::vector<uint64_t> index;
-  for (const auto& b : blocks) {
-    index.push_back(offset);
-    index.push_back(b.size());
-    offset = RoundUp8(offset + b.size());
-  }
-  std::vector<std::byte> out(offset);
+  h.levels = static_cast<int32_t>(layout.index.size() / 2);
+  std::vector<std::byte> out(layout.total);
   std::memcpy(out.data(), &h, sizeof(h));
-  std::memcpy(out.data() + sizeof(h), index.data(), index_bytes);
-  for (size_t l = 0; l < blocks.size(); ++l)
-    std::memcpy(out.data() + index[2 * l], blocks[l].data(), blocks[l].size());
+  std::memcpy(out.data() + sizeof(h), layout.index.data(), layout.index.size() * sizeof(uint64_t));
+  // One level's table at a time, written in place: the peak is the block and one table.
+  for (int l = 0; l < h.levels; ++l)
+    SummedAreaTable(pyramid.level(l), channels).WriteBlock(out.data() + layout.index[2 * l]);
   return out;
+}
+
+size_t SummedAreaLevelsBytes(const MipPyramid& pyramid, int channels) {
+  return LayOut(pyramid, channels).total;
 }
 
 absl::StatusOr<std::vector<std::unique_ptr<SummedAreaTable>>> ViewSummedAreaLevels(
@@ -108,7 +125,8 @@ absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTables(
       [&]() -> absl::StatusOr<std::vector<std::byte>> {
         return SummedAreaLevelsToBytes(pyramid, channels);
       },
-      [](std::span<const std::byte> payload) { return ViewSummedAreaLevels(payload).status(); });
+      [](std::span<const std::byte> payload) { return ViewSummedAreaLevels(payload).status(); },
+      SummedAreaLevelsBytes(pyramid, channels));
 }
 
 }  // namespace aperture

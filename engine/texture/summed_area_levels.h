@@ -26,6 +26,9 @@ std::vector<std::unique_ptr<SummedAreaTable>> BuildSummedAreaLevels(const MipPyr
 // The levels as one block: a 32-byte header (magic, version, level count), each level's offset
 // and size, then each level's own block (SummedAreaTable::ToBytes) at an 8-byte boundary.
 std::vector<std::byte> SummedAreaLevelsToBytes(const MipPyramid& pyramid, int channels);
+// The size of that block, from the levels' sizes alone (nothing is built): a 4096 x 4096 RGB
+// texture's is about 4.3 GB.
+size_t SummedAreaLevelsBytes(const MipPyramid& pyramid, int channels);
 // Tables over such a block (8-byte aligned), which must outlive them; checks every bound.
 absl::StatusOr<std::vector<std::unique_ptr<SummedAreaTable>>> ViewSummedAreaLevels(
     std::span<const std::byte> block);
@@ -35,7 +38,8 @@ absl::StatusOr<std::vector<std::unique_ptr<SummedAreaTable>>> ViewSummedAreaLeve
 std::string SummedAreaTableKey(const MipPyramid& pyramid, int channels);
 
 // The tables of `pyramid` (`channels` = 3 or 4) from the shared store, built into it when it has
-// none; the payload is a block ViewSummedAreaLevels accepts.
+// none; the payload is a block ViewSummedAreaLevels accepts. Tables larger than the store's
+// budget are refused (ResourceExhausted) before they are built.
 absl::StatusOr<std::shared_ptr<const StoreEntry>> GetOrBuildSummedAreaTables(
     const SharedStore& store, const MipPyramid& pyramid, int channels);
 

@@ -105,15 +105,25 @@ SummedAreaTable::SummedAreaTable(const Image& image, int channels)
   size_ = tables_.size();
 }
 
+size_t SummedAreaTable::BlockBytes(int width, int height, int channels) {
+  return sizeof(BlockHeader) + size_t{kTables} * (static_cast<size_t>(width) + 2) *
+                                   (static_cast<size_t>(height) + 2) *
+                                   static_cast<size_t>(channels) * sizeof(double);
+}
+
 std::vector<std::byte> SummedAreaTable::ToBytes() const {
+  std::vector<std::byte> block(BlockBytes(width_, height_, channels_));
+  WriteBlock(block.data());
+  return block;
+}
+
+void SummedAreaTable::WriteBlock(std::byte* out) const {
   BlockHeader h{};
   std::memcpy(h.magic, kMagic, sizeof(kMagic));
   h.version = kSummedAreaTableVersion;
   h.width = width_, h.height = height_, h.channels = channels_;
-  std::vector<std::byte> block(sizeof(h) + size_ * sizeof(double));
-  std::memcpy(block.data(), &h, sizeof(h));
-  std::memcpy(block.data() + sizeof(h), data_, size_ * sizeof(double));
-  return block;
+  std::memcpy(out, &h, sizeof(h));
+  std::memcpy(out + sizeof(h), data_, size_ * sizeof(double));
 }
 
 absl::StatusOr<std::unique_ptr<SummedAreaTable>> SummedAreaTable::View(

@@ -45,8 +45,14 @@ class SummedAreaTable {
   // The tables as one block (a 32-byte header: magic, version, width, height, channels; then the
   // doubles), for the shared store: every process maps it and uses it in place.
   std::vector<std::byte> ToBytes() const;
+  // The same block written to `out`, which holds BlockBytes(width(), height(), channels()) bytes.
+  void WriteBlock(std::byte* out) const;
   // A table over such a block (8-byte aligned), which must outlive it; checks the header and size.
   static absl::StatusOr<std::unique_ptr<SummedAreaTable>> View(std::span<const std::byte> block);
+
+  // The size of ToBytes' block for a `width` x `height` texture of `channels`, known before the
+  // table is built (a store with a budget refuses a block that cannot fit before building it).
+  static size_t BlockBytes(int width, int height, int channels);
 
   int width() const { return width_; }
   int height() const { return height_; }

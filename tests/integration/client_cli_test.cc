@@ -197,7 +197,7 @@ TEST_F(ClientTest, TexturePathsOutsideTheSceneFilesFolderAreRefused) {
     std::vector<std::string> args = {"render", "--scene=" + scene_naming(name, file)};
     args.insert(args.end(), frame.begin(), frame.end());
     const CommandResult refused = Client(args);
-    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_EQ(refused.exit_code, 2);  // bad input: the scene file's
     EXPECT_THAT(refused.err, HasSubstr("outside the scene file's folder"));
     EXPECT_THAT(refused.err, HasSubstr("--allow-any-path"));
   }
@@ -368,6 +368,69 @@ TEST_F(ClientTest, RenderReportsBadInputWithExitStatus2) {
   EXPECT_THAT(result.err, HasSubstr("camera position is not finite"));
 }
 
+// Bad input exits 2 with a message naming the problem, before anything is sent: a scene file
+// that is not there, a texture path the client refuses, a deadline that is no deadline, a server
+// address where nothing answers or whose name does not resolve; for every command that takes them.
+TEST_F(ClientTest, BadInputExitsTwoNamingTheProblem) {
+  const std::string texture_outside = (dir_ / "outside.json").string();
+  std::ofstream(texture_outside)
+      << R"({"textures": [{"id": "t", "file": "../../../../../../etc/passwd"}],
+             "materials": [{"id": "m", "textureId": "t"}]})";
+  const std::string missing = (dir_ / "no-such-scene.json").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::string here = "--server=" + server_->address();
+  const std::string nothing_listens = "--server=127.0.0.1:1";
+  const std::string misnamed = "--server=nosuchhost.invalid:1";
+  const std::string out = "-o=" + (dir_ / "bad.exr").string();
+  const std::vector<Case> cases = {
+      {{"render", "--scene=" + missing, here, out}, "cannot read " + missing},
+      {{"render", "--scene=" + texture_outside, here, out}, "outside the scene file's folder"},
+      {{"render", "--scene=demo", "--deadline-s=-1", here, out}, "--deadline-s is -1"},
+      {{"render", "--scene=demo", nothing_listens, out}, "cannot reach a server at 127.0.0.1:1"},
+      {{"render", "--scene=demo", misnamed, out}, "cannot reach a server at nosuchhost.invalid:1"},
+      {{"render", "--split=2", "--servers=127.0.0.1:1", "--scene=demo", out},
+       "cannot reach a server at 127.0.0.1:1"},
+      {{"load", "--scene=" + missing, "--requests=1", here}, "cannot read " + missing},
+      {{"load", "--requests=1", nothing_listens}, "cannot reach a server at 127.0.0.1:1"},
+      {{"load", "--concurrency=0", here}, "--concurrency is 0"},
+      {{"sim", "--scene=" + texture_outside, "--frames=2", here}, "outside the scene file's"},
+      {{"sim", "--frames=2", misnamed}, "cannot reach a server at nosuchhost.invalid:1"},
+      {{"info", nothing_listens}, "cannot reach a server at 127.0.0.1:1"},
+      {{"info", misnamed}, "cannot reach a server at nosuchhost.invalid:1"},
+      {{"info", here, "--token-file=" + missing}, "--token-file " + missing},
+      {{"health", here, "--tls-ca=" + missing}, "--tls-ca " + missing},
+      {{"batch", (dir_ / "no-such-job.json").string(), "--servers=127.0.0.1:1", out},
+       "no-such-job.json"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args = {APERTURE_CLIENT_BIN};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    SCOPED_TRACE(::testing::PrintToString(c.args));
+    const CommandResult result = RunCommand(args, 30);
+    EXPECT_EQ(result.exit_code, 2) << result.err;
+    EXPECT_THAT(result.err, HasSubstr(c.says));
+  }
+
+  // A batch whose servers are all unreachable or misnamed; one that reaches a server renders.
+  const std::string job = (dir_ / "job.json").string();
+  std::ofstream(job) << R"({"scene": "demo", "size": "16x16", "cameras": ["0,14,420,0,-5,0"]})";
+  const CommandResult unreachable =
+      RunCommand({APERTURE_CLIENT_BIN, "batch", job, "--servers=127.0.0.1:1,nosuchhost.invalid:1",
+                  "-o=" + (dir_ / "frames").string(), "--nocontact_sheet"},
+                 30);
+  EXPECT_EQ(unreachable.exit_code, 2) << unreachable.err;
+  EXPECT_THAT(unreachable.err, HasSubstr("cannot reach a server at 127.0.0.1:1"));
+  EXPECT_THAT(unreachable.err, HasSubstr("no server could be reached"));
+  const CommandResult one_reached =
+      RunCommand({APERTURE_CLIENT_BIN, "batch", job, "--servers=127.0.0.1:1," + server_->address(),
+                  "-o=" + (dir_ / "frames").string(), "--nocontact_sheet"},
+                 60);
+  EXPECT_EQ(one_reached.exit_code, 0) << one_reached.err;
+}
+
 TEST_F(ClientTest, HealthExitsZeroWhenServingAndOneWhenNothingListens) {
   std::string error;
   auto own = ServerProcess::Start({}, &error);
@@ -382,6 +445,13 @@ TEST_F(ClientTest, HealthExitsZeroWhenServingAndOneWhenNothingListens) {
   const CommandResult down =
       RunCommand({APERTURE_CLIENT_BIN, "health", "--server=" + address, "--deadline_s=2"}, 20);
   EXPECT_EQ(down.exit_code, 1);
+  EXPECT_THAT(down.err, HasSubstr("cannot reach a server at " + address));
+  // A probe's answer: unreachable or misnamed, the server is not healthy (1, not 2, which
+  // Docker's HEALTHCHECK reserves).
+  const CommandResult misnamed =
+      RunCommand({APERTURE_CLIENT_BIN, "health", "--server=nosuchhost.invalid:1"}, 20);
+  EXPECT_EQ(misnamed.exit_code, 1);
+  EXPECT_THAT(misnamed.err, HasSubstr("nosuchhost.invalid:1"));
 }
 
 TEST_F(ClientTest, LoadReportsThroughputAndLatency) {

@@ -5,8 +5,10 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <future>
 #include <string>
 #include <thread>
@@ -342,6 +344,45 @@ TEST_F(HostileClientTest, ADeadlineThatPassesInTheQueueFreesTheSlotAtOnce) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   EXPECT_THAT(server_->Log(), HasSubstr("status=DEADLINE_EXCEEDED error='the call\\'s deadline "
                                         "passed in the queue'"));
+  own_server_.reset();  // the slow frame ends with its server
+  (void)busy.get();
+}
+
+// A client that retries a refused frame at once: the server's log gets about a line a second for
+// the refusals, each with its count (which add up to every refusal), not a line per refusal.
+TEST_F(HostileClientTest, AFloodOfRefusedFramesKeepsTheLogShort) {
+  StartServer({"--concurrent-frames=1", "--max-queue=0"});
+  const v1::RenderFrameRequest slow = SlowFrame();
+  auto busy = std::async(std::launch::async, [&] { return Render(slow, 30); });
+  for (int i = 0; i < 500 && Info().frames_in_flight() == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(Info().frames_in_flight(), 1u);
+
+  const std::string id = LoadBuiltinScene(*stub_, "triangles").scene_id();
+  const auto lines = [&] {
+    const std::string log = server_->Log();
+    return std::count(log.begin(), log.end(), '\n');
+  };
+  const auto lines_before = lines();
+  constexpr int kRefused = 2000;
+  const auto start = Clock::now();
+  for (int i = 0; i < kRefused; ++i)
+    ASSERT_EQ(Render(FrameRequest(id, 16, 16), 10).error_code(),
+              grpc::StatusCode::RESOURCE_EXHAUSTED);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // the last count is written
+  const auto written = lines() - lines_before;
+  EXPECT_LE(written, 3 + static_cast<long>(seconds)) << "over " << seconds << " s";
+
+  // Every refusal is counted in some line.
+  const std::string log = server_->Log();
+  int counted = 0;
+  for (size_t at = log.find("refused "); at != std::string::npos; at = log.find("refused ", at + 1))
+    counted += std::atoi(log.c_str() + at + 8);
+  EXPECT_EQ(counted, kRefused);
+  EXPECT_THAT(log, HasSubstr("frames in the last "));
+  EXPECT_THAT(log, HasSubstr(": queue full; the latest: req="));
+  EXPECT_EQ(Info().frames_rejected(), static_cast<uint64_t>(kRefused));
   own_server_.reset();  // the slow frame ends with its server
   (void)busy.get();
 }

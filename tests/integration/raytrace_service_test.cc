@@ -13,6 +13,7 @@
 #include "integration/service_fixture.h"
 #include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
+#include "support/hostile_inputs.h"
 #include "testing/curved_scenes.h"
 // After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.
 #include <OpenImageIO/imagebuf.h>
@@ -132,6 +133,51 @@ TEST_F(ServiceTest, ADeadlineStopsALongRaytracedFrame) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED) << status.error_message();
   EXPECT_LT(seconds, 5);
+}
+
+// The peak resident memory of process `pid` (VmHWM), in bytes; 0 if it cannot be read.
+uint64_t PeakResidentBytes(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) << 10;  // kB
+  return 0;
+}
+
+// A raytraced frame whose summed-area tables cannot fit the store's budget is refused before
+// they are built: at once, with the tables' size, the texture and the budget named, and without
+// the server's memory growing by the tables (a 1024 x 1024 texture's take about 270 MB, and
+// building them before refusing them took seconds and three times that memory).
+TEST_F(ServiceTest, RaytraceTablesOverTheStoresBudgetAreRefusedBeforeTheyAreBuilt) {
+  StartServer({"--max-store-mb=64"});
+  v1::LoadSceneResponse loaded;
+  {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+    ASSERT_TRUE(stub_->LoadScene(&context, TexturedGroundScene("", 1024), &loaded).ok());
+  }
+  v1::RenderFrameRequest request = FrameRequest(loaded.scene_id(), 32, 32);
+  request.mutable_options()->set_mode(v1::RENDER_MODE_RAYTRACE);
+  const uint64_t peak_before = PeakResidentBytes(server_->pid());
+  ASSERT_GT(peak_before, 0u);
+  const auto start = std::chrono::steady_clock::now();
+  const grpc::Status status = Render(request, 60);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+  EXPECT_THAT(status.error_message(), HasSubstr("summed-area tables of texture 't' (1024 x 1024"));
+  EXPECT_THAT(status.error_message(), HasSubstr("an entry of 2"));  // 2xx MiB
+  EXPECT_THAT(status.error_message(), HasSubstr("budget of 64 MiB (--max-store-mb)"));
+  EXPECT_LT(seconds, 1.0);
+  const uint64_t peak_after = PeakResidentBytes(server_->pid());
+  EXPECT_LT(peak_after, peak_before + (64u << 20))
+      << "the peak resident memory grew from " << (peak_before >> 20) << " to "
+      << (peak_after >> 20) << " MiB";
+  EXPECT_LE(Info().budgets().store_bytes(), 64u << 20);
+  // Refused again as fast: nothing half-built is kept or retried at length.
+  const auto again = std::chrono::steady_clock::now();
+  EXPECT_EQ(Render(request, 60).error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - again).count(), 1.0);
 }
 
 }  // namespace

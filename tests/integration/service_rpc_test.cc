@@ -286,7 +286,7 @@ TEST_F(ServiceTest, RenderFrameErrors) {
   const std::string scene_id = LoadDemoScene();
   const uint64_t failed_before = Info().frames_failed();
 
-  grpc::Status status = Render(FrameRequest("no-such-scene", 32, 32), 10);
+  grpc::Status status = Render(FrameRequest(std::string(64, '0'), 32, 32), 10);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
   EXPECT_THAT(status.error_message(), HasSubstr("scene_id"));
 
@@ -310,6 +310,66 @@ TEST_F(ServiceTest, RenderFrameErrors) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(status.error_message(), HasSubstr("options.anti_aliasing"));
   EXPECT_EQ(Info().frames_failed(), failed_before + 5);
+}
+
+// A scene id that is not one LoadScene returns is INVALID_ARGUMENT naming what is wrong with it,
+// whatever its length (a 100 KB id quoted back whole once overflowed the answer's trailers, and
+// the client saw RESOURCE_EXHAUSTED); a well-formed unknown one is NOT_FOUND. Every RPC that
+// takes a scene id answers alike, and a long client string quoted in any error stays short.
+TEST_F(ServiceTest, MalformedSceneIdsAreInvalidAndUnknownOnesNotFound) {
+  StartServer();
+  const std::string known = LoadDemoScene();
+  struct Case {
+    std::string id;
+    grpc::StatusCode code;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {std::string(100 << 10, 'a'), grpc::StatusCode::INVALID_ARGUMENT, "102400 characters"},
+      {"no-such-scene", grpc::StatusCode::INVALID_ARGUMENT, "13 characters"},
+      {"", grpc::StatusCode::INVALID_ARGUMENT, "scene_id is empty"},
+      {std::string(63, 'a') + "G", grpc::StatusCode::INVALID_ARGUMENT, "character 64"},
+      {std::string(64, 'f'), grpc::StatusCode::NOT_FOUND, "is not loaded"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.id.substr(0, 70));
+    v1::RenderFrameResponse frame;
+    grpc::Status status = Render(FrameRequest(c.id, 16, 16), 10, &frame);
+    EXPECT_EQ(status.error_code(), c.code) << status.error_message().substr(0, 300);
+    EXPECT_THAT(status.error_message(), HasSubstr(c.says));
+    EXPECT_LT(status.error_message().size(), 2000u);
+
+    v1::PlanRegionsRequest plan_request;
+    plan_request.set_scene_id(c.id);
+    *plan_request.mutable_camera() = FrameRequest(known, 16, 16).camera();
+    *plan_request.mutable_options() = FrameRequest(known, 16, 16).options();
+    plan_request.set_regions(2);
+    v1::PlanRegionsResponse plan;
+    grpc::ClientContext plan_context;
+    status = stub_->PlanRegions(&plan_context, plan_request, &plan);
+    EXPECT_EQ(status.error_code(), c.code) << status.error_message().substr(0, 300);
+    EXPECT_THAT(status.error_message(), HasSubstr(c.says));
+
+    grpc::ClientContext stream_context;
+    auto stream = stub_->RenderStream(&stream_context);
+    ASSERT_TRUE(stream->Write(FrameRequest(c.id, 16, 16)));
+    stream->WritesDone();
+    const std::vector<v1::RenderFrameResponse> answers = ReadAllAnswers(*stream);
+    ASSERT_EQ(answers.size(), 1u);
+    EXPECT_EQ(answers[0].status_code(), static_cast<uint32_t>(c.code));
+    EXPECT_THAT(answers[0].status_message(), HasSubstr(c.says));
+    EXPECT_TRUE(stream->Finish().ok());
+  }
+  // A long object name in a scene update is quoted back cut, not whole.
+  v1::RenderFrameRequest update = FrameRequest(known, 16, 16);
+  update.mutable_update()->add_objects()->set_name(std::string(100 << 10, 'o'));
+  const grpc::Status status = Render(update, 10);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT)
+      << status.error_message().substr(0, 300);
+  EXPECT_THAT(status.error_message(), HasSubstr("no object of that name"));
+  EXPECT_LT(status.error_message().size(), 2000u);
+  // The server's log quotes the ids cut too.
+  EXPECT_EQ(server_->Log().find(std::string(1000, 'a')), std::string::npos);
 }
 
 TEST_F(ServiceTest, OversizedMessageIsRefused) {

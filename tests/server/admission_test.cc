@@ -10,6 +10,8 @@
 #include <thread>
 #include <vector>
 
+#include "refusal_log.h"
+
 namespace aperture {
 namespace {
 
@@ -35,6 +37,7 @@ TEST(AdmissionControl, AtMostConcurrentRunAndTheQueueIsBounded) {
   // The queue holds one: the next is refused at once, and counted.
   const auto refused = admission.Enter(Never);
   EXPECT_TRUE(absl::IsResourceExhausted(refused.status())) << refused.status();
+  EXPECT_EQ(RefusalKind(refused.status()), "queue full");  // logged as a counted refusal
   EXPECT_EQ(admission.rejected(), 1u);
 
   { auto done = *std::move(a); }  // a turn ends: the waiter takes it

@@ -111,6 +111,29 @@ TEST_F(SharedStoreTest, WithABudgetRoomIsMadeBeforeAnEntryIsWritten) {
   EXPECT_TRUE(absl::IsResourceExhausted(big.status())) << big.status();
 }
 
+TEST_F(SharedStoreTest, AnEntryKnownTooLargeForTheBudgetIsRefusedBeforeItIsBuilt) {
+  auto store = OpenStore();
+  store->SetBudget(1 << 20, "--max-store-mb");
+  int builds = 0;
+  auto builder = [&]() -> absl::StatusOr<std::vector<std::byte>> {
+    ++builds;
+    return Bytes("never this");
+  };
+  auto refused = store->GetOrBuild("table-big", EntryKind::kSummedAreaTable, builder, nullptr,
+                                   uint64_t{3} << 30);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(absl::IsResourceExhausted(refused.status())) << refused.status();
+  EXPECT_NE(refused.status().message().find("3072 MiB"), std::string::npos) << refused.status();
+  EXPECT_NE(refused.status().message().find("budget of 1 MiB (--max-store-mb)"), std::string::npos)
+      << refused.status();
+  EXPECT_EQ(builds, 0);
+  EXPECT_EQ(store->TotalBytes(), 0u);  // not even a temporary file
+  // One that fits is built as before.
+  auto built = store->GetOrBuild("table-small", EntryKind::kSummedAreaTable, builder, nullptr, 10);
+  ASSERT_TRUE(built.ok()) << built.status();
+  EXPECT_EQ(builds, 1);
+}
+
 TEST_F(SharedStoreTest, MissingKeyIsNotFoundAndBadKeysAreRefused) {
   auto store = OpenStore();
   EXPECT_TRUE(absl::IsNotFound(store->Attach("nothing", EntryKind::kBlob).status()));

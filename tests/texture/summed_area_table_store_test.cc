@@ -77,6 +77,21 @@ TEST(SummedAreaTableStore, LevelsBlockRoundTripsAndDamageIsRefused) {
   EXPECT_NE(refused.status().message().find("level 0"), std::string::npos) << refused.status();
 }
 
+TEST(SummedAreaTableStore, TheBlocksSizeIsKnownBeforeItIsBuilt) {
+  for (auto [w, h] : {std::pair{1, 1}, {16, 4}, {5, 7}, {64, 64}, {33, 2}})
+    for (int channels : {1, 3, 4}) {
+      SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(channels));
+      Image img(w, h);
+      const MipPyramid pyramid(img);
+      EXPECT_EQ(SummedAreaTable::BlockBytes(w, h, channels),
+                SummedAreaTable(img, channels).ToBytes().size());
+      EXPECT_EQ(SummedAreaLevelsBytes(pyramid, channels),
+                SummedAreaLevelsToBytes(pyramid, channels).size());
+    }
+  // A 4096 x 4096 RGB texture's tables, the size a store budget is weighed against: 4.3 GB.
+  EXPECT_EQ(SummedAreaTable::BlockBytes(4096, 4096, 3), 32 + size_t{8} * 4098 * 4098 * 3 * 8);
+}
+
 TEST(SummedAreaTableStore, TracedSceneFromTheStoreRendersTheSamePixels) {
   const fs::path dir = fs::path("/dev/shm") / ("aperture-sat-test-" + std::to_string(getpid()));
   fs::remove_all(dir);
@@ -101,6 +116,30 @@ TEST(SummedAreaTableStore, TracedSceneFromTheStoreRendersTheSamePixels) {
     const Rgba &p = a->image.texels()[i], &q = b->image.texels()[i];
     ASSERT_TRUE(p.r == q.r && p.g == q.g && p.b == q.b) << i;
   }
+  fs::remove_all(dir);
+}
+
+// Tables larger than the store's budget are refused before they are built, naming the texture,
+// the tables' size and the budget; nothing is written to the store.
+TEST(SummedAreaTableStore, TablesOverTheStoresBudgetAreRefusedUnbuilt) {
+  const fs::path dir = fs::path("/dev/shm") / ("aperture-sat-budget-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  auto store = SharedStore::Open(dir.string());
+  ASSERT_TRUE(store.ok()) << store.status();
+  (*store)->SetBudget(1 << 20);
+  // The cylinder's 128 x 128 texture: its tables take about 4.5 MiB.
+  const CurvedTestScene test = MakeCurvedTestScene(CurvedSceneKind::kCylinder, 128);
+  auto scene = BuildScene(test.scene);
+  ASSERT_TRUE(scene.ok());
+  auto refused = TracedScene::Build(*scene, *store);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(absl::IsResourceExhausted(refused.status())) << refused.status();
+  const std::string message(refused.status().message());
+  EXPECT_NE(message.find("128 x 128 texels"), std::string::npos) << message;
+  EXPECT_NE(message.find("an entry of 4 MiB"), std::string::npos) << message;
+  EXPECT_NE(message.find("budget of 1 MiB"), std::string::npos) << message;
+  EXPECT_EQ((*store)->counters().built, 0u);
+  EXPECT_EQ((*store)->TotalBytes(), 0u);
   fs::remove_all(dir);
 }
 
