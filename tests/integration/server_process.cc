@@ -121,6 +121,28 @@ std::optional<int> ServerProcess::WaitForExit(double seconds) {
 
 std::string ServerProcess::Log() const { return ReadAll(log_path_); }
 
+namespace {
+
+// A field of /proc/PID/status in kB ("VmRSS:", "VmHWM:"), as MiB; -1 if unreadable.
+double StatusMb(pid_t pid, const std::string& field) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string key;
+  while (status >> key) {
+    if (key == field) {
+      double kb = 0;
+      status >> kb;
+      return kb / 1024;
+    }
+    status.ignore(1 << 12, '\n');
+  }
+  return -1;
+}
+
+}  // namespace
+
+double ServerProcess::ResidentMb() const { return StatusMb(pid_, "VmRSS:"); }
+double ServerProcess::PeakResidentMb() const { return StatusMb(pid_, "VmHWM:"); }
+
 CommandResult RunCommand(const std::vector<std::string>& argv, double timeout_seconds) {
   const std::string out_path = TempPath("out"), err_path = TempPath("err");
   const int out_fd = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

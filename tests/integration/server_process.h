@@ -24,6 +24,9 @@ class ServerProcess {
   // The exit status if the process ended within `seconds`.
   std::optional<int> WaitForExit(double seconds);
   std::string Log() const;  // what it wrote to stderr so far
+  // Its resident set now (VmRSS) and at its largest so far (VmHWM), MiB; -1 if unreadable.
+  double ResidentMb() const;
+  double PeakResidentMb() const;
 
  private:
   ServerProcess() = default;
