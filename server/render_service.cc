@@ -70,9 +70,10 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
 
 void RenderService::LogAnswer(const absl::Status& status, absl::string_view thing,
                               std::string line) {
-  if (absl::IsResourceExhausted(status)) {
-    // A client that retries at once must not get a line per attempt.
-    refusals_.Refused(RefusalKind(status).value_or("resource exhausted"), thing, std::move(line));
+  if (auto kind = RefusalKind(status); kind && absl::IsResourceExhausted(status)) {
+    // A client that retries at once must not get a line per attempt. (A frame that worked and
+    // then passed its memory budget is logged as every frame is.)
+    refusals_.Refused(*kind, thing, std::move(line));
     return;
   }
   spdlog::info("{}", line);
@@ -239,6 +240,7 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
   response->set_frame_index(request.frame_index());
   auto job = ParseFrameRequest(request, limits_.max_pixels);
   if (!job.ok()) return job.status();
+  job->settings.max_frame_bytes = limits_.max_frame_bytes;
   StopCheck stop(context, stop_at);
   // Before admission: the update holds from this frame on even if the frame is refused.
   const auto update_start = Clock::now();
@@ -267,31 +269,37 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
     // Isolated: while this thread waits for its frame's tasks it takes none of another frame's,
     // so a small frame is not held up behind a big one's work.
     tbb::this_task_arena::isolate([&] {
-      if (!job->mode.raytrace) {
-        *frame = aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
-        return;
+      try {
+        if (!job->mode.raytrace) {
+          *frame =
+              aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
+          return;
+        }
+        // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays. A
+        // channel's updated scene has its own, built for this frame (the tables come from the
+        // store when there is one).
+        absl::StatusOr<std::shared_ptr<const TracedScene>> traced;
+        if (updated) {
+          const auto build_start = Clock::now();
+          auto built = TracedScene::Build(*scene, textures_.shared(), [&] { return stop(); });
+          traced_build_ms = MillisecondsSince(build_start);
+          if (built.ok())
+            traced = std::shared_ptr<const TracedScene>(*std::move(built));
+          else
+            traced = built.status();
+        } else {
+          traced = traced_.Get(request.scene_id(), scene, &traced_build_ms, [&] { return stop(); });
+        }
+        if (!traced.ok()) {
+          *frame = StoreBudgetRefusal(traced.status());
+          return;
+        }
+        *frame = (*traced)->Render(job->camera, job->settings, job->mode.trace, nullptr,
+                                   [&] { return stop(); });
+      } catch (const std::exception& e) {
+        // Never UNKNOWN "Unexpected error in RPC handling": the frame fails with what happened.
+        *frame = absl::InternalError(absl::StrCat("the frame failed: ", e.what()));
       }
-      // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays. A
-      // channel's updated scene has its own, built for this frame (the tables come from the
-      // store when there is one).
-      absl::StatusOr<std::shared_ptr<const TracedScene>> traced;
-      if (updated) {
-        const auto build_start = Clock::now();
-        auto built = TracedScene::Build(*scene, textures_.shared(), [&] { return stop(); });
-        traced_build_ms = MillisecondsSince(build_start);
-        if (built.ok())
-          traced = std::shared_ptr<const TracedScene>(*std::move(built));
-        else
-          traced = built.status();
-      } else {
-        traced = traced_.Get(request.scene_id(), scene, &traced_build_ms, [&] { return stop(); });
-      }
-      if (!traced.ok()) {
-        *frame = StoreBudgetRefusal(traced.status());
-        return;
-      }
-      *frame = (*traced)->Render(job->camera, job->settings, job->mode.trace, nullptr,
-                                 [&] { return stop(); });
     });
   });
   if (!frame->ok())
@@ -387,16 +395,15 @@ grpc::Status RenderService::RenderStream(
     }
     (answer.status.ok() ? frames_rendered_ : frames_failed_)++;
     LogAnswer(answer.status, "frame",
-              fmt::format("req={}.{} rpc=RenderStream scene={} size={}x{} mode={} "
-                          "update_ms={:.3f} queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} "
-                          "encode_ms={:.2f} total_ms={:.2f} bytes={} status={}{}",
-                          id, answer.frame_index, LogText(Short(request.scene_id)),
-                          request.width, request.height,
-                          request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster",
-                          t.update_ms(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
-                          MillisecondsSince(answer.received), response.exr().size(),
-                          absl::StatusCodeToString(answer.status.code()),
-                          ErrorText(answer.status)));
+              fmt::format(
+                  "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} "
+                  "update_ms={:.3f} queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} "
+                  "encode_ms={:.2f} total_ms={:.2f} bytes={} status={}{}",
+                  id, answer.frame_index, LogText(Short(request.scene_id)), request.width,
+                  request.height, request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster",
+                  t.update_ms(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
+                  MillisecondsSince(answer.received), response.exr().size(),
+                  absl::StatusCodeToString(answer.status.code()), ErrorText(answer.status)));
   };
   const LiveStreamCounts counts = LiveStream(context, stream, check, render, answered).Run();
   // What the stream's threads allocated (requests, answers, frames) glibc keeps in its arenas

@@ -35,6 +35,7 @@ struct ServiceLimits {
   uint64_t max_upload_inflight_bytes = 1ull << 30;  // announced sizes of uploads streaming now
   std::chrono::milliseconds upload_idle{30000};     // an upload silent this long is cancelled
   uint64_t max_store_bytes = 8ull << 30;  // the texture store's entries (or in-memory uploads)
+  uint64_t max_frame_bytes = 0;  // one frame's working memory (render/frame_memory.h); 0: none
 };
 
 class RenderService final : public v1::Render::Service {

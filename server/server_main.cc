@@ -32,6 +32,7 @@
 #include "flag_names.h"
 #include "keepalive.h"
 #include "large_buffers.h"
+#include "render/frame_memory.h"
 #include "render_service.h"
 #include "scene_store.h"
 #include "store/shared_store.h"
@@ -61,6 +62,10 @@ ABSL_FLAG(uint64_t, max_store_mb, 0,
           "the uploads in memory), MiB; past it the least recently used entries are evicted; 0: "
           "half the store's file system (an eighth of the machine's memory with --store none)");
 ABSL_FLAG(int, max_scenes, 64, "scenes kept loaded; past it the least recently used is dropped");
+ABSL_FLAG(uint64_t, max_frame_mb, 0,
+          "working memory one frame may hold (projected polygons, planned tasks, the workers' "
+          "cell buffers, the image), MiB; past it the frame stops with RESOURCE_EXHAUSTED; 0: a "
+          "quarter of the machine's memory");
 ABSL_FLAG(std::string, store, aperture::kDefaultStoreDirectory,
           "shared texture store: a directory (under /dev/shm: POSIX shared memory) holding "
           "uploads, seed 000 tables and packed textures, mapped by every server on the machine "
@@ -162,6 +167,9 @@ int Run() {
   limits.scene.polygons = absl::GetFlag(FLAGS_max_scene_polygons);
   limits.scene.vertices_per_polygon = absl::GetFlag(FLAGS_max_polygon_vertices);
   limits.scene.textures = absl::GetFlag(FLAGS_max_scene_textures);
+  limits.max_frame_bytes = absl::GetFlag(FLAGS_max_frame_mb) > 0
+                               ? absl::GetFlag(FLAGS_max_frame_mb) << 20
+                               : DefaultFrameBudgetBytes();
 
   if (const std::string path = absl::GetFlag(FLAGS_cost_model); !path.empty()) {
     if (auto s = UseCostModelFile(path); !s.ok()) {
@@ -251,11 +259,11 @@ int Run() {
   std::fflush(stdout);
   spdlog::info(
       "aperture-server listening on {}:{} threads={} concurrent_frames={} max_queue={} "
-      "max_pixels={} store='{}' store_budget_mb={} scenes_budget_mb={} cost_model='{}' tls={} "
-      "auth={}",
+      "max_pixels={} store='{}' store_budget_mb={} scenes_budget_mb={} frame_budget_mb={} "
+      "cost_model='{}' tls={} auth={}",
       host, port, limits.threads, limits.concurrent_frames, limits.max_queue, limits.max_pixels,
       absl::GetFlag(FLAGS_store), limits.max_store_bytes >> 20, scenes.budget() >> 20,
-      DefaultCostModelSource(),
+      limits.max_frame_bytes >> 20, DefaultCostModelSource(),
       absl::GetFlag(FLAGS_tls_cert).empty() ? "off" : (mutual_tls ? "mutual" : "on"),
       auth                   ? "bearer tokens (" + auth->path() + ")"
       : mutual_tls           ? "client certificates"

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/held_bytes.h"
+
 namespace aperture {
 namespace {
 
@@ -27,8 +29,8 @@ void AxisRange(double min, double max, int origin, double offset, int n, int& lo
 
 }  // namespace
 
-void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
-                     int x0, int y0, double offset, int nx, int ny) {
+bool CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const int> candidates,
+                     int x0, int y0, double offset, int nx, int ny, size_t max_items) {
   nx_ = nx;
   const size_t cells = static_cast<size_t>(nx) * ny;
   begin_.assign(cells + 1, 0);
@@ -101,6 +103,12 @@ void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const in
     covering += starts_[c];
     begin_[c + 1] = begin_[c] + static_cast<size_t>(covering);
   }
+  needed_items_ = begin_[cells];
+  if (begin_[cells] > max_items) {
+    std::fill(begin_.begin(), begin_.end(), 0);
+    items_.clear();
+    return false;
+  }
   items_.resize(begin_[cells]);
   for (size_t k = 0; k < candidates.size(); ++k)
     for (size_t row = row_begin_[k]; row < row_begin_[k + 1]; ++row)
@@ -109,6 +117,11 @@ void CellBins::Build(std::span<const ScreenPolygon> polygons, std::span<const in
   // The fill advanced each start to the next cell's: shift them back.
   for (size_t c = cells; c > 0; --c) begin_[c] = begin_[c - 1];
   begin_[0] = 0;
+  return true;
+}
+
+size_t CellBins::WorkingBytes() const {
+  return HeldBytes(begin_, starts_, items_, rows_, row_begin_, extent_min_, extent_max_);
 }
 
 }  // namespace aperture

@@ -10,6 +10,7 @@
 // about twice its cells.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -22,8 +23,14 @@ class CellBins {
   // The grid's cell (i, j), 0 <= i < nx, 0 <= j < ny, is centred at (x0 + i + offset + 0.5,
   // y0 + j + offset + 0.5), each coordinate summed in that order (as the caller computes the
   // centre it passes to CellCoverage::Compute), and spans half a unit each side of it.
-  void Build(std::span<const ScreenPolygon> polygons, std::span<const int> candidates, int x0,
-             int y0, double offset, int nx, int ny);
+  // False (the bins then empty) when the cells' lists would hold more than `max_items` entries
+  // in all (a frame's memory budget).
+  bool Build(std::span<const ScreenPolygon> polygons, std::span<const int> candidates, int x0,
+             int y0, double offset, int nx, int ny, size_t max_items = SIZE_MAX);
+  // The bytes its buffers hold, and those its lists of items hold or needed (the last Build).
+  size_t WorkingBytes() const;
+  size_t ItemBytes() const { return items_.capacity() * sizeof(int); }
+  size_t NeededItemBytes() const { return needed_items_ * sizeof(int); }
 
   // The polygons that may reach cell (i, j), in the candidates' order.
   std::span<const int> Cell(int i, int j) const {
@@ -36,6 +43,7 @@ class CellBins {
   std::vector<size_t> begin_;  // cell c's items: [begin_[c], begin_[c + 1])
   std::vector<int> starts_;    // runs of cells starting at cell c less those ending before it
   std::vector<int> items_;
+  size_t needed_items_ = 0;
   struct RowCells {
     int j, i0, i1;  // cells [i0, i1) of row j
   };

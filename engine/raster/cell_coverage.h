@@ -70,6 +70,8 @@ class CellCoverage {
   void SetStop(std::function<bool()> stop) { stop_ = std::move(stop); }
   // Whether the last Compute was cut short by the stop test.
   bool Stopped() const { return stopped_; }
+  // The bytes its scratch buffers hold (for a frame's memory budget).
+  size_t WorkingBytes() const;
 
   // Visible pieces in the cell [cx - 0.5, cx + 0.5] x [cy - 0.5, cy + 0.5]. `candidates` are
   // indices into `polygons`; pieces with zero visible area are omitted. Output is appended.
@@ -158,7 +160,7 @@ class CellCoverage {
   // Drops the items that the full item nearest at square_'s centre hides (they have no visible
   // part), keeping the others in their order.
   template <class Item, class IsFull>
-  void DropHiddenByAFullOne(std::vector<Item>& items, IsFull is_full) const {
+  [[gnu::noinline]] void DropHiddenByAFullOne(std::vector<Item>& items, IsFull is_full) const {
     const int hider = NearestAtCentre(items, is_full);
     if (hider < 0) return;
     const Item front = items[hider];  // a copy: items are compacted below
@@ -176,6 +178,7 @@ class CellCoverage {
   static constexpr size_t kStackedPieces = 16;
   struct Reach;
   std::span<const Vec2> CutSquare(const Reach& r);
+  [[gnu::noinline]] void SortReachByPolygon();  // a crowded cell's: kept out of Compute's loop
   CellMoments MomentsOf(const Piece& p, bool with_moments) const;
   bool Separated(const Piece& a, const Piece& b) const;
   // Every pair of pieces (but piece `skip`) has disjoint interiors.

@@ -8,12 +8,18 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "base/held_bytes.h"
 #include "base/stopwatch.h"
 #include "raster/projection.h"
+#include "render/frame_memory.h"
 #include "render/leaf_renderer.h"
 
 namespace aperture {
 namespace {
+
+// What one polygon of the scene costs projected: its ScreenPolygon and the shader's per-polygon
+// values (weighed before projection against the frame's budget).
+constexpr size_t kProjectedPolygonBytes = sizeof(ScreenPolygon) + 16;
 
 absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& camera,
                                             const RenderSettings& settings,
@@ -21,7 +27,24 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
   RenderedFrame frame;
   frame.region = settings.region.pixels() > 0 ? settings.region
                                               : PixelRect{0, 0, settings.width, settings.height};
+  // What the frame holds against its budget: the image, the projected polygons and the plan are
+  // weighed before they are made, the workers' buffers as they grow.
+  FrameMemory memory(settings.max_frame_bytes);
+  size_t image_held = 0, geometry_held = 0, plan_held = 0;
+  const size_t image_bytes =
+      static_cast<size_t>(frame.region.width()) * frame.region.height() * sizeof(Rgba);
+  if (image_bytes > memory.Room()) {
+    memory.Refuse("the image", image_bytes);
+    return memory.Error();
+  }
   frame.image = Image::Uninitialized(frame.region.width(), frame.region.height());
+  memory.Hold(image_held, image_bytes);
+  const size_t geometry_bytes = scene.polygons.size() * kProjectedPolygonBytes;
+  if (geometry_bytes > memory.Room()) {
+    memory.Refuse("the projected polygons", geometry_bytes);
+    return memory.Error();
+  }
+  memory.Hold(geometry_held, geometry_bytes);
   const AaFilterShape shape = ShapeOf(settings.aa);
 
   Stopwatch timer;
@@ -38,15 +61,23 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
   const std::vector<TaskWindow> tasks =
       PlanTasks(geometry, shape, frame.region, settings.scheduling, plan_workers);
   frame.stats.plan_ms = timer.Milliseconds();
+  size_t plan_bytes = HeldBytes(tasks);
+  for (const TaskWindow& task : tasks) plan_bytes += HeldBytes(task.polygons);
+  if (!memory.Hold(plan_held, plan_bytes)) {
+    memory.Refuse("the planned tasks' lists of polygons", plan_bytes);
+    return memory.Error();
+  }
   struct Worker {
     LeafRenderer renderer;
     std::vector<LeafWindow> leaves;
+    size_t leaves_held = 0;  // what `memory` counts of the leaves' lists
     size_t kinds[3] = {0, 0, 0};
   };
   tbb::enumerable_thread_specific<Worker> workers([&] {
     return Worker{LeafRenderer(geometry, shader, settings.aa, FrameSky(scene.sky, settings),
-                               frame.region, stop),
+                               frame.region, stop, &memory),
                   {},
+                  0,
                   {}};
   });
   std::vector<double> task_us(tasks.size(), 0);
@@ -66,6 +97,12 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
           w.leaves.clear();
           SubdivideWindow(geometry, shape, settings.warnock, tasks[i].rect, tasks[i].polygons,
                           w.leaves);
+          size_t leaves_bytes = HeldBytes(w.leaves);
+          for (const LeafWindow& leaf : w.leaves) leaves_bytes += HeldBytes(leaf.polygons);
+          if (!memory.Hold(w.leaves_held, leaves_bytes)) {
+            stopped = true;
+            return;
+          }
           for (const LeafWindow& leaf : w.leaves) {
             // Asked inside a task too, so one long task (a crowded window) does not outlive its
             // deadline; the check itself is throttled by the caller (server/stop_check.h).
@@ -80,6 +117,7 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
       },
       tbb::simple_partitioner());
   frame.stats.raster_ms = timer.Milliseconds();
+  if (memory.Exceeded()) return memory.Error();
   if (stopped) {
     size_t done = 0;
     for (double us : task_us) done += us > 0;
@@ -87,6 +125,7 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
         absl::StrCat("frame stopped after ", done, " of ", tasks.size(), " tasks"));
   }
   frame.stats.concurrency = concurrency;
+  frame.stats.peak_memory_bytes = memory.Peak();
   for (const Worker& w : workers) {
     frame.stats.empty_leaves += w.kinds[0];
     frame.stats.covered_leaves += w.kinds[1];
@@ -114,9 +153,17 @@ absl::StatusOr<RenderedFrame> RenderFrame(const Scene& scene, const Camera& came
         " sphere(s)/cylinder(s), which only the raytrace mode draws (aperture-render --mode "
         "raytrace; options.mode RENDER_MODE_RAYTRACE in a request); the raster mode renders planar "
         "polygons only"));
-  if (settings.threads == 0) return RenderInArena(scene, camera, settings, stop);
-  tbb::task_arena arena(settings.threads);
-  return arena.execute([&] { return RenderInArena(scene, camera, settings, stop); });
+  // Memory is bounded by the frame's budget; should the process still run out (other frames,
+  // a budget above what the machine has), the frame fails with that error, not the process.
+  try {
+    if (settings.threads == 0) return RenderInArena(scene, camera, settings, stop);
+    tbb::task_arena arena(settings.threads);
+    return arena.execute([&] { return RenderInArena(scene, camera, settings, stop); });
+  } catch (const std::bad_alloc&) {
+    return absl::ResourceExhaustedError(
+        "the process ran out of memory while rendering the frame (its budget, --max-frame-mb, "
+        "is larger than what the machine has free)");
+  }
 }
 
 }  // namespace aperture

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "base/held_bytes.h"
 #include "raster/depth_order.h"
 #include "raster/identical_polygons.h"
 
@@ -224,30 +225,32 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
   // The leaf's polygons nearest first (CellCoverage::Compute stops its scan of a cell at the
   // first one behind a whole-cell cover), each by the largest inverse depth over its vertices.
   if (nearest_.size() < geo_.polygons.size()) nearest_.resize(geo_.polygons.size());
-  by_depth_.assign(polygons.begin(), polygons.end());
+  // Nearest first by the nearest values' leading 30 bits (a tie in them is a tie of depth within
+  // about the coplanar tolerance), ties drawn last first: under a stack of coplanar layers the
+  // first whole-cell cover a cell's scan meets is the layer drawn over the rest, which hides them.
+  if (draw_order_.size() < geo_.polygons.size()) draw_order_.resize(geo_.polygons.size());
+  keys_.clear();
   for (int p : polygons) {
     const ScreenPolygon& polygon = geo_.polygons[p];
     double w = -INFINITY;
     for (const Vec2& v : polygon.vertices) w = std::max(w, polygon.inv_depth.At(v.x, v.y));
     nearest_[p] = w;
+    draw_order_[p] = DrawOrder(polygon.layer, p);
+    keys_.push_back({NearestQuantum(w), draw_order_[p], p});
   }
-  // Nearest first by the nearest values' leading 30 bits (a tie in them is a tie of depth within
-  // about the coplanar tolerance), ties drawn last first: under a stack of coplanar layers the
-  // first whole-cell cover a cell's scan meets is the layer drawn over the rest, which hides them.
-  if (quantum_.size() < geo_.polygons.size()) {
-    quantum_.resize(geo_.polygons.size());
-    draw_order_.resize(geo_.polygons.size());
-  }
-  for (int p : polygons) {
-    quantum_[p] = NearestQuantum(nearest_[p]);
-    draw_order_[p] = DrawOrder(geo_.polygons[p].layer, p);
-  }
-  std::sort(by_depth_.begin(), by_depth_.end(), [&](int a, int b) {
-    return quantum_[a] > quantum_[b] ||
-           (quantum_[a] == quantum_[b] && draw_order_[a] > draw_order_[b]);
+  std::sort(keys_.begin(), keys_.end(), [](const DepthKey& a, const DepthKey& b) {
+    return a.quantum > b.quantum || (a.quantum == b.quantum && a.order > b.order);
   });
-  DropHiddenCopies();
-  bins_.Build(geo_.polygons, by_depth_, r.x0, r.y0, shape_.cell_offset, nx_, ny);
+  SortedWithoutHiddenCopies();
+  if (!HoldMemory()) return false;
+  // The lists may take what the budget has left and the room they hold already.
+  const size_t room_bytes = memory_ ? memory_->Room() : SIZE_MAX;
+  const size_t room =
+      room_bytes == SIZE_MAX ? SIZE_MAX : (room_bytes + bins_.ItemBytes()) / sizeof(int);
+  if (!bins_.Build(geo_.polygons, by_depth_, r.x0, r.y0, shape_.cell_offset, nx_, ny, room)) {
+    memory_->Refuse("a leaf's lists of polygons by cell", bins_.NeededItemBytes());
+    return false;
+  }
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx_; ++i) {
       const size_t before = pieces_.size();
@@ -268,46 +271,55 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
         reached_to_[j] = i + 1;
       }
     }
-    if (stop_ && stop_()) return false;
+    if ((stop_ && stop_()) || !HoldMemory()) return false;
   }
   cell_begin_.back() = pieces_.size();
   return true;
 }
 
-// Identical polygons have equal nearest values, so copies lie in runs of one quantum in
-// by_depth_ (a run of one, most of a frame, costs a comparison). In a longer run, the polygons
-// identical to one drawn over them are hidden by it wherever they are (the leaf is opaque) and
-// leave the leaf's list: ten thousand copies cost one polygon's cells.
-void LeafRenderer::DropHiddenCopies() {
-  auto order = [&](int p) { return DrawOrder(geo_.polygons[p].layer, p); };
-  size_t kept = 0;
-  for (size_t i = 0; i < by_depth_.size();) {
+// Identical polygons have equal nearest values, so copies lie in runs of one quantum in keys_ (a
+// run of one, most of a frame, costs a comparison). In a longer run, the polygons identical to one
+// drawn over them are hidden by it wherever they are (the leaf is opaque) and leave the leaf's
+// list: ten thousand copies cost one polygon's cells.
+void LeafRenderer::SortedWithoutHiddenCopies() {
+  by_depth_.clear();
+  for (size_t i = 0; i < keys_.size();) {
     size_t end = i + 1;
-    while (end < by_depth_.size() && quantum_[by_depth_[end]] == quantum_[by_depth_[i]]) ++end;
-    if (end - i > 1) {
-      // The run by hash, each hash's polygons drawn last first; then back in the run's order.
-      copies_.clear();
-      for (size_t k = i; k < end; ++k)
-        copies_.push_back({ScreenPolygonHash(geo_.polygons[by_depth_[k]]), by_depth_[k]});
-      std::sort(copies_.begin(), copies_.end(), [&](const auto& a, const auto& b) {
-        return a.first < b.first || (a.first == b.first && order(a.second) > order(b.second));
-      });
-      size_t unique = 0;
-      for (size_t k = 0; k < copies_.size(); ++k) {
-        const bool hidden = unique > 0 && copies_[unique - 1].first == copies_[k].first &&
-                            SameScreenPolygon(geo_.polygons[copies_[unique - 1].second],
-                                              geo_.polygons[copies_[k].second]);
-        if (!hidden) copies_[unique++] = copies_[k];
-      }
-      std::sort(copies_.begin(), copies_.begin() + static_cast<long>(unique),
-                [&](const auto& a, const auto& b) { return order(a.second) > order(b.second); });
-      for (size_t k = 0; k < unique; ++k) by_depth_[kept++] = copies_[k].second;
-    } else {
-      by_depth_[kept++] = by_depth_[i];
+    while (end < keys_.size() && keys_[end].quantum == keys_[i].quantum) ++end;
+    if (end - i == 1) {
+      by_depth_.push_back(keys_[i].polygon);
+      i = end;
+      continue;
     }
+    // The run by hash, each hash's polygons drawn last first; then back in the run's order.
+    copies_.clear();
+    for (size_t k = i; k < end; ++k)
+      copies_.push_back({ScreenPolygonHash(geo_.polygons[keys_[k].polygon]), keys_[k].polygon});
+    auto order = [&](int p) { return draw_order_[p]; };
+    std::sort(copies_.begin(), copies_.end(), [&](const auto& a, const auto& b) {
+      return a.first < b.first || (a.first == b.first && order(a.second) > order(b.second));
+    });
+    size_t unique = 0;
+    for (size_t k = 0; k < copies_.size(); ++k) {
+      const bool hidden = unique > 0 && copies_[unique - 1].first == copies_[k].first &&
+                          SameScreenPolygon(geo_.polygons[copies_[unique - 1].second],
+                                            geo_.polygons[copies_[k].second]);
+      if (!hidden) copies_[unique++] = copies_[k];
+    }
+    std::sort(copies_.begin(), copies_.begin() + static_cast<long>(unique),
+              [&](const auto& a, const auto& b) { return order(a.second) > order(b.second); });
+    for (size_t k = 0; k < unique; ++k) by_depth_.push_back(copies_[k].second);
     i = end;
   }
-  by_depth_.resize(kept);
+}
+
+size_t LeafRenderer::WorkingBytes() const {
+  return coverage_.WorkingBytes() + bins_.WorkingBytes() +
+         HeldBytes(pieces_, nearest_, draw_order_, keys_, by_depth_, copies_, cell_begin_,
+                   reached_from_, reached_to_, entries_, pixel_begin_, order_, group_begin_, slots_,
+                   slot_of_, points_, batch_, colours_, flat_colours_, cell_sums_, pair_sums_,
+                   passes_, layers_, cell_layers_, candidates_, needed_, layer_begin_) +
+         HeldMapBytes(pixel_entry_);
 }
 
 void LeafRenderer::GatherPixel(int px, int py) {
@@ -515,6 +527,7 @@ bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) 
         passes_.push_back({included, begin, pieces_.size()});
       }
     }
+    if ((stop_ && stop_()) || !HoldMemory()) return false;
   }
   cell_begin_[cells] = passes_.size();
 

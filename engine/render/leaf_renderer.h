@@ -14,6 +14,7 @@
 #include "raster/cell_bins.h"
 #include "raster/cell_coverage.h"
 #include "raster/warnock.h"
+#include "render/frame_memory.h"
 #include "render/polygon_shader.h"
 
 namespace aperture {
@@ -24,16 +25,28 @@ class LeafRenderer {
   // `stop` (may be empty) is asked after each row of a mixed leaf's cells and inside crowded
   // cells (CellCoverage::SetStop): a leaf of many busy cells stops within a row.
   // `sky` with alpha below 1 (a transparent sky): pixels get the alpha of what covers them.
+  // `memory` (may be null): the frame's budget, which its buffers are held against after each
+  // row of a leaf's cells and before a leaf's polygons are binned.
   LeafRenderer(const FrameGeometry& geometry, const PolygonShader& shader, AntiAliasing aa,
-               Rgba sky, const PixelRect& region, std::function<bool()> stop = {})
-      : geo_(geometry), shader_(shader), aa_(aa), shape_(ShapeOf(aa)), sky_(sky), region_(region) {
+               Rgba sky, const PixelRect& region, std::function<bool()> stop = {},
+               FrameMemory* memory = nullptr)
+      : geo_(geometry),
+        shader_(shader),
+        aa_(aa),
+        shape_(ShapeOf(aa)),
+        sky_(sky),
+        region_(region),
+        memory_(memory) {
     coverage_.SetStop(stop);
     stop_ = std::move(stop);
   }
 
   // Not thread-safe (scratch buffers): one LeafRenderer per worker. False when the stop test
-  // cut the leaf short (its pixels are then not to be used).
+  // cut the leaf short, or its buffers would pass the frame's memory budget (its pixels are then
+  // not to be used).
   bool Render(const LeafWindow& leaf, Image& image);
+  // The bytes its buffers hold.
+  size_t WorkingBytes() const;
 
  private:
   bool RenderMixed(const LeafWindow& leaf, Image& image);
@@ -98,16 +111,25 @@ class LeafRenderer {
   PixelRect region_;
   CellCoverage coverage_;
   std::function<bool()> stop_;
+  FrameMemory* memory_;
+  size_t held_ = 0;  // what memory_ counts of this renderer's buffers
+  // Holds the buffers against the frame's budget: false once it is passed.
+  bool HoldMemory() { return memory_ == nullptr || memory_->Hold(held_, WorkingBytes()); }
   CellBins bins_;  // the leaf's polygons by cell
   std::vector<CellPiece> pieces_;
   int nx_ = 0;                       // cells per row of the leaf being rendered
   std::vector<double> nearest_;      // per polygon of the frame: its largest 1/depth (set per leaf)
-  std::vector<uint64_t> quantum_;    // per polygon of the frame: NearestQuantum of nearest_
-  std::vector<int64_t> draw_order_;  // per polygon of the frame: its DrawOrder
-  std::vector<int> by_depth_;        // the leaf's polygons, nearest first
-  std::vector<std::pair<uint64_t, int>> copies_;  // DropHiddenCopies: (hash, polygon)
-  // Drops from by_depth_ the polygons that an identical one drawn over them hides.
-  void DropHiddenCopies();
+  std::vector<int64_t> draw_order_;  // per polygon of the frame: its DrawOrder (set per leaf)
+  struct DepthKey {
+    uint64_t quantum;  // NearestQuantum of its nearest_
+    int64_t order;     // its DrawOrder
+    int polygon;
+  };
+  std::vector<DepthKey> keys_;  // the leaf's polygons, sorted nearest first
+  std::vector<int> by_depth_;   // the leaf's polygons, nearest first, less hidden copies
+  std::vector<std::pair<uint64_t, int>> copies_;  // (hash, polygon) of a run of equal quanta
+  // by_depth_ from keys_, less the polygons that an identical one drawn over them hides.
+  void SortedWithoutHiddenCopies();
   std::vector<size_t> cell_begin_;
   std::vector<int> reached_from_, reached_to_;  // per row of cells: its first, last + 1 with pieces
   // A polygon's weight in one pixel of the leaf, (px, py) from the leaf's top-left corner (the

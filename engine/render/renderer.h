@@ -31,6 +31,9 @@ struct RenderSettings {
   // The sky drawn as (0, 0, 0, 0): alpha is then the coverage of what the scene draws, and the
   // colour premultiplied by it (v1::RenderOptions.transparent_sky).
   bool transparent_sky = false;
+  // The frame's working memory budget in bytes (render/frame_memory.h), 0: none. Past it the
+  // frame stops with RESOURCE_EXHAUSTED naming the budget.
+  size_t max_frame_bytes = 0;
 };
 
 // The sky a frame's pixels show where nothing covers them.
@@ -52,6 +55,8 @@ struct FrameStats {
   size_t visible_polygons = 0;
   size_t empty_leaves = 0, covered_leaves = 0, mixed_leaves = 0;
   int concurrency = 1;
+  // The most the frame's working memory held (render/frame_memory.h): what its budget weighs.
+  size_t peak_memory_bytes = 0;
   std::vector<TaskTiming> tasks;  // in the order they were started
 
   // Sum of task times over (threads x raster time): 1 when no worker ever waits.

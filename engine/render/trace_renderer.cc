@@ -13,6 +13,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "base/stopwatch.h"
+#include "render/frame_memory.h"
 #include "scene/shading.h"
 #include "texture/packed/packed_sampler.h"
 #include "texture/summed_area_levels.h"
@@ -409,6 +410,15 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
                                ? settings.region
                                : PixelRect{0, 0, settings.width, settings.height};
   const int w = region.width(), h = region.height(), x0 = region.x0, y0 = region.y0;
+  // The image and its corner rays are what grows with the frame (the per-thread fragments are
+  // bounded by their work cap), weighed against its budget before they are made.
+  FrameMemory memory(settings.max_frame_bytes);
+  const size_t frame_bytes = static_cast<size_t>(w) * h * sizeof(Rgba) +
+                             static_cast<size_t>(w + 1) * (h + 1) * sizeof(Hit);
+  if (frame_bytes > memory.Room()) {
+    memory.Refuse("the image and its corner rays", frame_bytes);
+    return memory.Error();
+  }
   const Frame frame(scene_, *rays_, integrals_, camera, settings, options);
   RenderedFrame out;
   out.region = region;
@@ -454,11 +464,17 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
         });
     s.shade_ms = timer.Milliseconds();
   };
-  if (settings.threads > 0) {
-    tbb::task_arena arena(settings.threads);
-    arena.execute(run);
-  } else {
-    run();
+  try {
+    if (settings.threads > 0) {
+      tbb::task_arena arena(settings.threads);
+      arena.execute(run);
+    } else {
+      run();
+    }
+  } catch (const std::bad_alloc&) {
+    return absl::ResourceExhaustedError(
+        "the process ran out of memory while tracing the frame (its budget, --max-frame-mb, is "
+        "larger than what the machine has free)");
   }
   if (stopped) return absl::CancelledError("the frame was stopped");
   s.corner_rays = corners.size();
@@ -468,6 +484,7 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
     s.fragments.Add(l.stats);
   }
   out.stats.setup_ms = s.corner_ms;
+  out.stats.peak_memory_bytes = frame_bytes;
   out.stats.raster_ms = s.shade_ms;
   if (stats != nullptr) *stats = s;
   return out;

@@ -25,6 +25,7 @@
 #include "io/exr_writer.h"
 #include "io/frame_job.h"
 #include "large_buffers.h"
+#include "render/frame_memory.h"
 #include "render/frame_renderer.h"
 #include "render/trace_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -46,6 +47,10 @@ ABSL_FLAG(int, zip_level, 4,
           "deflate level of zip and zips compression (libdeflate), 1 (fastest) .. 9 (smallest)");
 ABSL_FLAG(bool, preview, true, "also write an sRGB PNG preview next to the EXR");
 ABSL_FLAG(int, threads, 0, "worker threads (0: all cores)");
+ABSL_FLAG(uint64_t, max_frame_mb, 0,
+          "working memory the frame may hold (projected polygons, planned tasks, the workers' "
+          "cell buffers, the image), MiB; past it the frame stops with an error; 0: a quarter of "
+          "the machine's memory");
 ABSL_FLAG(int, repeat, 1, "render this many times and report the fastest (for benchmarks)");
 ABSL_FLAG(int, exact_steps, aperture::FragmentOptions{}.exact_steps,
           "raytrace: a pixel's projection is integrated exactly (by its edges against the "
@@ -144,6 +149,9 @@ int Run() {
   const Camera& camera = job->camera;
   RenderSettings& settings = job->settings;
   settings.threads = absl::GetFlag(FLAGS_threads);
+  settings.max_frame_bytes = absl::GetFlag(FLAGS_max_frame_mb) > 0
+                                 ? absl::GetFlag(FLAGS_max_frame_mb) << 20
+                                 : DefaultFrameBudgetBytes();
   settings.warnock.leaf_size = absl::GetFlag(FLAGS_leaf);
   settings.warnock.crowded_leaf_size = absl::GetFlag(FLAGS_crowded_leaf);
   if (const std::string mode = absl::GetFlag(FLAGS_scheduling); mode == "uniform") {
@@ -271,6 +279,8 @@ int Run() {
                   SchedulingName(settings.scheduling.mode), stats.concurrency,
                   stats.BalanceEfficiency());
       std::printf("cost model: %s\n", DefaultCostModelSource().c_str());
+      std::printf("working memory: %.1f MiB at most (budget %.0f MiB)\n",
+                  stats.peak_memory_bytes / 1048576.0, settings.max_frame_bytes / 1048576.0);
       std::printf(
           "frame time: setup %.2f ms, raster %.2f ms (planning %.2f), encode %.2f ms (%s, %s)%s\n",
           stats.setup_ms, stats.raster_ms, stats.plan_ms, encode_ms,

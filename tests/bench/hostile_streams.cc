@@ -5,9 +5,11 @@
 //   --case big-update      on a scene of --objects named objects, one stream frame whose update
 //                          names every object once, then one whose update names one object
 //                          --objects times.
+//   --case one-spot        on a scene of --objects named objects, one stream frame whose update
+//                          moves every object to one spot of the ground, then a 1920x1080 frame.
 // Prints what each case did and how long it took; with --server-pid, also the server's VmRSS
 // before, at the end of the sending and a few seconds after the cancel.
-// Usage: hostile_streams --server HOST:PORT --case unread-streams|big-update [--streams 2]
+// Usage: hostile_streams --server HOST:PORT --case unread-streams|big-update|one-spot [--streams 2]
 //        [--seconds 30] [--objects 100000] [--deadline-s 300] [--server-pid PID]
 #include <grpcpp/grpcpp.h>
 
@@ -159,6 +161,46 @@ class Bench {
     return failures == 0 ? 0 : 1;
   }
 
+  int OneSpot() {
+    v1::LoadSceneRequest load;
+    *load.mutable_scene() = testing::ManyObjectsScene(options_.objects);
+    v1::LoadSceneResponse loaded;
+    if (!Load(load, &loaded)) return 2;
+    PrintRss(options_.server_pid, "after the load");
+    v1::RenderFrameRequest request;
+    request.set_scene_id(loaded.scene_id());
+    request.mutable_camera()->mutable_position()->set_y(3);
+    request.mutable_camera()->set_pitch_deg(-60);
+    request.mutable_options()->set_width(64);
+    request.mutable_options()->set_height(48);
+    for (int i = 0; i < options_.objects; ++i) {
+      v1::ObjectUpdate& o = *request.mutable_update()->add_objects();
+      o.set_name("object-" + std::to_string(i));
+      o.mutable_transform()->mutable_translation()->set_z(-2);
+    }
+    grpc::ClientContext context;
+    SetDeadline(&context);
+    auto stream = stub_->RenderStream(&context);
+    int failures = 0;
+    for (const auto& [width, height] : {std::pair{64, 48}, {1920, 1080}}) {
+      request.mutable_options()->set_width(width);
+      request.mutable_options()->set_height(height);
+      const auto start = Clock::now();
+      v1::RenderFrameResponse response;
+      const bool answered = stream->Write(request) && stream->Read(&response);
+      std::printf("%dx%d frame%s: round trip %.3f s, server raster %.1f ms, status %d%s%s\n", width,
+                  height, request.has_update() ? " moving every object to one spot" : "",
+                  SecondsSince(start), response.timings().raster_ms(), response.status_code(),
+                  response.status_message().empty() ? "" : ": ", response.status_message().c_str());
+      failures += !answered || response.status_code() != 0;
+      request.clear_update();
+    }
+    stream->WritesDone();
+    failures += !stream->Finish().ok();
+    PrintRss(options_.server_pid, "after the frames");
+    return failures == 0 ? 0 : 1;
+  }
+
  private:
   static std::string StatusName(const grpc::Status& status) {
     static const char* const kNames[] = {"OK",
@@ -264,8 +306,10 @@ int main(int argc, char** argv) {
   aperture::Bench bench(options);
   if (options.which == "unread-streams") return bench.UnreadStreams();
   if (options.which == "big-update") return bench.BigUpdate();
-  std::fprintf(stderr,
-               "usage: hostile_streams --server HOST:PORT --case unread-streams|big-update "
-               "[--streams N] [--seconds S] [--objects N] [--deadline-s S] [--server-pid PID]\n");
+  if (options.which == "one-spot") return bench.OneSpot();
+  std::fprintf(
+      stderr,
+      "usage: hostile_streams --server HOST:PORT --case unread-streams|big-update|one-spot "
+      "[--streams N] [--seconds S] [--objects N] [--deadline-s S] [--server-pid PID]\n");
   return 2;
 }
