@@ -151,7 +151,7 @@ case_models() {
   t=$(now)
   /usr/bin/time -f "%M" -o "$work/peak" "$render" --scene "$work/dag40.gltf" --size 64x48 \
     --store none --nopreview -o "$work/dag.exr" >/dev/null 2>"$work/dag.err" || rc=$?
-  echo "exit $rc in $(since "$t") s, peak RSS $(mib "$(cat "$work/peak")") MiB: $(grep -m1 error "$work/dag.err")"
+  echo "exit $rc in $(since "$t") s, peak RSS $(mib "$(tail -n1 "$work/peak")") MiB: $(grep -m1 error "$work/dag.err")"
 }
 
 case_streams() {

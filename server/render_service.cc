@@ -58,7 +58,7 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
       scenes_(scenes),
       admission_(admission),
       arena_(arena),
-      traced_(kTracedScenes, textures.shared()),
+      traced_(kTracedScenes, textures.shared(), limits.max_store_bytes),
       uploads_in_flight_("uploads in flight (--max-upload-inflight-mb)",
                          limits.max_upload_inflight_bytes),
       upload_watchdog_(limits.upload_idle),
@@ -281,7 +281,8 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
         absl::StatusOr<std::shared_ptr<const TracedScene>> traced;
         if (updated) {
           const auto build_start = Clock::now();
-          auto built = TracedScene::Build(*scene, textures_.shared(), [&] { return stop(); });
+          auto built = TracedScene::Build(
+              *scene, textures_.shared(), [&] { return stop(); }, limits_.max_store_bytes);
           traced_build_ms = MillisecondsSince(build_start);
           if (built.ok())
             traced = std::shared_ptr<const TracedScene>(*std::move(built));

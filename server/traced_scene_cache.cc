@@ -37,7 +37,7 @@ absl::StatusOr<std::shared_ptr<const TracedScene>> TracedSceneCache::Get(
   auto holder = std::make_shared<Holder>();
   holder->scene = std::move(scene);
   // A build stopped by the frame's deadline is not kept: the next frame builds again.
-  auto traced = TracedScene::Build(*holder->scene, store_, stop);
+  auto traced = TracedScene::Build(*holder->scene, store_, stop, memory_budget_);
   if (!traced.ok()) return traced.status();
   holder->traced = std::move(*traced);
   slot->traced = std::shared_ptr<const TracedScene>(holder, holder->traced.get());

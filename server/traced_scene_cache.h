@@ -19,8 +19,11 @@ namespace aperture {
 class TracedSceneCache {
  public:
   // `store`: the machine's shared store, where the summed-area tables are kept (null: in memory).
-  TracedSceneCache(size_t capacity, std::shared_ptr<const SharedStore> store)
-      : capacity_(capacity), store_(std::move(store)) {}
+  // Without a store, a scene's tables are built in memory, refused past `memory_budget` bytes
+  // (TracedScene::Build).
+  TracedSceneCache(size_t capacity, std::shared_ptr<const SharedStore> store,
+                   uint64_t memory_budget = 0)
+      : capacity_(capacity), store_(std::move(store)), memory_budget_(memory_budget) {}
 
   // The state of scene `id`, built from `scene` once even when frames ask at the same time;
   // `*built_ms` (optional) is the time spent building it in this call (0 when it was cached).
@@ -42,6 +45,7 @@ class TracedSceneCache {
   };
   size_t capacity_;
   std::shared_ptr<const SharedStore> store_;
+  uint64_t memory_budget_;
   mutable std::mutex mutex_;
   uint64_t clock_ = 0;
   std::map<std::string, Entry> entries_;

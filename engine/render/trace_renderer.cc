@@ -344,37 +344,50 @@ absl::Status ValidateTraceOptions(const TraceOptions& options) {
 }
 
 absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
-    const Scene& scene, std::shared_ptr<const SharedStore> store, const StopRequested& stop) {
+    const Scene& scene, std::shared_ptr<const SharedStore> store, const StopRequested& stop,
+    uint64_t memory_budget) {
+  // A summed-area table per raster texture that some material uses (RGB, or RGBA when the
+  // texture has any alpha below 1).
+  std::vector<bool> used(scene.textures.size(), false);
+  for (const Material& m : scene.materials)
+    if (m.texture >= 0) used[m.texture] = true;
+  std::vector<int> channels(scene.textures.size(), 0);
+  uint64_t in_memory = 0;
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    const SceneTexture& t = *scene.textures[i];
+    if (!used[i] || t.pyramid == nullptr || t.pyramid->levels() == 0) continue;
+    bool alpha = false;
+    for (const Rgba& texel : t.pyramid->level(0).texels()) alpha = alpha || texel.a < 1.0f;
+    channels[i] = alpha ? 4 : 3;
+    if (!store) in_memory += SummedAreaLevelsBytes(*t.pyramid, channels[i]);
+  }
+  if (!store && memory_budget > 0 && in_memory > memory_budget)
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "the scene's summed-area tables (", in_memory >> 20,
+        " MiB, built in memory: no texture store) do not fit in the budget of ",
+        memory_budget >> 20, " MiB for what the server holds in memory (--max-store-mb)"));
   std::unique_ptr<TracedScene> ts(new TracedScene(scene));
   auto rays = RayScene::Build(scene);
   if (!rays.ok()) return rays.status();
   ts->rays_ = std::move(*rays);
-  // A summed-area table per raster texture that some material uses (RGB, or RGBA when the
-  // texture has any alpha below 1).
   ts->tables_.resize(scene.textures.size());
-  std::vector<bool> used(scene.textures.size(), false);
-  for (const Material& m : scene.materials)
-    if (m.texture >= 0) used[m.texture] = true;
   for (size_t i = 0; i < scene.textures.size(); ++i) {
     const SceneTexture& t = *scene.textures[i];
-    if (!used[i] || t.pyramid == nullptr || t.pyramid->levels() == 0) continue;
+    if (channels[i] == 0) continue;
     if (stop && stop())
       return absl::CancelledError("the summed-area tables were stopped part-built");
     const Image& base = t.pyramid->level(0);
-    bool alpha = false;
-    for (const Rgba& texel : base.texels()) alpha = alpha || texel.a < 1.0f;
-    const int channels = alpha ? 4 : 3;
     if (!store) {
-      for (auto& table : BuildSummedAreaLevels(*t.pyramid, channels))
+      for (auto& table : BuildSummedAreaLevels(*t.pyramid, channels[i]))
         ts->tables_[i].push_back(std::move(table));
       continue;
     }
-    auto entry = GetOrBuildSummedAreaTables(*store, *t.pyramid, channels);
+    auto entry = GetOrBuildSummedAreaTables(*store, *t.pyramid, channels[i]);
     auto views = entry.ok() ? ViewSummedAreaLevels((*entry)->payload()) : entry.status();
     if (!views.ok())
       return absl::Status(views.status().code(),
                           absl::StrCat("summed-area tables of texture '", t.id, "' (", base.width(),
-                                       " x ", base.height(), " texels, ", channels,
+                                       " x ", base.height(), " texels, ", channels[i],
                                        " channels): ", views.status().message()));
     ts->entries_.push_back(*std::move(entry));
     for (auto& table : *views) ts->tables_[i].push_back(std::move(table));

@@ -44,10 +44,13 @@ class TracedScene {
  public:
   // With a store, each raster texture's summed-area tables come from (or go to) the machine's
   // shared store and are used in place, so every server process builds them once per machine.
-  // `stop` is asked before each texture's tables; a build stopped ends with CANCELLED.
+  // `stop` is asked before each texture's tables; a build stopped ends with CANCELLED. Without a
+  // store the tables are built in this process: with `memory_budget` > 0 (the bytes uploads may
+  // hold in memory, the server's --max-store-mb), tables that would pass it in all are refused
+  // with RESOURCE_EXHAUSTED before any is built (their size follows from the textures').
   static absl::StatusOr<std::unique_ptr<TracedScene>> Build(
       const Scene& scene, std::shared_ptr<const SharedStore> store = nullptr,
-      const StopRequested& stop = {});
+      const StopRequested& stop = {}, uint64_t memory_budget = 0);
 
   // Renders settings.region of the settings.width x settings.height frame (empty: all of it) on
   // settings.threads threads (0: the caller's arena). `stop` is asked between tiles; a frame

@@ -143,6 +143,21 @@ TEST(SummedAreaTableStore, TablesOverTheStoresBudgetAreRefusedUnbuilt) {
   fs::remove_all(dir);
 }
 
+// Without a store the tables are built in memory, and refused before they are built when they
+// would pass the budget of what the server holds in memory (--max-store-mb); within it they are.
+TEST(SummedAreaTableStore, TablesInMemoryOverTheBudgetAreRefusedUnbuilt) {
+  const CurvedTestScene test = MakeCurvedTestScene(CurvedSceneKind::kCylinder, 128);
+  auto scene = BuildScene(test.scene);
+  ASSERT_TRUE(scene.ok());
+  auto refused = TracedScene::Build(*scene, nullptr, {}, 1 << 20);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(absl::IsResourceExhausted(refused.status())) << refused.status();
+  const std::string message(refused.status().message());
+  EXPECT_NE(message.find("4 MiB, built in memory"), std::string::npos) << message;
+  EXPECT_NE(message.find("budget of 1 MiB"), std::string::npos) << message;
+  EXPECT_TRUE(TracedScene::Build(*scene, nullptr, {}, 8 << 20).ok());
+}
+
 // Issue 23: a raytraced frame's deadline stops the build of its summed-area tables.
 TEST(SummedAreaTableStore, AStoppedBuildIsCancelled) {
   const CurvedTestScene test = MakeCurvedTestScene(CurvedSceneKind::kCylinder, 128);
