@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gltf_import.h"
+#include "support/gltf_import_helpers.h"
 #include "support/gltf_test_models.h"
 
 namespace aperture {
@@ -16,22 +17,12 @@ namespace {
 
 using testing::GltfFile;
 
+using testing::ErrorOf;
+using testing::Triangles;
+
 absl::StatusOr<ImportedModel> Import(const std::string& json,
                                      const GltfImportOptions& options = {}) {
-  return ImportGltfBytes(std::span(reinterpret_cast<const uint8_t*>(json.data()), json.size()),
-                         /*binary=*/false, "/nonexistent", "test", options);
-}
-
-std::string ErrorOf(const absl::StatusOr<ImportedModel>& imported) {
-  EXPECT_FALSE(imported.ok());
-  EXPECT_EQ(imported.status().code(), absl::StatusCode::kInvalidArgument);
-  return std::string(imported.status().message());
-}
-
-size_t Triangles(const ImportedModel& model) {
-  size_t n = 0;
-  for (const v1::Mesh& mesh : model.scene.meshes()) n += mesh.polygons_size();
-  return n;
+  return testing::ImportJson(json, options);
 }
 
 TEST(GltfNodeTree, AChildOfTwoParentsIsRefusedNamingIt) {

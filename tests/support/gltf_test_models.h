@@ -78,6 +78,15 @@ inline std::string InstancedMesh(int count, const std::string& meshes = "") {
   return GltfFile(nodes + "]", "[{\"nodes\": [0]}]", meshes);
 }
 
+// A one-node model whose mesh's `primitives` is an object rather than an array (the shape of
+// assimp-testmodels' glTF2/wrongTypes/badArray.gltf).
+inline std::string PrimitivesAsObject() {
+  std::string model = GltfFile(R"([{"mesh": 0}])", R"([{"nodes": [0]}])");
+  model.replace(model.find("[{\"attributes\""), 1, "");
+  model.replace(model.find("}}]"), 3, "}}");
+  return model;
+}
+
 // Mesh 0 as a triangle strip of `triangles` triangles over 3 vertices, its indices one byte each
 // (0, 1, 2, 0, 1, 2, ...): a few bytes of file per triangle.
 inline std::string ByteStripMesh(int triangles) {
