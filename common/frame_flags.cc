@@ -79,6 +79,8 @@ ABSL_FLAG(bool, float_pixels, false, "32-bit float channels instead of half");
 ABSL_FLAG(bool, transparent_sky, false,
           "leave the sky transparent: alpha is what the scene covers, the colour premultiplied by "
           "it (for compositing the frame over other imagery)");
+ABSL_FLAG(double, scene_time_s, 0,
+          "the scene's clock, seconds: which flashing light points are on (LightFlash)");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (aperture batch: an output directory)");
 
 namespace aperture {
@@ -239,6 +241,7 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(
   options.set_pixel_type(absl::GetFlag(FLAGS_float_pixels) ? v1::PIXEL_TYPE_FLOAT
                                                            : v1::PIXEL_TYPE_HALF);
   options.set_transparent_sky(absl::GetFlag(FLAGS_transparent_sky));
+  request.set_scene_time_s(absl::GetFlag(FLAGS_scene_time_s));
   return request;
 }
 

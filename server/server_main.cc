@@ -54,6 +54,7 @@ ABSL_FLAG(uint64_t, max_scene_polygons, 4000000,
           "largest scene: its objects times their meshes' polygons (before triangulation)");
 ABSL_FLAG(uint64_t, max_polygon_vertices, 1000000, "most vertices of one polygon");
 ABSL_FLAG(uint64_t, max_scene_textures, 256, "most textures of one scene");
+ABSL_FLAG(uint64_t, max_scene_lights, 1000000, "most light points of one scene, rows expanded");
 ABSL_FLAG(uint64_t, max_scenes_mb, 0,
           "bytes all loaded scenes may hold (decoded textures, aniso tables, polygons, as "
           "estimated before a scene is built), MiB; 0: a quarter of the machine's memory");
@@ -167,6 +168,7 @@ int Run() {
   limits.scene.polygons = absl::GetFlag(FLAGS_max_scene_polygons);
   limits.scene.vertices_per_polygon = absl::GetFlag(FLAGS_max_polygon_vertices);
   limits.scene.textures = absl::GetFlag(FLAGS_max_scene_textures);
+  limits.scene.lights = absl::GetFlag(FLAGS_max_scene_lights);
   limits.max_frame_bytes = absl::GetFlag(FLAGS_max_frame_mb) > 0
                                ? absl::GetFlag(FLAGS_max_frame_mb) << 20
                                : DefaultFrameBudgetBytes();

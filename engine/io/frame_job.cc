@@ -1,5 +1,7 @@
 #include "io/frame_job.h"
 
+#include <cmath>
+
 #include "absl/strings/str_cat.h"
 #include "io/exr_options_proto.h"
 #include "scene/camera_proto.h"
@@ -22,6 +24,10 @@ absl::StatusOr<FrameJob> FrameJobFromRequest(const v1::RenderFrameRequest& reque
   auto mode = ModeOptionsFromProto(request.options());
   if (!mode.ok()) return mode.status();
   job.mode = *mode;
+  if (!std::isfinite(request.scene_time_s()))
+    return absl::InvalidArgumentError(
+        absl::StrCat("scene_time_s is ", request.scene_time_s(), "; must be finite"));
+  job.settings.scene_time_s = request.scene_time_s();
 
   if (request.has_region()) {
     const v1::PixelRegion& r = request.region();

@@ -13,6 +13,7 @@
 #include "raster/projection.h"
 #include "render/frame_memory.h"
 #include "render/leaf_renderer.h"
+#include "render/light_pass.h"
 
 namespace aperture {
 namespace {
@@ -116,6 +117,16 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
         }
       },
       tbb::simple_partitioner());
+  if (!stopped && !memory.Exceeded()) {
+    LightPassStats lights;
+    if (auto s = DrawLightPoints(scene, camera, geometry, settings, frame.region, frame.image,
+                                 &lights, stop);
+        !s.ok())
+      return s;
+    frame.stats.lights_drawn = lights.drawn;
+    frame.stats.lights_occluded = lights.occluded;
+    frame.stats.lights_ms = lights.ms;
+  }
   frame.stats.raster_ms = timer.Milliseconds();
   if (memory.Exceeded()) return memory.Error();
   if (stopped) {

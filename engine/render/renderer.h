@@ -34,6 +34,8 @@ struct RenderSettings {
   // The frame's working memory budget in bytes (render/frame_memory.h), 0: none. Past it the
   // frame stops with RESOURCE_EXHAUSTED naming the budget.
   size_t max_frame_bytes = 0;
+  // The scene's clock, seconds: which flashing light points are on (RenderFrameRequest's).
+  double scene_time_s = 0;
 };
 
 // The sky a frame's pixels show where nothing covers them.
@@ -57,6 +59,10 @@ struct FrameStats {
   int concurrency = 1;
   // The most the frame's working memory held (render/frame_memory.h): what its budget weighs.
   size_t peak_memory_bytes = 0;
+  // Light points (render/light_pass.h): footprints drawn, those partly hidden, and the time
+  // their pass took (part of raster_ms).
+  size_t lights_drawn = 0, lights_occluded = 0;
+  double lights_ms = 0;
   std::vector<TaskTiming> tasks;  // in the order they were started
 
   // Sum of task times over (threads x raster time): 1 when no worker ever waits.

@@ -346,6 +346,11 @@ absl::Status ValidateTraceOptions(const TraceOptions& options) {
 absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
     const Scene& scene, std::shared_ptr<const SharedStore> store, const StopRequested& stop,
     uint64_t memory_budget) {
+  if (!scene.lights.lights.empty())
+    return absl::InvalidArgumentError(absl::StrCat(
+        "the scene has ", scene.lights.lights.size(),
+        " light point(s), which only the raster mode draws (aperture-render --mode raster; "
+        "options.mode RENDER_MODE_RASTER in a request)"));
   // A summed-area table per raster texture that some material uses (RGB, or RGBA when the
   // texture has any alpha below 1).
   std::vector<bool> used(scene.textures.size(), false);

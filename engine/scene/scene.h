@@ -9,6 +9,7 @@
 #include "absl/container/flat_hash_map.h"
 #include "aperture/v1/scene.pb.h"
 #include "base/image.h"
+#include "scene/light_points.h"
 #include "scene/vec.h"
 #include "store/shared_store.h"
 #include "texture/footprint_samplers.h"
@@ -129,6 +130,7 @@ struct Scene {
   Rgba fog_color{0, 0, 0, 1};
   double fog_density = 0;
   Rgba sky{0, 0, 0, 1};
+  SceneLights lights;  // light points (scene/light_points.h)
 };
 
 // A packed vector texture's samplers over `view`, whose bytes `owner` keeps alive.

@@ -31,6 +31,9 @@ class Builder {
     if (auto s = BuildLights(); !s.ok()) return s;
     if (auto s = BuildObjects(); !s.ok()) return s;
     if (auto s = BuildCurved(); !s.ok()) return s;
+    auto lights = BuildSceneLights(proto_, scene_.object_index, options_.limits.lights);
+    if (!lights.ok()) return lights.status();
+    scene_.lights = *std::move(lights);
     return std::move(scene_);
   }
 
@@ -43,6 +46,7 @@ class Builder {
   // The request against options_.limits, from its counts alone: nothing decoded or built yet.
   absl::Status CheckLimits() const {
     const SceneLimits& limits = options_.limits;
+    if (auto lights = CountSceneLights(proto_, limits.lights); !lights.ok()) return lights.status();
     if (limits.textures > 0 && static_cast<uint64_t>(proto_.textures_size()) > limits.textures)
       return absl::InvalidArgumentError(
           absl::StrCat("textures: the scene has ", proto_.textures_size(), ", above the limit of ",

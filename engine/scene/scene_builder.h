@@ -21,6 +21,9 @@ struct SceneLimits {
   uint64_t polygons = 0;  // objects times their meshes' polygons (before triangulation)
   uint64_t vertices_per_polygon = 0;
   uint64_t textures = 0;
+  // Light points, rows expanded: a row of a million lights is a line of a scene file, so even an
+  // unlimited build keeps this bound.
+  uint64_t lights = 1000000;
 };
 
 struct SceneBuildOptions {

@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "scene/encoded_texture.h"
+#include "scene/light_points.h"
 #include "scene/scene.h"
 
 namespace aperture {
@@ -81,6 +82,9 @@ absl::StatusOr<SceneMemory> EstimateSceneMemory(const v1::Scene& scene, bool rea
       if (auto it = mesh_bytes.find(object.mesh_id()); it != mesh_bytes.end())
         memory.geometry_bytes += it->second;
   }
+  // Light points, rows expanded (a row that cannot be counted is refused by the build).
+  if (auto lights = CountSceneLights(scene, 0); lights.ok())
+    memory.geometry_bytes += *lights * sizeof(PointLight);
   return memory;
 }
 

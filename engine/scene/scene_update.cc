@@ -1,6 +1,7 @@
 #include "scene/scene_update.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -135,6 +136,22 @@ absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update,
       if (auto p = PlacementFromProto(o.transform(), Where(i, o.name())); !p.ok())
         return p.status();
   }
+  for (int i = 0; i < update.light_groups_size(); ++i) {
+    if (stopped(1)) return StoppedError("while its light groups were checked", i, 0);
+    const v1::LightGroupUpdate& g = update.light_groups(i);
+    const std::string where = absl::StrCat("update.light_groups[", i, "]");
+    if (!scene.lights.group_index.contains(g.group()))
+      return absl::InvalidArgumentError(
+          absl::StrCat(where, ": no light group '", g.group().substr(0, kQuotedNameChars),
+                       "' in scene '", scene.name, "' (lights are grouped by LightPoint.group)"));
+    if (!v1::Visibility_IsValid(g.visibility()))
+      return absl::InvalidArgumentError(
+          absl::StrCat(where, ": visibility has unknown value ", g.visibility()));
+    if (g.has_intensity_scale() &&
+        !(g.intensity_scale().value() >= 0 && std::isfinite(g.intensity_scale().value())))
+      return absl::InvalidArgumentError(
+          absl::StrCat(where, ".intensity_scale: must be >= 0, is ", g.intensity_scale().value()));
+  }
   Scene scratch;  // the environment's checks, on a throwaway copy of its few values
   return SetEnvironment(update, &scratch);
 }
@@ -201,6 +218,12 @@ absl::Status ApplySceneUpdate(const v1::SceneUpdate& update, Scene* scene,
                 scene->polygons.begin() + static_cast<ptrdiff_t>(object.first));
     object.visible = change.visible;
   }
+  for (const v1::LightGroupUpdate& g : update.light_groups()) {
+    LightGroup& group = scene->lights.groups[scene->lights.group_index.at(g.group())];
+    if (g.has_intensity_scale()) group.intensity_scale = g.intensity_scale().value();
+    if (g.visibility() != v1::VISIBILITY_UNCHANGED)
+      group.visible = g.visibility() == v1::VISIBILITY_SHOWN;
+  }
   return SetEnvironment(update, scene);  // checked above: it cannot fail
 }
 
@@ -219,12 +242,23 @@ void MergedSceneUpdate::Merge(const v1::SceneUpdate& later) {
   if (later.has_ambient()) *merged_.mutable_ambient() = later.ambient();
   if (later.has_fog()) *merged_.mutable_fog() = later.fog();
   if (later.has_sky()) *merged_.mutable_sky() = later.sky();
+  for (const v1::LightGroupUpdate& g : later.light_groups()) {
+    auto [it, inserted] = light_group_entry_.try_emplace(g.group(), merged_.light_groups_size());
+    if (inserted) {
+      *merged_.add_light_groups() = g;
+      continue;
+    }
+    v1::LightGroupUpdate& merged = *merged_.mutable_light_groups(it->second);
+    if (g.has_intensity_scale()) *merged.mutable_intensity_scale() = g.intensity_scale();
+    if (g.visibility() != v1::VISIBILITY_UNCHANGED) merged.set_visibility(g.visibility());
+  }
   empty_ = empty_ && later.objects_size() == 0 && !later.has_sun() && !later.has_ambient() &&
-           !later.has_fog() && !later.has_sky();
+           !later.has_fog() && !later.has_sky() && later.light_groups_size() == 0;
 }
 
 v1::SceneUpdate MergedSceneUpdate::Take() {
   entry_.clear();
+  light_group_entry_.clear();
   empty_ = true;
   return std::exchange(merged_, v1::SceneUpdate());
 }

@@ -43,6 +43,7 @@ class MergedSceneUpdate {
  private:
   v1::SceneUpdate merged_;
   absl::flat_hash_map<std::string, int> entry_;  // object name -> its entry in merged_
+  absl::flat_hash_map<std::string, int> light_group_entry_;  // group -> its entry in merged_
   bool empty_ = true;
 };
 
