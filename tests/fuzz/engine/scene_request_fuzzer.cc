@@ -29,7 +29,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.limits.polygons = 20000;
   options.limits.vertices_per_polygon = 4096;
   options.limits.textures = 8;
+  options.limits.lights = 20000;
   auto built = aperture::BuildScene(scene, options);
+  // Lights are made within their limit: rows expanded, never past it.
+  if (built.ok() && built->lights.lights.size() > options.limits.lights) std::abort();
   if (built.ok() && built->polygons.empty() && built->curved.empty() && scene.meshes_size() > 0 &&
       scene.objects_size() == 0) {
     // Meshes without objects are drawn once each: a mesh with polygons cannot vanish.
