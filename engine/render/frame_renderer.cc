@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <optional>
 
 #include "absl/strings/str_cat.h"
 #include "base/held_bytes.h"
@@ -14,6 +15,7 @@
 #include "render/frame_memory.h"
 #include "render/leaf_renderer.h"
 #include "render/light_pass.h"
+#include "render/visible_surfaces.h"
 
 namespace aperture {
 namespace {
@@ -68,6 +70,21 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
     memory.Refuse("the planned tasks' lists of polygons", plan_bytes);
     return memory.Error();
   }
+  // Light points: projected first, so that the raster pass keeps what it sees in their cells.
+  const Stopwatch lights_timer;
+  const std::vector<LightFootprint> footprints =
+      ProjectLightPoints(scene, camera, geometry, settings);
+  const double project_ms = lights_timer.Milliseconds();
+  std::optional<VisibleSurfaces> surfaces;
+  size_t surfaces_held = 0;
+  if (!footprints.empty()) {
+    surfaces.emplace(frame.region, shape.cells_per_axis - 1);
+    WantLightCells(footprints, shape, *surfaces);
+    if (!memory.Hold(surfaces_held, surfaces->Bytes())) {
+      memory.Refuse("the visible polygons kept for the light points", surfaces->Bytes());
+      return memory.Error();
+    }
+  }
   struct Worker {
     LeafRenderer renderer;
     std::vector<LeafWindow> leaves;
@@ -75,11 +92,13 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
     size_t kinds[3] = {0, 0, 0};
   };
   tbb::enumerable_thread_specific<Worker> workers([&] {
-    return Worker{LeafRenderer(geometry, shader, settings.aa, FrameSky(scene.sky, settings),
-                               frame.region, stop, &memory),
-                  {},
-                  0,
-                  {}};
+    Worker w{LeafRenderer(geometry, shader, settings.aa, FrameSky(scene.sky, settings),
+                          frame.region, stop, &memory),
+             {},
+             0,
+             {}};
+    if (surfaces) w.renderer.RecordSurfaces(&*surfaces);
+    return w;
   });
   std::vector<double> task_us(tasks.size(), 0);
   // Tasks are taken strictly in plan order (most expensive first for the cost-driven plan).
@@ -119,13 +138,13 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
       tbb::simple_partitioner());
   if (!stopped && !memory.Exceeded()) {
     LightPassStats lights;
-    if (auto s = DrawLightPoints(scene, camera, geometry, settings, frame.region, frame.image,
-                                 &lights, stop);
+    if (auto s = DrawLightPoints(geometry, settings, frame.region, footprints, frame.image,
+                                 surfaces ? &*surfaces : nullptr, &lights, stop);
         !s.ok())
       return s;
     frame.stats.lights_drawn = lights.drawn;
     frame.stats.lights_occluded = lights.occluded;
-    frame.stats.lights_ms = lights.ms;
+    frame.stats.lights_ms = project_ms + lights.ms;
   }
   frame.stats.raster_ms = timer.Milliseconds();
   if (memory.Exceeded()) return memory.Error();

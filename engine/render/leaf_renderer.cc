@@ -16,15 +16,41 @@ bool LeafRenderer::Render(const LeafWindow& leaf, Image& image) {
     case LeafWindow::Kind::kEmpty:
       for (int y = r.y0; y < r.y1; ++y)
         for (int x = r.x0; x < r.x1; ++x) Pixel(image, x, y) = sky_;
+      if (surfaces_ != nullptr) RecordWindowSurfaces(r, -1);
       return true;
     case LeafWindow::Kind::kCovered:
       for (int y = r.y0; y < r.y1; ++y)
         shader_.ShadeRow(leaf.cover, r.x0 + 0.5, y + 0.5, r.width(), &Pixel(image, r.x0, y));
+      if (surfaces_ != nullptr) RecordWindowSurfaces(r, leaf.cover);
       return true;
     case LeafWindow::Kind::kMixed:
       return RenderMixed(leaf, image);
   }
   return true;
+}
+
+void LeafRenderer::RecordWindowSurfaces(const PixelRect& r, int cover) {
+  // The window's own cells (those past the region's last pixel for its right and bottom edges),
+  // a wanted tile at a time: most of a frame is far from any light.
+  const int span = shape_.cells_per_axis - 1;
+  const int kx1 = r.x1 == region_.x1 ? r.x1 + span : r.x1;
+  const int ky1 = r.y1 == region_.y1 ? r.y1 + span : r.y1;
+  surfaces_->ForWantedCells(r.x0, r.y0, kx1, ky1, [&](int kx, int ky) {
+    CellSurfaces& cell = surfaces_->at(kx, ky);
+    cell.count = cover == -1 ? 0 : cover < 0 ? -1 : 1;
+    cell.polygons[0] = cover;
+  });
+}
+
+void LeafRenderer::RecordCellSurfaces(int kx, int ky, size_t first) {
+  CellSurfaces& cell = surfaces_->at(kx, ky);
+  const size_t count = pieces_.size() - first;
+  if (count > CellSurfaces::kMax) {
+    cell.count = -1;
+    return;
+  }
+  cell.count = static_cast<int8_t>(count);
+  for (size_t k = 0; k < count; ++k) cell.polygons[k] = pieces_[first + k].polygon;
 }
 
 void LeafRenderer::ShadeEntries(const PixelRect& r) {
@@ -255,12 +281,20 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
     for (int i = 0; i < nx_; ++i) {
       const size_t before = pieces_.size();
       cell_begin_[static_cast<size_t>(j) * nx_ + i] = before;
-      if (bins_.Cell(i, j).empty()) continue;  // nothing reaches it (most of a sparse frame)
+      if (bins_.Cell(i, j).empty()) {  // nothing reaches it (most of a sparse frame)
+        if (surfaces_ != nullptr && OwnsCell(r, r.x0 + i, r.y0 + j) &&
+            surfaces_->Wanted(r.x0 + i, r.y0 + j))
+          surfaces_->at(r.x0 + i, r.y0 + j).count = 0;
+        continue;
+      }
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;
       const double cy = r.y0 + j + shape_.cell_offset + 0.5;
       coverage_.Compute(geo_.polygons, bins_.Cell(i, j), nearest_, draw_order_, cx, cy,
                         shape_.needs_moments, pieces_);
       if (coverage_.Stopped()) return false;
+      if (surfaces_ != nullptr && OwnsCell(r, r.x0 + i, r.y0 + j) &&
+          surfaces_->Wanted(r.x0 + i, r.y0 + j))
+        RecordCellSurfaces(r.x0 + i, r.y0 + j, before);
       if (colour_sums) {  // the cell's pieces are summed at once, not kept
         cell_sums_[static_cast<size_t>(j) * nx_ + i] = ColourSum(before);
         pieces_.resize(before);
@@ -426,6 +460,7 @@ void LeafRenderer::TransparentLayers(const LeafWindow& leaf, double cx, double c
 // by the product of alpha (layers in the subset) and 1 - alpha (the others) at each pixel.
 bool LeafRenderer::RenderMixedTransparent(const LeafWindow& leaf, Image& image) {
   const PixelRect& r = leaf.rect;
+  if (surfaces_ != nullptr) RecordWindowSurfaces(r, -2);  // what shows through is not recorded
   const int span = shape_.cells_per_axis - 1;
   const int nx = r.width() + span, ny = r.height() + span;
   const size_t cells = static_cast<size_t>(nx) * ny;

@@ -16,6 +16,7 @@
 #include "raster/warnock.h"
 #include "render/frame_memory.h"
 #include "render/polygon_shader.h"
+#include "render/visible_surfaces.h"
 
 namespace aperture {
 
@@ -47,6 +48,9 @@ class LeafRenderer {
   bool Render(const LeafWindow& leaf, Image& image);
   // The bytes its buffers hold.
   size_t WorkingBytes() const;
+  // Records the polygons visible in the wanted cells of the leaves it renders
+  // (render/visible_surfaces.h) into `surfaces`; each cell is written by one leaf only.
+  void RecordSurfaces(VisibleSurfaces* surfaces) { surfaces_ = surfaces; }
 
  private:
   bool RenderMixed(const LeafWindow& leaf, Image& image);
@@ -112,6 +116,17 @@ class LeafRenderer {
   CellCoverage coverage_;
   std::function<bool()> stop_;
   FrameMemory* memory_;
+  VisibleSurfaces* surfaces_ = nullptr;
+  // Whether this leaf writes absolute cell (kx, ky) of surfaces_: the cells of its own pixels, and
+  // those past the region's last pixel for the leaves along its right and bottom edges.
+  bool OwnsCell(const PixelRect& r, int kx, int ky) const {
+    return (kx < r.x1 || r.x1 == region_.x1) && (ky < r.y1 || r.y1 == region_.y1);
+  }
+  // surfaces_'s record for cell (kx, ky): the polygons of pieces_[first, end).
+  void RecordCellSurfaces(int kx, int ky, size_t first);
+  // surfaces_'s records for the cells of `r` that one polygon (`cover` >= 0), the sky (-1) or an
+  // unrecorded mix (-2) fills.
+  void RecordWindowSurfaces(const PixelRect& r, int cover);
   size_t held_ = 0;  // what memory_ counts of this renderer's buffers
   // Holds the buffers against the frame's budget: false once it is passed.
   bool HoldMemory() { return memory_ == nullptr || memory_->Hold(held_, WorkingBytes()); }

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <climits>
 #include <cmath>
@@ -19,14 +20,7 @@
 namespace aperture {
 namespace {
 
-// A footprint on the screen: a disc of `radius` pixels (drawn as the regular octagon of its
-// area) at the light's depth, carrying `r, g, b` pixel values per square pixel.
-struct Footprint {
-  double x, y, radius;
-  double inv_depth;  // 1 / view depth, as ScreenPolygon::inv_depth
-  Vec3 world;        // the light's position (the surfaces it stands on do not hide it)
-  float r, g, b;
-};
+using Footprint = LightFootprint;
 
 // Rec. 709 luminance of a colour.
 double Luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
@@ -34,14 +28,20 @@ double Luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g 
 // The octagon whose area is the disc's, edges along the axes and diagonals, counter-clockwise on
 // the screen (y down), as ScreenPolygon keeps its vertices.
 ScreenPolygon Octagon(const Footprint& f) {
-  // A regular octagon of circumradius R has area 2 sqrt(2) R^2.
-  const double circumradius = f.radius * std::sqrt(kPi / (2 * std::sqrt(2.0)));
+  // A regular octagon of circumradius R has area 2 sqrt(2) R^2; its vertices at (k + 1/2) 45
+  // degrees, in the order of positive signed area on the screen.
+  static const std::array<Vec2, 8> kUnit = [] {
+    std::array<Vec2, 8> v;
+    const double r = std::sqrt(kPi / (2 * std::sqrt(2.0)));
+    for (int k = 0; k < 8; ++k)
+      v[k] = {r * std::cos((k + 0.5) * kPi / 4), r * std::sin((k + 0.5) * kPi / 4)};
+    if (SignedArea(v) < 0) std::reverse(v.begin(), v.end());
+    return v;
+  }();
   ScreenPolygon p;
-  for (int k = 0; k < 8; ++k) {
-    const double a = -(k + 0.5) * kPi / 4;  // clockwise in y-up terms: counter-clockwise y down
-    p.vertices.push_back({f.x + circumradius * std::cos(a), f.y + circumradius * std::sin(a)});
-  }
-  if (SignedArea(p.vertices) < 0) std::reverse(p.vertices.begin(), p.vertices.end());
+  p.vertices.resize(8);
+  for (int k = 0; k < 8; ++k)
+    p.vertices[k] = {f.x + f.radius * kUnit[k].x, f.y + f.radius * kUnit[k].y};
   p.Finalize();
   p.inv_depth = {0, 0, f.inv_depth};
   p.layer = INT_MIN;  // a surface at exactly its depth hides it
@@ -102,7 +102,7 @@ class LightProjector {
       // Beyond the frame and its filter margin: nothing of it shows.
       if (x + r < -2 || x - r > geo_.width + 2 || y + r < -2 || y - r > geo_.height + 2) return;
       const double per_px2 = s / (kPi * r * r);
-      out.push_back({x, y, r, 1 / -p.z, world, static_cast<float>(per_px2 * light.color.r),
+      out.push_back({x, y, r, 1 / -p.z, static_cast<float>(per_px2 * light.color.r),
                      static_cast<float>(per_px2 * light.color.g),
                      static_cast<float>(per_px2 * light.color.b)});
     };
@@ -145,30 +145,60 @@ class LightProjector {
   std::vector<std::optional<std::optional<Placement>>> placements_;
 };
 
+// The polygons of the frame by tile, for the lights whose cells the raster pass did not record
+// (more visible polygons than a cell keeps, transparent surfaces), and each one's nearest inverse
+// depth.
+struct PolygonTiles {
+  static constexpr int kTile = 8;  // a footprint is a few pixels: small tiles, few candidates
+  int columns = 0, rows = 0;
+  std::vector<std::vector<int>> tiles;
+  std::vector<double> nearest;
+};
+
 // Splats footprints into the image, rows [row0, row1) of the frame only (so bands of rows can be
 // drawn at once), resolving each footprint's cells against the polygons nearer than it.
 class Splatter {
  public:
-  Splatter(const Scene& scene, const FrameGeometry& geometry, const RenderSettings& settings,
-           const PixelRect& region, const std::vector<std::vector<int>>& tiles, int columns,
-           int tile, const std::vector<double>& nearest, Image& image)
-      : scene_(scene),
-        geo_(geometry),
+  Splatter(const FrameGeometry& geometry, const RenderSettings& settings, const PixelRect& region,
+           const VisibleSurfaces* surfaces, const PolygonTiles* tiles, Image& image)
+      : geo_(geometry),
         aa_(settings.aa),
         shape_(ShapeOf(settings.aa)),
         region_(region),
+        surfaces_(surfaces),
         tiles_(tiles),
-        columns_(columns),
-        tile_(tile),
-        nearest_(nearest),
         image_(image) {}
 
-  // Whether polygons were nearer than the footprint over part of it.
+  // Whether the raster pass recorded every cell of the footprint (else its occluders are searched
+  // among the polygon tiles).
+  static bool Recorded(const Footprint& f, const AaFilterShape& shape,
+                       const VisibleSurfaces* surfaces) {
+    if (surfaces == nullptr) return false;
+    for (int ky = f.CellY0(shape); ky <= f.CellY1(shape); ++ky)
+      for (int kx = f.CellX0(shape); kx <= f.CellX1(shape); ++kx)
+        if (!surfaces->Holds(kx, ky) || surfaces->at(kx, ky).count < 0) return false;
+    return true;
+  }
+
+  // Whether polygons nearer than the light reached its footprint.
   bool Splat(const Footprint& f, int row0, int row1) {
     polygons_.clear();
     polygons_.push_back(Octagon(f));
     const ScreenPolygon& fp = polygons_[0];
-    GatherOccluders(f, fp);
+    found_.clear();
+    if (Recorded(f, shape_, surfaces_)) {
+      // Each visible polygon once (a few, seen in several cells).
+      for (int ky = f.CellY0(shape_); ky <= f.CellY1(shape_); ++ky)
+        for (int kx = f.CellX0(shape_); kx <= f.CellX1(shape_); ++kx) {
+          const CellSurfaces& cell = surfaces_->at(kx, ky);
+          for (int k = 0; k < cell.count; ++k)
+            if (std::find(found_.begin(), found_.end(), cell.polygons[k]) == found_.end())
+              found_.push_back(cell.polygons[k]);
+        }
+    } else {
+      SearchTiles(fp);
+    }
+    if (!KeepOccluders(f, fp)) return true;  // wholly behind one polygon: nothing shows
     candidates_.resize(polygons_.size());
     for (size_t k = 0; k < polygons_.size(); ++k) candidates_[k] = static_cast<int>(k);
     const int span = shape_.cells_per_axis - 1;
@@ -203,46 +233,55 @@ class Splatter {
   }
 
  private:
-  // The opaque polygons that may be nearer than the footprint over part of it, but for those
-  // whose plane the light stands on, appended to polygons_ after the footprint.
-  void GatherOccluders(const Footprint& f, const ScreenPolygon& fp) {
-    found_.clear();
-    const int c0 = std::max(0, static_cast<int>(std::floor((fp.min_x - region_.x0) / tile_)));
+  // The polygons of the tiles the footprint's box reaches, nearer than the light somewhere, into
+  // found_.
+  void SearchTiles(const ScreenPolygon& fp) {
+    const PolygonTiles& t = *tiles_;
+    const int tile = PolygonTiles::kTile;
+    const int c0 = std::max(0, static_cast<int>(std::floor((fp.min_x - region_.x0) / tile)));
     const int c1 =
-        std::min(columns_ - 1, static_cast<int>(std::floor((fp.max_x - region_.x0) / tile_)));
-    const int rows = columns_ > 0 ? static_cast<int>(tiles_.size()) / columns_ : 0;
-    const int r0 = std::max(0, static_cast<int>(std::floor((fp.min_y - region_.y0) / tile_)));
+        std::min(t.columns - 1, static_cast<int>(std::floor((fp.max_x - region_.x0) / tile)));
+    const int r0 = std::max(0, static_cast<int>(std::floor((fp.min_y - region_.y0) / tile)));
     const int r1 =
-        std::min(rows - 1, static_cast<int>(std::floor((fp.max_y - region_.y0) / tile_)));
-    const double nearer = f.inv_depth * (1 + 1e-9);
-    for (int r = r0; r <= r1; ++r) {
-      for (int c = c0; c <= c1; ++c) {
-        for (int index : tiles_[static_cast<size_t>(r) * columns_ + c]) {
-          if (!(nearest_[index] > nearer)) continue;  // behind the light all over
-          const ScreenPolygon& p = geo_.polygons[index];
-          if (p.transparent || p.max_x <= fp.min_x || p.min_x >= fp.max_x || p.max_y <= fp.min_y ||
-              p.min_y >= fp.max_y)
-            continue;
-          const ScenePolygon& surface = scene_.polygons[p.scene_polygon];
-          if (std::abs(Dot(surface.normal, f.world - surface.vertices[0])) <= kSurfaceOffsetM)
-            continue;  // the light stands on it
-          found_.push_back(index);
-        }
-      }
-    }
+        std::min(t.rows - 1, static_cast<int>(std::floor((fp.max_y - region_.y0) / tile)));
+    const double nearer = fp.inv_depth.c * (1 + 1e-9);
+    for (int r = r0; r <= r1; ++r)
+      for (int c = c0; c <= c1; ++c)
+        for (int index : t.tiles[static_cast<size_t>(r) * t.columns + c])
+          if (t.nearest[index] > nearer) found_.push_back(index);  // not behind it all over
     std::sort(found_.begin(), found_.end());
     found_.erase(std::unique(found_.begin(), found_.end()), found_.end());
-    for (int index : found_) polygons_.push_back(geo_.polygons[index]);
   }
 
-  const Scene& scene_;
+  // Of the polygons in found_, those nearer than the light where the light is, appended to
+  // polygons_ after the footprint; false when one of them covers the whole footprint (then
+  // nothing of it shows). The footprint is the light's image, not a surface, so a polygon hides
+  // it or not as a whole: the ground under a runway light does not (the view ray meets the light
+  // before it), a wall in front of it does, by its outline.
+  bool KeepOccluders(const Footprint& f, const ScreenPolygon& fp) {
+    const double nearer = f.inv_depth * (1 + 1e-9);
+    size_t kept = 0;
+    for (int index : found_) {
+      const ScreenPolygon& p = geo_.polygons[index];
+      if (p.transparent || p.max_x <= fp.min_x || p.min_x >= fp.max_x || p.max_y <= fp.min_y ||
+          p.min_y >= fp.max_y || !(p.inv_depth.At(f.x, f.y) > nearer))
+        continue;
+      if (p.ContainsRect(fp.min_x, fp.min_y, fp.max_x, fp.max_y)) return false;
+      // Their outlines, stacked at distinct depths in front of the light (in any order: what is
+      // left of the footprint is outside their union), which the coverage paints one over
+      // another from their crossing edges, without pairwise tests (CellCoverage::PaintStacked).
+      polygons_.push_back(p);
+      polygons_.back().inv_depth = {0, 0, f.inv_depth * (2 + 1e-3 * static_cast<double>(kept++))};
+    }
+    return true;
+  }
+
   const FrameGeometry& geo_;
   AntiAliasing aa_;
   AaFilterShape shape_;
   PixelRect region_;
-  const std::vector<std::vector<int>>& tiles_;
-  int columns_, tile_;
-  const std::vector<double>& nearest_;
+  const VisibleSurfaces* surfaces_;
+  const PolygonTiles* tiles_;
   Image& image_;
   CellCoverage coverage_;
   std::vector<ScreenPolygon> polygons_;
@@ -251,24 +290,33 @@ class Splatter {
 };
 
 constexpr int kBandRows = 32;
-constexpr int kTile = 32;
 
 }  // namespace
 
-absl::Status DrawLightPoints(const Scene& scene, const Camera& camera,
-                             const FrameGeometry& geometry, const RenderSettings& settings,
-                             const PixelRect& region, Image& image, LightPassStats* stats,
+std::vector<LightFootprint> ProjectLightPoints(const Scene& scene, const Camera& camera,
+                                               const FrameGeometry& geometry,
+                                               const RenderSettings& settings) {
+  std::vector<LightFootprint> footprints;
+  LightProjector projector(scene, camera, geometry, settings);
+  for (size_t i = 0; i < scene.lights.lights.size(); ++i) projector.Project(i, footprints);
+  return footprints;
+}
+
+void WantLightCells(const std::vector<LightFootprint>& footprints, const AaFilterShape& shape,
+                    VisibleSurfaces& surfaces) {
+  for (const LightFootprint& f : footprints)
+    surfaces.Want(f.CellX0(shape), f.CellY0(shape), f.CellX1(shape), f.CellY1(shape));
+}
+
+absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings& settings,
+                             const PixelRect& region, const std::vector<LightFootprint>& footprints,
+                             Image& image, const VisibleSurfaces* surfaces, LightPassStats* stats,
                              const StopRequested& stop) {
   const Stopwatch timer;
   LightPassStats s;
-  if (scene.lights.lights.empty()) {
+  if (footprints.empty()) {
     if (stats != nullptr) *stats = s;
     return absl::OkStatus();
-  }
-  std::vector<Footprint> footprints;
-  {
-    LightProjector projector(scene, camera, geometry, settings);
-    for (size_t i = 0; i < scene.lights.lights.size(); ++i) projector.Project(i, footprints);
   }
   // The rows each footprint's pixels reach, by bands of rows.
   const AaFilterShape shape = ShapeOf(settings.aa);
@@ -283,17 +331,22 @@ absl::Status DrawLightPoints(const Scene& scene, const Camera& camera,
     if (last < region.y0 || first >= region.y1) continue;
     for (int b = b0; b <= b1; ++b) band_lights[b].push_back(static_cast<int>(k));
   }
-  // Polygons by tile of the region, and each one's nearest inverse depth.
-  int columns = 0;
-  const std::vector<std::vector<int>> tiles =
-      BinPolygons(geometry, shape.margin + 1, region, kTile, &columns);
-  std::vector<double> nearest(geometry.polygons.size());
-  tbb::parallel_for(size_t{0}, geometry.polygons.size(), [&](size_t i) {
-    const ScreenPolygon& p = geometry.polygons[i];
-    double w = -INFINITY;
-    for (const Vec2& v : p.vertices) w = std::max(w, p.inv_depth.At(v.x, v.y));
-    nearest[i] = w;
-  });
+  // The polygons by tile, only when some footprint's cells were not all recorded.
+  std::optional<PolygonTiles> tiles;
+  for (const LightFootprint& f : footprints) {
+    if (Splatter::Recorded(f, shape, surfaces)) continue;
+    PolygonTiles& t = tiles.emplace();
+    t.tiles = BinPolygons(geometry, shape.margin + 1, region, PolygonTiles::kTile, &t.columns);
+    t.rows = t.columns > 0 ? static_cast<int>(t.tiles.size()) / t.columns : 0;
+    t.nearest.resize(geometry.polygons.size());
+    tbb::parallel_for(size_t{0}, geometry.polygons.size(), [&](size_t i) {
+      const ScreenPolygon& p = geometry.polygons[i];
+      double w = -INFINITY;
+      for (const Vec2& v : p.vertices) w = std::max(w, p.inv_depth.At(v.x, v.y));
+      t.nearest[i] = w;
+    });
+    break;
+  }
   std::atomic<size_t> occluded{0};
   std::atomic<bool> stopped{false};
   tbb::parallel_for(0, bands, [&](int b) {
@@ -301,7 +354,7 @@ absl::Status DrawLightPoints(const Scene& scene, const Camera& camera,
       stopped = true;
       return;
     }
-    Splatter splatter(scene, geometry, settings, region, tiles, columns, kTile, nearest, image);
+    Splatter splatter(geometry, settings, region, surfaces, tiles ? &*tiles : nullptr, image);
     const int row0 = region.y0 + b * kBandRows, row1 = std::min(region.y1, row0 + kBandRows);
     size_t hidden = 0;  // counted in the band that holds the footprint's centre
     for (int k : band_lights[b]) {

@@ -3,14 +3,15 @@
 // Each light's illuminance at the eye, E = I T(d) / d^2 (Allard's law: I its intensity towards the
 // eye, T the fog's transmission over its distance d), becomes a pixel-value energy S = exposure x
 // E / (the solid angle of one pixel at its place on the screen), spread uniformly over a small
-// disc footprint (a regular octagon of the disc's area) at the light's depth. Each cell of the
-// footprint is resolved by the exact cell coverage against the polygons nearer than the light
-// (raster/cell_coverage.h), and integrated over the pixels' filter apertures like any polygon's
-// piece. So the sum of a light's pixels is S times the visible share of its footprint, to float
-// rounding, wherever it falls inside a pixel; its image's centroid follows its projection
-// continuously; and a light sliding behind an edge dims continuously, by exactly the part of its
-// footprint the edge covers. The polygons whose plane passes within kSurfaceOffsetM of a light
-// (the runway under an edge light, the wing a navigation light sits on) do not hide it.
+// disc footprint (a regular octagon of the disc's area). The footprint is the light's image, not a
+// surface: the polygons nearer than the light where it is (at the footprint's centre) hide it by
+// their outlines, the others not at all (the ground under a runway light: the view ray meets the
+// light before it). Each cell of the footprint is resolved by the exact cell coverage against
+// those outlines (raster/cell_coverage.h) and integrated over the pixels' filter apertures like
+// any polygon's piece. So the sum of a light's pixels is S times the visible share of its
+// footprint, to float rounding, wherever it falls inside a pixel; its image's centroid follows its
+// projection continuously; and a light sliding behind an edge dims continuously, by exactly the
+// part of its footprint the edge covers.
 //
 // In fog, part of the light scattered on its way forms a halo (the atmospheric point spread
 // function of Narasimhan and Nayar, "Shedding Light on the Weather", CVPR 2003: its forward peak
@@ -18,7 +19,9 @@
 // kHaloForwardShare, of angular radius kHaloDegPerTau x tau (at least twice the light's own).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "base/image.h"
@@ -26,14 +29,12 @@
 #include "raster/aa_filter.h"
 #include "raster/projection.h"
 #include "render/renderer.h"
+#include "render/visible_surfaces.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
 namespace aperture {
 
-// Polygons whose plane passes within this distance of a light do not hide it (lights stand on
-// or in the surfaces they light: an elevated runway light is at most 0.36 m tall).
-inline constexpr double kSurfaceOffsetM = 0.5;
 // The share of the scattered light that stays near the light's direction (the halo), and the
 // halo's angular radius per unit of optical depth.
 inline constexpr double kHaloForwardShare = 0.5;
@@ -45,16 +46,49 @@ inline constexpr double kBloomEnergy = 2.0;
 inline constexpr double kMaxFootprintPx = 64.0;
 
 struct LightPassStats {
-  size_t drawn = 0;     // lights whose footprint reached the frame with some energy
-  size_t occluded = 0;  // of those, the ones some polygon was nearer than over their footprint
-  double ms = 0;
+  size_t drawn = 0;     // footprints (lights, and halos in fog) that reached the frame
+  size_t occluded = 0;  // of those, the ones a polygon nearer than the light reached
+  double ms = 0;        // the pass, with the projection of the lights
 };
 
-// Adds the scene's light points to `image` (the pixels of `region` of the frame `geometry` was
-// projected for), at scene time `settings.scene_time_s`. `stop` is asked between bands of rows.
-absl::Status DrawLightPoints(const Scene& scene, const Camera& camera,
-                             const FrameGeometry& geometry, const RenderSettings& settings,
-                             const PixelRect& region, Image& image, LightPassStats* stats,
+// A light's image on the screen: a disc of `radius` pixels at (x, y) (drawn as the regular
+// octagon of its area) at the light's depth, carrying `r, g, b` pixel values per square pixel.
+struct LightFootprint {
+  double x, y, radius;
+  double inv_depth;  // 1 / view depth, as ScreenPolygon::inv_depth
+  float r, g, b;
+  // The cells (raster/aa_filter.h's grid) its octagon reaches.
+  int CellX0(const AaFilterShape& s) const { return Cell(x - Extent(), s); }
+  int CellX1(const AaFilterShape& s) const { return Cell(x + Extent(), s); }
+  int CellY0(const AaFilterShape& s) const { return Cell(y - Extent(), s); }
+  int CellY1(const AaFilterShape& s) const { return Cell(y + Extent(), s); }
+
+ private:
+  // The octagon's circumradius (a regular octagon of circumradius R has area 2 sqrt(2) R^2),
+  // and a rounding allowance.
+  double Extent() const { return radius * 1.0547 + 1e-6; }
+  static int Cell(double v, const AaFilterShape& s) {
+    return static_cast<int>(std::floor(v - s.cell_offset));
+  }
+};
+
+// The footprints of the scene's light points (and their halos in fog) that reach the frame
+// `geometry` was projected for, at scene time `settings.scene_time_s`.
+std::vector<LightFootprint> ProjectLightPoints(const Scene& scene, const Camera& camera,
+                                               const FrameGeometry& geometry,
+                                               const RenderSettings& settings);
+
+// Marks the cells the footprints reach wanted in `surfaces`, before the raster pass records them.
+void WantLightCells(const std::vector<LightFootprint>& footprints, const AaFilterShape& shape,
+                    VisibleSurfaces& surfaces);
+
+// Adds the footprints to `image` (the pixels of `region` of the frame `geometry` was projected
+// for). `depth` (may be null): what the raster pass saw in the footprints' cells, which spares the
+// lights that nothing could hide (or that surfaces in front hide whole) the search for what hides
+// them. `stop` is asked between bands of rows.
+absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings& settings,
+                             const PixelRect& region, const std::vector<LightFootprint>& footprints,
+                             Image& image, const VisibleSurfaces* depth, LightPassStats* stats,
                              const StopRequested& stop = {});
 
 }  // namespace aperture

@@ -2,7 +2,7 @@
 // analytic energy wherever it falls inside a pixel, for every filter; a light half covered by an
 // edge keeps the share of its footprint that dense sampling finds visible; a light sliding behind
 // an edge dims continuously; the fog's transmission and halo carry the energies of their formulas;
-// a group's update equals a fresh build of the changed scene; the surface a light stands on does
+// a group's update equals a fresh build of the changed scene; the ground a light stands on does
 // not hide it.
 #include "render/light_pass.h"
 
@@ -295,9 +295,10 @@ TEST(LightPass, FlashingLightsAreOnForTheirOnTimeOfEachPeriod) {
   }
 }
 
-// A light standing on the ground (0.3 m above it), seen at a grazing angle from 2 km: the ground
-// around it would cover half its footprint, but the surface a light stands on does not hide it.
-TEST(LightPass, TheSurfaceALightStandsOnDoesNotHideIt) {
+// A light standing on the ground (0.3 m above it), seen at a grazing angle from 2 km: the ground in
+// front of it covers the lower half of its footprint on the screen, but the view ray meets the
+// light before the ground, and a footprint is hidden only by what is nearer where the light is.
+TEST(LightPass, TheGroundALightStandsOnDoesNotHideIt) {
   v1::Scene proto = OneLight(0, 0.3, -2000, 10000);
   v1::Mesh& ground = *proto.add_meshes();
   ground.set_id("ground");
