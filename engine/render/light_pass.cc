@@ -7,6 +7,7 @@
 #include <atomic>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "raster/cell_coverage.h"
 #include "raster/polygon_moments.h"
 #include "raster/warnock.h"
+#include "render/visible_footprint.h"
 #include "scene/object_placement.h"
 #include "scene/triangulate.h"
 
@@ -27,7 +29,7 @@ double Luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g 
 
 // The octagon whose area is the disc's, edges along the axes and diagonals, counter-clockwise on
 // the screen (y down), as ScreenPolygon keeps its vertices.
-ScreenPolygon Octagon(const Footprint& f) {
+std::array<Vec2, 8> OctagonVertices(const Footprint& f) {
   // A regular octagon of circumradius R has area 2 sqrt(2) R^2; its vertices at (k + 1/2) 45
   // degrees, in the order of positive signed area on the screen.
   static const std::array<Vec2, 8> kUnit = [] {
@@ -38,14 +40,31 @@ ScreenPolygon Octagon(const Footprint& f) {
     if (SignedArea(v) < 0) std::reverse(v.begin(), v.end());
     return v;
   }();
+  std::array<Vec2, 8> v;
+  for (int k = 0; k < 8; ++k) v[k] = {f.x + f.radius * kUnit[k].x, f.y + f.radius * kUnit[k].y};
+  return v;
+}
+
+// The octagon as a polygon at the light's depth, for the cell-by-cell resolution.
+ScreenPolygon Octagon(const Footprint& f) {
   ScreenPolygon p;
-  p.vertices.resize(8);
-  for (int k = 0; k < 8; ++k)
-    p.vertices[k] = {f.x + f.radius * kUnit[k].x, f.y + f.radius * kUnit[k].y};
+  const std::array<Vec2, 8> v = OctagonVertices(f);
+  p.vertices.assign(v.begin(), v.end());
   p.Finalize();
   p.inv_depth = {0, 0, f.inv_depth};
   p.layer = INT_MIN;  // a surface at exactly its depth hides it
   return p;
+}
+
+// Whether convex polygon `p` may reach the disc of radius `r` about (x, y): no edge has the whole
+// disc outside it. (Conservative near the polygon's corners, where the coverage decides.)
+bool ReachesDisc(const ScreenPolygon& p, double x, double y, double r) {
+  for (size_t i = 0; i < p.vertices.size(); ++i) {
+    const ScreenLinear e = p.Edge(i);
+    const double v = e.At(x, y);
+    if (v < 0 && v * v > r * r * (e.a * e.a + e.b * e.b)) return false;
+  }
+  return true;
 }
 
 class LightProjector {
@@ -182,40 +201,51 @@ class Splatter {
 
   // Whether polygons nearer than the light reached its footprint.
   bool Splat(const Footprint& f, int row0, int row1) {
-    polygons_.clear();
-    polygons_.push_back(Octagon(f));
-    const ScreenPolygon& fp = polygons_[0];
+    const std::array<Vec2, 8> octagon = OctagonVertices(f);
+    Box box{octagon[0].x, octagon[0].y, octagon[0].x, octagon[0].y};
+    for (const Vec2& v : octagon) {
+      box.x0 = std::min(box.x0, v.x), box.x1 = std::max(box.x1, v.x);
+      box.y0 = std::min(box.y0, v.y), box.y1 = std::max(box.y1, v.y);
+    }
     found_.clear();
+    ++stamp_;
     if (Recorded(f, shape_, surfaces_)) {
-      // Each visible polygon once (a few, seen in several cells).
       for (int ky = f.CellY0(shape_); ky <= f.CellY1(shape_); ++ky)
         for (int kx = f.CellX0(shape_); kx <= f.CellX1(shape_); ++kx) {
           const CellSurfaces& cell = surfaces_->at(kx, ky);
-          for (int k = 0; k < cell.count; ++k)
-            if (std::find(found_.begin(), found_.end(), cell.polygons[k]) == found_.end())
-              found_.push_back(cell.polygons[k]);
+          for (int k = 0; k < cell.count; ++k) Found(cell.polygons[k]);
         }
     } else {
-      SearchTiles(fp);
+      SearchTiles(box, f.inv_depth);
     }
-    if (!KeepOccluders(f, fp)) return true;  // wholly behind one polygon: nothing shows
-    candidates_.resize(polygons_.size());
-    for (size_t k = 0; k < polygons_.size(); ++k) candidates_[k] = static_cast<int>(k);
+    if (!KeepOccluders(f, octagon, box)) return true;  // wholly behind one polygon
+    // The footprint less the occluders' outlines, in pieces; behind a lattice of outlines, each
+    // cell resolved among them instead.
+    visible_.Start(octagon);
+    bool in_pieces = true;
+    for (size_t k = 0; k < occluders_.size() && in_pieces && !visible_.empty(); ++k)
+      in_pieces = visible_.Subtract(geo_.polygons[occluders_[k]]);
+    if (in_pieces && visible_.empty()) return true;
+    if (!in_pieces) StackOccluders(f);
     const int span = shape_.cells_per_axis - 1;
     const double offset = shape_.cell_offset;
     // The cells the footprint reaches whose pixels lie in the rows drawn.
-    const int kx0 = static_cast<int>(std::floor(fp.min_x - offset));
-    const int kx1 = static_cast<int>(std::floor(fp.max_x - offset));
-    const int ky0 = std::max(static_cast<int>(std::floor(fp.min_y - offset)), row0);
-    const int ky1 = std::min(static_cast<int>(std::floor(fp.max_y - offset)), row1 - 1 + span);
+    const int kx0 = static_cast<int>(std::floor(box.x0 - offset));
+    const int kx1 = static_cast<int>(std::floor(box.x1 - offset));
+    const int ky0 = std::max(static_cast<int>(std::floor(box.y0 - offset)), row0);
+    const int ky1 = std::min(static_cast<int>(std::floor(box.y1 - offset)), row1 - 1 + span);
     for (int ky = ky0; ky <= ky1; ++ky) {
       for (int kx = kx0; kx <= kx1; ++kx) {
-        pieces_.clear();
-        coverage_.Compute(polygons_, candidates_, kx + offset + 0.5, ky + offset + 0.5,
-                          shape_.needs_moments, pieces_);
+        const double cx = kx + offset + 0.5, cy = ky + offset + 0.5;
         CellMoments m;
-        for (const CellPiece& piece : pieces_)
-          if (piece.polygon == 0) Accumulate(m, piece.moments);
+        if (in_pieces) {
+          m = visible_.InCell(cx, cy, shape_.needs_moments);
+        } else {
+          pieces_.clear();
+          coverage_.Compute(polygons_, candidates_, cx, cy, shape_.needs_moments, pieces_);
+          for (const CellPiece& piece : pieces_)
+            if (piece.polygon == 0) Accumulate(m, piece.moments);
+        }
         if (!(m.area > 0)) continue;
         for (int py = std::max({ky - span, row0, region_.y0});
              py <= std::min({ky, row1 - 1, region_.y1 - 1}); ++py) {
@@ -229,51 +259,74 @@ class Splatter {
         }
       }
     }
-    return polygons_.size() > 1;
+    return !occluders_.empty();
   }
 
  private:
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+
+  // Adds polygon `index` to found_ unless it is there already.
+  void Found(int index) {
+    if (seen_.empty()) seen_.assign(geo_.polygons.size(), 0);
+    if (seen_[index] == stamp_) return;
+    seen_[index] = stamp_;
+    found_.push_back(index);
+  }
+
   // The polygons of the tiles the footprint's box reaches, nearer than the light somewhere, into
   // found_.
-  void SearchTiles(const ScreenPolygon& fp) {
+  void SearchTiles(const Box& box, double inv_depth) {
     const PolygonTiles& t = *tiles_;
     const int tile = PolygonTiles::kTile;
-    const int c0 = std::max(0, static_cast<int>(std::floor((fp.min_x - region_.x0) / tile)));
+    const int c0 = std::max(0, static_cast<int>(std::floor((box.x0 - region_.x0) / tile)));
     const int c1 =
-        std::min(t.columns - 1, static_cast<int>(std::floor((fp.max_x - region_.x0) / tile)));
-    const int r0 = std::max(0, static_cast<int>(std::floor((fp.min_y - region_.y0) / tile)));
-    const int r1 =
-        std::min(t.rows - 1, static_cast<int>(std::floor((fp.max_y - region_.y0) / tile)));
-    const double nearer = fp.inv_depth.c * (1 + 1e-9);
+        std::min(t.columns - 1, static_cast<int>(std::floor((box.x1 - region_.x0) / tile)));
+    const int r0 = std::max(0, static_cast<int>(std::floor((box.y0 - region_.y0) / tile)));
+    const int r1 = std::min(t.rows - 1, static_cast<int>(std::floor((box.y1 - region_.y0) / tile)));
+    const double nearer = inv_depth * (1 + 1e-9);
     for (int r = r0; r <= r1; ++r)
       for (int c = c0; c <= c1; ++c)
         for (int index : t.tiles[static_cast<size_t>(r) * t.columns + c])
-          if (t.nearest[index] > nearer) found_.push_back(index);  // not behind it all over
-    std::sort(found_.begin(), found_.end());
-    found_.erase(std::unique(found_.begin(), found_.end()), found_.end());
+          if (t.nearest[index] > nearer) Found(index);  // not behind it all over
   }
 
-  // Of the polygons in found_, those nearer than the light where the light is, appended to
-  // polygons_ after the footprint; false when one of them covers the whole footprint (then
-  // nothing of it shows). The footprint is the light's image, not a surface, so a polygon hides
-  // it or not as a whole: the ground under a runway light does not (the view ray meets the light
-  // before it), a wall in front of it does, by its outline.
-  bool KeepOccluders(const Footprint& f, const ScreenPolygon& fp) {
+  // Of the polygons in found_, those nearer than the light where the light is, into occluders_;
+  // false when one of them covers the whole footprint (then nothing of it shows). The footprint
+  // is the light's image, not a surface, so a polygon hides it or not as a whole: the ground
+  // under a runway light does not (the view ray meets the light before it), a wall in front of
+  // it does, by its outline.
+  bool KeepOccluders(const Footprint& f, const std::array<Vec2, 8>& octagon, const Box& box) {
     const double nearer = f.inv_depth * (1 + 1e-9);
-    size_t kept = 0;
+    occluders_.clear();
     for (int index : found_) {
       const ScreenPolygon& p = geo_.polygons[index];
-      if (p.transparent || p.max_x <= fp.min_x || p.min_x >= fp.max_x || p.max_y <= fp.min_y ||
-          p.min_y >= fp.max_y || !(p.inv_depth.At(f.x, f.y) > nearer))
+      if (p.transparent || p.max_x <= box.x0 || p.min_x >= box.x1 || p.max_y <= box.y0 ||
+          p.min_y >= box.y1 || !(p.inv_depth.At(f.x, f.y) > nearer))
         continue;
-      if (p.ContainsRect(fp.min_x, fp.min_y, fp.max_x, fp.max_y)) return false;
-      // Their outlines, stacked at distinct depths in front of the light (in any order: what is
-      // left of the footprint is outside their union), which the coverage paints one over
-      // another from their crossing edges, without pairwise tests (CellCoverage::PaintStacked).
-      polygons_.push_back(p);
-      polygons_.back().inv_depth = {0, 0, f.inv_depth * (2 + 1e-3 * static_cast<double>(kept++))};
+      if (!ReachesDisc(p, f.x, f.y, f.radius * kOctagonCircumradius)) continue;
+      if (std::all_of(octagon.begin(), octagon.end(),
+                      [&](const Vec2& v) { return p.Contains(v.x, v.y); }))
+        return false;
+      occluders_.push_back(index);
     }
     return true;
+  }
+
+  // The footprint and its occluders for the cell-by-cell resolution: their outlines stacked at
+  // distinct depths in front of the light (in any order: what is left of the footprint is outside
+  // their union), which the coverage paints one over another from their crossing edges, without
+  // pairwise tests (CellCoverage::PaintStacked).
+  void StackOccluders(const Footprint& f) {
+    polygons_.clear();
+    polygons_.push_back(Octagon(f));
+    for (size_t k = 0; k < occluders_.size(); ++k) {
+      polygons_.push_back(geo_.polygons[occluders_[k]]);
+      polygons_.back().inv_depth = {0, 0, f.inv_depth * (2 + 1e-3 * static_cast<double>(k))};
+    }
+    candidates_.resize(polygons_.size());
+    for (size_t k = 0; k < polygons_.size(); ++k) candidates_[k] = static_cast<int>(k);
   }
 
   const FrameGeometry& geo_;
@@ -283,9 +336,15 @@ class Splatter {
   const VisibleSurfaces* surfaces_;
   const PolygonTiles* tiles_;
   Image& image_;
+  VisibleFootprint visible_;
+  std::vector<int> found_, occluders_;
+  // Which polygons found_ holds: seen_[i] == stamp_ (a fresh stamp per footprint).
+  std::vector<uint32_t> seen_;
+  uint32_t stamp_ = 0;
+  // The cell-by-cell resolution.
   CellCoverage coverage_;
   std::vector<ScreenPolygon> polygons_;
-  std::vector<int> candidates_, found_;
+  std::vector<int> candidates_;
   std::vector<CellPiece> pieces_;
 };
 

@@ -51,6 +51,9 @@ struct LightPassStats {
   double ms = 0;        // the pass, with the projection of the lights
 };
 
+// A regular octagon of a disc's area (2 sqrt(2) R^2 = pi r^2) has circumradius R = 1.0547 r.
+inline constexpr double kOctagonCircumradius = 1.0547;
+
 // A light's image on the screen: a disc of `radius` pixels at (x, y) (drawn as the regular
 // octagon of its area) at the light's depth, carrying `r, g, b` pixel values per square pixel.
 struct LightFootprint {
@@ -64,9 +67,8 @@ struct LightFootprint {
   int CellY1(const AaFilterShape& s) const { return Cell(y + Extent(), s); }
 
  private:
-  // The octagon's circumradius (a regular octagon of circumradius R has area 2 sqrt(2) R^2),
-  // and a rounding allowance.
-  double Extent() const { return radius * 1.0547 + 1e-6; }
+  // The octagon's circumradius, and a rounding allowance.
+  double Extent() const { return radius * kOctagonCircumradius + 1e-6; }
   static int Cell(double v, const AaFilterShape& s) {
     return static_cast<int>(std::floor(v - s.cell_offset));
   }

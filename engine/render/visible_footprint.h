@@ -1,0 +1,49 @@
+// The visible part of a light point's footprint (render/light_pass.h): its octagon less the
+// outlines of the polygons in front of the light, kept as a few convex pieces, and the exact area
+// and moments of those pieces in each cell of the filter grid.
+//
+// A light is a few pixels across and is hidden by a few outlines at most, so cutting its octagon
+// once by their edges and clipping the pieces to each cell costs a few dozen half-plane clips,
+// where resolving each cell's visibility among the polygons (raster/cell_coverage.h) would redo
+// the same cuts in every cell.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "raster/aa_filter.h"
+#include "raster/screen_polygon.h"
+#include "scene/vec.h"
+
+namespace aperture {
+
+class VisibleFootprint {
+ public:
+  // Past this many pieces (a footprint behind a lattice of thin outlines) the cuts stop and
+  // Subtract says so: the caller resolves the footprint cell by cell instead.
+  static constexpr size_t kMaxPieces = 64;
+
+  // Starts from the convex, counter-clockwise polygon `outline` (the octagon).
+  void Start(std::span<const Vec2> outline);
+  // Removes convex, counter-clockwise `occluder` from the pieces; false when the pieces would
+  // pass kMaxPieces (the pieces are then unspecified).
+  bool Subtract(const ScreenPolygon& occluder);
+  bool empty() const { return pieces_.empty(); }
+
+  // The area and moments of the pieces inside the cell [cx - 0.5, cx + 0.5] x [cy - 0.5,
+  // cy + 0.5], relative to its centre (cx, cy) (raster/aa_filter.h's CellMoments).
+  CellMoments InCell(double cx, double cy, bool with_moments);
+
+ private:
+  struct Piece {
+    size_t begin, end;  // its vertices in verts_
+    double min_x, min_y, max_x, max_y;
+  };
+  void AddPiece(std::vector<Piece>& pieces, std::vector<Vec2>& verts, const Vec2* v, size_t n);
+
+  std::vector<Piece> pieces_, next_pieces_;
+  std::vector<Vec2> verts_, next_verts_;
+  std::vector<Vec2> a_, b_, c_;  // clip buffers
+};
+
+}  // namespace aperture
