@@ -64,7 +64,8 @@ bool VisibleFootprint::Subtract(const ScreenPolygon& occluder) {
       bool any_out = false, any_in = false;
       for (size_t k = 0; k < n; ++k) {
         const double v = e.At(a_[k].x, a_[k].y);
-        any_out |= v<0, any_in |= v> 0;
+        any_out = any_out || v < 0;
+        any_in = any_in || v > 0;
       }
       if (!any_out) continue;
       if (!any_in) {  // wholly outside this edge: visible
@@ -81,6 +82,7 @@ bool VisibleFootprint::Subtract(const ScreenPolygon& occluder) {
     }
     if (next_pieces_.size() > kMaxPieces) return false;
   }
+  if (next_pieces_.size() > kMaxPieces) return false;
   std::swap(pieces_, next_pieces_);
   std::swap(verts_, next_verts_);
   return true;

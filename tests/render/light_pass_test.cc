@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -120,9 +121,10 @@ TEST(LightPass, TheCentroidFollowsTheProjectionContinuously) {
   }
 }
 
-// A wall (a quad in front of the light) whose edge passes through the footprint: the light keeps
-// the share of its footprint that 1024 x 1024 samples find outside the wall's screen polygon.
-double VisibleShareBySampling(const ScreenPolygon& wall, double x, double y, double radius) {
+// Walls (quads in front of the light) whose edges pass through the footprint: the light keeps
+// the share of its footprint that 1024 x 1024 samples find outside the walls' screen polygons.
+double VisibleShareBySampling(const std::vector<ScreenPolygon>& walls, double x, double y,
+                              double radius) {
   // The regular octagon of the disc's area (2 sqrt(2) R^2 = pi r^2), edges along the axes and
   // diagonals, as the pass draws a footprint.
   const double circumradius = radius * std::sqrt(kPi / (2 * std::sqrt(2.0)));
@@ -141,7 +143,8 @@ double VisibleShareBySampling(const ScreenPolygon& wall, double x, double y, dou
       const double sy = y - circumradius + 2 * circumradius * (j + 0.5) / n;
       if (!octagon.Contains(sx, sy)) continue;
       ++inside;
-      visible += !wall.Contains(sx, sy);
+      visible += std::none_of(walls.begin(), walls.end(),
+                              [&](const ScreenPolygon& w) { return w.Contains(sx, sy); });
     }
   return static_cast<double>(visible) / inside;
 }
@@ -184,11 +187,60 @@ TEST(LightPass, ALightPartlyBehindAnEdgeKeepsItsVisibleShare) {
     const double light = RedSum(frame->image) - RedSum(without->image);
     const FrameGeometry geo = ProjectScene(*scene, camera, kWidth, kHeight, 2);
     ASSERT_EQ(geo.polygons.size(), 1u);
-    const double share = VisibleShareBySampling(geo.polygons[0], kWidth / 2.0, kHeight / 2.0, 3);
+    const double share = VisibleShareBySampling(geo.polygons, kWidth / 2.0, kHeight / 2.0, 3);
     const double want = AnalyticEnergy({0, 0, -40}, 30) * share;
     EXPECT_NEAR(light, want, 2e-3 * AnalyticEnergy({0, 0, -40}, 30)) << "shift " << shift;
     EXPECT_GT(share, 0.05);
     EXPECT_LT(share, 0.95);
+  }
+}
+
+// Behind a comb of thin slats, a few or so many that cutting the footprint by their outlines
+// would leave too many pieces (and each cell is resolved among them instead), a light keeps the
+// share of its footprint that sampling finds between them.
+TEST(LightPass, ALightBehindACombOfSlatsKeepsItsVisibleShare) {
+  const double pixel_m = 2 * std::tan(Radians(30)) / kHeight * 20;
+  for (int slats : {3, 80}) {
+    v1::Scene proto = OneLight(0, 0, -40, 30);
+    proto.mutable_light_settings()->set_min_size_px(6);
+    v1::Mesh& comb = *proto.add_meshes();
+    comb.set_id("comb");
+    // Slats across the footprint's 6 pixels, each covering 40 % of its share of the width,
+    // slanted so that no edge runs along a cell's.
+    const double pitch = 6.4 / slats * pixel_m;
+    for (int k = 0; k < slats; ++k) {
+      const double x0 = (-3.2 + 0.05) * pixel_m + k * pitch;
+      v1::Polygon& quad = *comb.add_polygons();
+      for (auto [x, y] : {std::pair{x0, -4.0},
+                          {x0 + 0.4 * pitch, -4.0},
+                          {x0 + 0.4 * pitch + 0.3 * pixel_m, 4.0},
+                          {x0 + 0.3 * pixel_m, 4.0}}) {
+        v1::Vec3& v = *quad.add_vertices();
+        v.set_x(x);
+        v.set_y(y * pixel_m);
+        v.set_z(-20);
+      }
+    }
+    auto scene = BuildScene(proto);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Camera camera = OriginCamera();
+    const RenderSettings settings = Settings(AntiAliasing::kBox2);
+    auto frame = RenderFrame(*scene, camera, settings);
+    ASSERT_TRUE(frame.ok());
+    v1::Scene dark = proto;
+    dark.clear_lights();
+    auto dark_scene = BuildScene(dark);
+    ASSERT_TRUE(dark_scene.ok());
+    auto without = RenderFrame(*dark_scene, camera, settings);
+    ASSERT_TRUE(without.ok());
+    const double light = RedSum(frame->image) - RedSum(without->image);
+    const FrameGeometry geo = ProjectScene(*scene, camera, kWidth, kHeight, 2);
+    ASSERT_EQ(geo.polygons.size(), static_cast<size_t>(slats));
+    const double share = VisibleShareBySampling(geo.polygons, kWidth / 2.0, kHeight / 2.0, 3);
+    const double want = AnalyticEnergy({0, 0, -40}, 30) * share;
+    EXPECT_NEAR(light, want, 2e-3 * AnalyticEnergy({0, 0, -40}, 30)) << slats << " slats";
+    EXPECT_GT(share, 0.4);
+    EXPECT_LT(share, 0.8);
   }
 }
 
