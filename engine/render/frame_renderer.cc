@@ -139,7 +139,7 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
   if (!stopped && !memory.Exceeded()) {
     LightPassStats lights;
     if (auto s = DrawLightPoints(geometry, settings, frame.region, footprints, frame.image,
-                                 surfaces ? &*surfaces : nullptr, &lights, stop);
+                                 surfaces ? &*surfaces : nullptr, &memory, &lights, stop);
         !s.ok())
       return s;
     frame.stats.lights_drawn = lights.drawn;

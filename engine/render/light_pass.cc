@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "base/held_bytes.h"
 #include "base/stopwatch.h"
 #include "raster/cell_coverage.h"
 #include "raster/polygon_moments.h"
@@ -65,6 +66,13 @@ bool ReachesDisc(const ScreenPolygon& p, double x, double y, double r) {
     if (v < 0 && v * v > r * r * (e.a * e.a + e.b * e.b)) return false;
   }
   return true;
+}
+
+// The polygon's largest inverse depth (its nearest point: a vertex, the depth being linear).
+double NearestInvDepth(const ScreenPolygon& p) {
+  double w = -INFINITY;
+  for (const Vec2& v : p.vertices) w = std::max(w, p.inv_depth.At(v.x, v.y));
+  return w;
 }
 
 class LightProjector {
@@ -165,8 +173,8 @@ class LightProjector {
 };
 
 // The polygons of the frame by tile, for the lights whose cells the raster pass did not record
-// (more visible polygons than a cell keeps, transparent surfaces), and each one's nearest inverse
-// depth.
+// (more polygons seen than a cell keeps, transparent surfaces): each tile's nearest first (by each
+// one's nearest inverse depth), so that the search stops at the first polygon behind the light.
 struct PolygonTiles {
   static constexpr int kTile = 8;  // a footprint is a few pixels: small tiles, few candidates
   int columns = 0, rows = 0;
@@ -210,6 +218,7 @@ class Splatter {
     found_.clear();
     ++stamp_;
     if (Recorded(f, shape_, surfaces_)) {
+      // The polygons seen in its cells: those hidden there by others nearer still add nothing.
       for (int ky = f.CellY0(shape_); ky <= f.CellY1(shape_); ++ky)
         for (int kx = f.CellX0(shape_); kx <= f.CellX1(shape_); ++kx) {
           const CellSurfaces& cell = surfaces_->at(kx, ky);
@@ -218,7 +227,7 @@ class Splatter {
     } else {
       SearchTiles(box, f.inv_depth);
     }
-    if (!KeepOccluders(f, octagon, box)) return true;  // wholly behind one polygon
+    KeepOccluders(f, box);
     // The footprint less the occluders' outlines, in pieces; behind a lattice of outlines, each
     // cell resolved among them instead.
     visible_.Start(octagon);
@@ -234,12 +243,16 @@ class Splatter {
     const int kx1 = static_cast<int>(std::floor(box.x1 - offset));
     const int ky0 = std::max(static_cast<int>(std::floor(box.y0 - offset)), row0);
     const int ky1 = std::min(static_cast<int>(std::floor(box.y1 - offset)), row1 - 1 + span);
+    row_.resize(kx1 - kx0 + 1);
     for (int ky = ky0; ky <= ky1; ++ky) {
+      if (in_pieces)
+        visible_.InRow(kx0 + offset, ky + offset + 0.5, kx1 - kx0 + 1, shape_.needs_moments,
+                       row_.data());
       for (int kx = kx0; kx <= kx1; ++kx) {
         const double cx = kx + offset + 0.5, cy = ky + offset + 0.5;
         CellMoments m;
         if (in_pieces) {
-          m = visible_.InCell(cx, cy, shape_.needs_moments);
+          m = row_[kx - kx0];
         } else {
           pieces_.clear();
           coverage_.Compute(polygons_, candidates_, cx, cy, shape_.needs_moments, pieces_);
@@ -288,30 +301,34 @@ class Splatter {
     const double nearer = inv_depth * (1 + 1e-9);
     for (int r = r0; r <= r1; ++r)
       for (int c = c0; c <= c1; ++c)
-        for (int index : t.tiles[static_cast<size_t>(r) * t.columns + c])
-          if (t.nearest[index] > nearer) Found(index);  // not behind it all over
+        for (int index : t.tiles[static_cast<size_t>(r) * t.columns + c]) {
+          if (!(t.nearest[index] > nearer)) break;  // the rest are behind it all over
+          Found(index);
+        }
   }
 
-  // Of the polygons in found_, those nearer than the light where the light is, into occluders_;
-  // false when one of them covers the whole footprint (then nothing of it shows). The footprint
-  // is the light's image, not a surface, so a polygon hides it or not as a whole: the ground
-  // under a runway light does not (the view ray meets the light before it), a wall in front of
-  // it does, by its outline.
-  bool KeepOccluders(const Footprint& f, const std::array<Vec2, 8>& octagon, const Box& box) {
+  // Of the polygons in found_, those that hide the light, into occluders_ (those over the
+  // footprint's centre first: they cover most of it, so that the pieces the others cut are few,
+  // and one that covers it all leaves none at once). The footprint is the light's image, not a
+  // surface, so a polygon hides it or not as a whole, by its outline: when its plane is nearer
+  // than the light at the footprint's centre and some of it is nearer than the light. The ground
+  // under a runway light does not hide it (the view ray meets the light before the ground), a
+  // wall in front of it does, and a far wall whose plane, extended, passes in front does not.
+  void KeepOccluders(const Footprint& f, const Box& box) {
     const double nearer = f.inv_depth * (1 + 1e-9);
     occluders_.clear();
+    size_t front = 0;
     for (int index : found_) {
       const ScreenPolygon& p = geo_.polygons[index];
       if (p.transparent || p.max_x <= box.x0 || p.min_x >= box.x1 || p.max_y <= box.y0 ||
           p.min_y >= box.y1 || !(p.inv_depth.At(f.x, f.y) > nearer))
         continue;
-      if (!ReachesDisc(p, f.x, f.y, f.radius * kOctagonCircumradius)) continue;
-      if (std::all_of(octagon.begin(), octagon.end(),
-                      [&](const Vec2& v) { return p.Contains(v.x, v.y); }))
-        return false;
+      if (!ReachesDisc(p, f.x, f.y, f.radius * kOctagonCircumradius) ||
+          !(NearestInvDepth(p) > nearer))
+        continue;
       occluders_.push_back(index);
+      if (p.Contains(f.x, f.y)) std::swap(occluders_.back(), occluders_[front++]);
     }
-    return true;
   }
 
   // The footprint and its occluders for the cell-by-cell resolution: their outlines stacked at
@@ -338,6 +355,7 @@ class Splatter {
   Image& image_;
   VisibleFootprint visible_;
   std::vector<int> found_, occluders_;
+  std::vector<CellMoments> row_;
   // Which polygons found_ holds: seen_[i] == stamp_ (a fresh stamp per footprint).
   std::vector<uint32_t> seen_;
   uint32_t stamp_ = 0;
@@ -369,8 +387,8 @@ void WantLightCells(const std::vector<LightFootprint>& footprints, const AaFilte
 
 absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings& settings,
                              const PixelRect& region, const std::vector<LightFootprint>& footprints,
-                             Image& image, const VisibleSurfaces* surfaces, LightPassStats* stats,
-                             const StopRequested& stop) {
+                             Image& image, const VisibleSurfaces* surfaces, FrameMemory* memory,
+                             LightPassStats* stats, const StopRequested& stop) {
   const Stopwatch timer;
   LightPassStats s;
   if (footprints.empty()) {
@@ -390,21 +408,28 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
     if (last < region.y0 || first >= region.y1) continue;
     for (int b = b0; b <= b1; ++b) band_lights[b].push_back(static_cast<int>(k));
   }
-  // The polygons by tile, only when some footprint's cells were not all recorded.
+  // The polygons by tile, nearest first, only when some footprint's cells were not all recorded.
   std::optional<PolygonTiles> tiles;
-  for (const LightFootprint& f : footprints) {
-    if (Splatter::Recorded(f, shape, surfaces)) continue;
+  size_t held = 0;
+  if (!std::all_of(footprints.begin(), footprints.end(), [&](const LightFootprint& f) {
+        return Splatter::Recorded(f, shape, surfaces);
+      })) {
     PolygonTiles& t = tiles.emplace();
     t.tiles = BinPolygons(geometry, shape.margin + 1, region, PolygonTiles::kTile, &t.columns);
     t.rows = t.columns > 0 ? static_cast<int>(t.tiles.size()) / t.columns : 0;
+    size_t bytes = HeldBytes(t.tiles) + geometry.polygons.size() * sizeof(double);
+    for (const std::vector<int>& tile : t.tiles) bytes += HeldBytes(tile);
+    if (memory != nullptr && !memory->Hold(held, bytes)) {
+      memory->Refuse("the light points' lists of polygons by tile", bytes);
+      return memory->Error();
+    }
     t.nearest.resize(geometry.polygons.size());
-    tbb::parallel_for(size_t{0}, geometry.polygons.size(), [&](size_t i) {
-      const ScreenPolygon& p = geometry.polygons[i];
-      double w = -INFINITY;
-      for (const Vec2& v : p.vertices) w = std::max(w, p.inv_depth.At(v.x, v.y));
-      t.nearest[i] = w;
+    tbb::parallel_for(size_t{0}, geometry.polygons.size(),
+                      [&](size_t i) { t.nearest[i] = NearestInvDepth(geometry.polygons[i]); });
+    tbb::parallel_for(size_t{0}, t.tiles.size(), [&](size_t i) {
+      std::sort(t.tiles[i].begin(), t.tiles[i].end(),
+                [&](int a, int b) { return t.nearest[a] > t.nearest[b]; });
     });
-    break;
   }
   std::atomic<size_t> occluded{0};
   std::atomic<bool> stopped{false};
@@ -423,6 +448,7 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
     }
     occluded += hidden;
   });
+  if (memory != nullptr) memory->Hold(held, 0);
   if (stopped) return absl::CancelledError("the frame was stopped while its lights were drawn");
   s.drawn = footprints.size();
   s.occluded = occluded.load();

@@ -4,14 +4,15 @@
 // eye, T the fog's transmission over its distance d), becomes a pixel-value energy S = exposure x
 // E / (the solid angle of one pixel at its place on the screen), spread uniformly over a small
 // disc footprint (a regular octagon of the disc's area). The footprint is the light's image, not a
-// surface: the polygons nearer than the light where it is (at the footprint's centre) hide it by
-// their outlines, the others not at all (the ground under a runway light: the view ray meets the
-// light before it). Each cell of the footprint is resolved by the exact cell coverage against
-// those outlines (raster/cell_coverage.h) and integrated over the pixels' filter apertures like
-// any polygon's piece. So the sum of a light's pixels is S times the visible share of its
-// footprint, to float rounding, wherever it falls inside a pixel; its image's centroid follows its
-// projection continuously; and a light sliding behind an edge dims continuously, by exactly the
-// part of its footprint the edge covers.
+// surface: the polygons seen in its cells whose planes are nearer than the light where it is (at
+// the footprint's centre), and that are nearer than it somewhere, hide it by their outlines; the
+// others not at all (the ground under a runway light: the view ray meets the light before it). The
+// footprint less those outlines is cut into convex pieces (render/visible_footprint.h), clipped
+// exactly to each cell and integrated over the pixels' filter apertures like any polygon's piece.
+// So the sum of a light's pixels is S times the visible share of its footprint, to float rounding,
+// wherever it falls inside a pixel; its image's centroid follows its projection continuously; and a
+// light sliding behind an edge dims continuously, by exactly the part of its footprint the edge
+// covers.
 //
 // In fog, part of the light scattered on its way forms a halo (the atmospheric point spread
 // function of Narasimhan and Nayar, "Shedding Light on the Weather", CVPR 2003: its forward peak
@@ -28,6 +29,7 @@
 #include "base/pixel_rect.h"
 #include "raster/aa_filter.h"
 #include "raster/projection.h"
+#include "render/frame_memory.h"
 #include "render/renderer.h"
 #include "render/visible_surfaces.h"
 #include "scene/camera.h"
@@ -48,7 +50,7 @@ inline constexpr double kMaxFootprintPx = 64.0;
 struct LightPassStats {
   size_t drawn = 0;     // footprints (lights, and halos in fog) that reached the frame
   size_t occluded = 0;  // of those, the ones a polygon nearer than the light reached
-  double ms = 0;        // the pass, with the projection of the lights
+  double ms = 0;        // the pass
 };
 
 // A regular octagon of a disc's area (2 sqrt(2) R^2 = pi r^2) has circumradius R = 1.0547 r.
@@ -85,12 +87,13 @@ void WantLightCells(const std::vector<LightFootprint>& footprints, const AaFilte
                     VisibleSurfaces& surfaces);
 
 // Adds the footprints to `image` (the pixels of `region` of the frame `geometry` was projected
-// for). `depth` (may be null): what the raster pass saw in the footprints' cells, which spares the
-// lights that nothing could hide (or that surfaces in front hide whole) the search for what hides
-// them. `stop` is asked between bands of rows.
+// for). `surfaces` (may be null): what the raster pass saw in the footprints' cells, where a
+// light's possible occluders are read; for a footprint whose cells were not all recorded, the
+// polygons are binned by tile and searched, those lists held against `memory` (may be null).
+// `stop` is asked between bands of rows.
 absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings& settings,
                              const PixelRect& region, const std::vector<LightFootprint>& footprints,
-                             Image& image, const VisibleSurfaces* depth, LightPassStats* stats,
-                             const StopRequested& stop = {});
+                             Image& image, const VisibleSurfaces* surfaces, FrameMemory* memory,
+                             LightPassStats* stats, const StopRequested& stop = {});
 
 }  // namespace aperture

@@ -1,6 +1,7 @@
 #include "render/visible_footprint.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "raster/polygon_clip.h"
@@ -88,39 +89,57 @@ bool VisibleFootprint::Subtract(const ScreenPolygon& occluder) {
   return true;
 }
 
-CellMoments VisibleFootprint::InCell(double cx, double cy, bool with_moments) {
-  CellMoments sum;
-  const double x0 = cx - 0.5, x1 = cx + 0.5, y0 = cy - 0.5, y1 = cy + 0.5;
+void VisibleFootprint::InRow(double x0, double cy, int cells, bool with_moments, CellMoments* out) {
+  std::fill(out, out + cells, CellMoments{});
+  const double y0 = cy - 0.5, y1 = cy + 0.5;
   for (const Piece& piece : pieces_) {
-    if (piece.max_x <= x0 || piece.min_x >= x1 || piece.max_y <= y0 || piece.min_y >= y1) continue;
+    if (piece.max_y <= y0 || piece.min_y >= y1 || piece.max_x <= x0 || piece.min_x >= x0 + cells)
+      continue;
+    // In the row's coordinates: x from its left side, y from its centre line.
     const size_t count = piece.end - piece.begin;
     const size_t capacity = 2 * count + 8;
-    a_.resize(capacity), b_.resize(capacity);
+    a_.resize(capacity), b_.resize(capacity), c_.resize(capacity);
     for (size_t k = 0; k < count; ++k) {
       const Vec2& v = verts_[piece.begin + k];
-      a_[k] = {v.x - cx, v.y - cy};
+      a_[k] = {v.x - x0, v.y - cy};
     }
     size_t n = count;
-    // Only the cell's sides that cross the piece cut it.
-    const double cuts[4][3] = {{1, 0, 0.5}, {-1, 0, 0.5}, {0, 1, 0.5}, {0, -1, 0.5}};
-    const bool crosses[4] = {piece.min_x<x0, piece.max_x> x1, piece.min_y<y0, piece.max_y> y1};
-    for (int s = 0; s < 4 && n >= 3; ++s) {
-      if (!crosses[s]) continue;
-      const size_t cut =
-          ClipByHalfPlane(a_.data(), n, cuts[s][0], cuts[s][1], cuts[s][2], b_.data(), capacity);
-      if (cut == kClipOverflow) {  // (rounding past convexity: clip in vectors instead)
-        a_.assign(verts_.begin() + piece.begin, verts_.begin() + piece.end);
-        for (Vec2& v : a_) v = {v.x - cx, v.y - cy};
-        ClipToRect(a_, -0.5, -0.5, 0.5, 0.5, b_);
-        n = a_.size();
-        break;
+    if (piece.min_y < y0) n = Clip(n, 0, 1, 0.5, capacity);
+    if (n >= 3 && piece.max_y > y1) n = Clip(n, 0, -1, 0.5, capacity);
+    if (n < 3) continue;
+    const int first = std::max(0, static_cast<int>(std::floor(piece.min_x - x0)));
+    const int last = std::min(cells - 1, static_cast<int>(std::ceil(piece.max_x - x0)) - 1);
+    for (int i = first; i <= last && n >= 3; ++i) {
+      // What lies left of the cell's right side is the cell's (the piece starts at or right of
+      // the cell's left side); the rest goes on to the next cell.
+      size_t in = n, rest = 0;
+      Vec2* part = a_.data();
+      if (i < last) {
+        if (!SplitByLine(a_.data(), n, -1, 0, i + 1, b_.data(), in, c_.data(), rest, capacity))
+          break;  // (not for a convex piece: its vertices at most double)
+        part = b_.data();
       }
-      n = cut;
-      std::swap(a_, b_);
+      if (in >= 3) {
+        CellMoments m = PolygonMoments(std::span(part, in), with_moments);
+        // From the row's origin to the cell's centre: x shifts by i + 0.5.
+        const double c = i + 0.5;
+        m.mxy -= c * m.my;
+        m.mx -= c * m.area;
+        Accumulate(out[i], m);
+      }
+      if (i < last) {
+        std::swap(a_, c_);
+        n = rest;
+      }
     }
-    if (n >= 3) Accumulate(sum, PolygonMoments(std::span(a_.data(), n), with_moments));
   }
-  return sum;
+}
+
+size_t VisibleFootprint::Clip(size_t n, double a, double b, double c, size_t capacity) {
+  const size_t cut = ClipByHalfPlane(a_.data(), n, a, b, c, b_.data(), capacity);
+  if (cut == kClipOverflow) return 0;  // (not for a convex piece: its vertices at most double)
+  std::swap(a_, b_);
+  return cut;
 }
 
 }  // namespace aperture

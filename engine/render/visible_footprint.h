@@ -30,9 +30,11 @@ class VisibleFootprint {
   bool Subtract(const ScreenPolygon& occluder);
   bool empty() const { return pieces_.empty(); }
 
-  // The area and moments of the pieces inside the cell [cx - 0.5, cx + 0.5] x [cy - 0.5,
-  // cy + 0.5], relative to its centre (cx, cy) (raster/aa_filter.h's CellMoments).
-  CellMoments InCell(double cx, double cy, bool with_moments);
+  // The area and moments of the pieces in a row of `cells` cells: cell i is [x0 + i, x0 + i + 1]
+  // x [cy - 0.5, cy + 0.5], its moments relative to its centre (x0 + i + 0.5, cy)
+  // (raster/aa_filter.h's CellMoments), written to out[i]. Each piece is clipped to the row once,
+  // then split at each cell's right side in turn: one cut per cell it reaches.
+  void InRow(double x0, double cy, int cells, bool with_moments, CellMoments* out);
 
  private:
   struct Piece {
@@ -40,6 +42,8 @@ class VisibleFootprint {
     double min_x, min_y, max_x, max_y;
   };
   void AddPiece(std::vector<Piece>& pieces, std::vector<Vec2>& verts, const Vec2* v, size_t n);
+  // Clips a_[0, n) by a x + b y + c >= 0 into a_; returns the count left.
+  size_t Clip(size_t n, double a, double b, double c, size_t capacity);
 
   std::vector<Piece> pieces_, next_pieces_;
   std::vector<Vec2> verts_, next_verts_;

@@ -15,7 +15,7 @@
 namespace aperture {
 
 struct CellSurfaces {
-  static constexpr int kMax = 8;
+  static constexpr int kMax = 16;
   // How many polygons are visible in the cell (0: the sky), or -1: not known (more than kMax, or
   // transparent surfaces, whose cells are not recorded).
   int8_t count;
