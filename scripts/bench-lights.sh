@@ -1,21 +1,58 @@
 #!/usr/bin/env bash
-# Do light points blink? Aperture against Mesa llvmpipe (OSMesa, LP_NUM_THREADS=2) drawing the same
-# lights as osgSim-based image generators do, on a slow approach to a lit runway: each light's
-# energy per frame from the images, its ripple over the approach, its centroid's wobble, the time
-# of a light-only frame, and a light passing behind a wall's edge (tests/bench/light_blink_bench.cc
-# says what each table measures). About a minute and a half on 2 cores.
-#
-#   scripts/bench-lights.sh                              # 1280x720 and 1920x1080, 180 frames
-#   SIZES=1280x720 FRAMES=60 scripts/bench-lights.sh     # a quick look
-#   CSV=out/lights.csv PREVIEW=out/lights scripts/bench-lights.sh   # every light's every frame,
-#                                                        # and Aperture's first frame as PNG
-#
-# OSMesa (Debian's libosmesa6-dev) is a benchmark dependency, not a product one: installed here
-# when missing, then the build is configured (or reconfigured) so that the target exists.
+# Do light points blink? Aperture against Mesa llvmpipe (OSMesa, LP_NUM_THREADS=2) drawing the
+# same lights as osgSim-based image generators do, on a slow approach to a lit runway, then a light
+# passing behind a wall's edge (tests/bench/light_blink_bench.cc says what each table measures).
+# About 20 s with the defaults on 2 cores (about 30 s with all three filters).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+usage() {
+  cat <<'EOF'
+usage: scripts/bench-lights.sh [--help] [light_blink_bench flags...]
+
+Builds build/tests/light_blink_bench (installing Debian's libosmesa6-dev first when it is
+missing: a benchmark dependency, not a product one) and runs it once with LP_NUM_THREADS=2:
+
+  blink  a 3 degree approach at 70 m/s, 60 frames/s, towards the runway scene (266 edge, centre
+         line, threshold, end and approach lights): per light, the ripple (max - min) / mean of
+         its energy over its analytic energy, for Aperture (box2) and for llvmpipe's smooth GL
+         points 1x and 4x MSAA (osgSim's minimum point sizes 1.5 and 0); the median, the worst
+         light and the worst of each row of lights. Aperture's target: ripple at most 1 %.
+  edge   a light 1 km away passing behind the slanted edge of a wall 100 m away: its energy per
+         frame beside the analytic visible share of its footprint; Aperture monotone, each step
+         the covered area's change; llvmpipe's points depth tested, popping.
+
+Tables on stdout, progress on stderr. The exit status is the benchmark's: 0 when Aperture met its
+targets, 3 when it did not, 1 on an error, 2 on a bad flag.
+
+Environment (defaults in brackets):
+  SIZES        frame sizes, WxH[,WxH]                               [1280x720]
+  FRAMES       frames of the approach                               [180, 3 s at 60 frames/s]
+  AA           Aperture's filters, of box2, box1, tent2             [box2]
+  SCENE        runway, an engine built-in scene, or a scene file    [runway]
+  EDGE_FRAMES  frames of the light behind an edge (0: none)         [120]
+  CSV          a file for every light's every frame                 [none]
+  PREVIEW      a path prefix for Aperture's first frame as PNG      [none]
+
+Any further flags go to the benchmark after these (build/tests/light_blink_bench --help lists
+them: --aim, --heading, --start_m to fly towards another scene's runway, --peer_min_sizes, ...).
+
+  scripts/bench-lights.sh                                   # the defaults
+  AA=box2,box1,tent2 scripts/bench-lights.sh                # every filter
+  SIZES=640x360 FRAMES=60 EDGE_FRAMES=40 scripts/bench-lights.sh   # a quick look
+  SCENE=airfield.json scripts/bench-lights.sh --aim X,Y,Z --heading DEG   # another runway
+EOF
+}
+
+for arg in "$@"; do
+  if [ "$arg" = "--help" ] || [ "$arg" = "-h" ]; then
+    usage
+    exit 0
+  fi
+done
+
 if ! dpkg-query -W -f='${Status}' libosmesa6-dev 2>/dev/null | grep -q "install ok installed"; then
-  echo "bench-lights: installing libosmesa6-dev (benchmark dependency)"
+  echo "bench-lights: installing libosmesa6-dev (benchmark dependency)" >&2
   sudo=""
   if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends libosmesa6-dev \
@@ -28,9 +65,8 @@ else
   cmake build >/dev/null   # picks up OSMesa if it was just installed
 fi
 cmake --build build -j "$(nproc)" --target light_blink_bench >/dev/null
-args=(--frames "${FRAMES:-180}" --sizes "${SIZES:-1280x720,1920x1080}" --aa "${AA:-box2,box1,tent2}"
-      --peer_min_sizes "${PEER_MIN_SIZES:-1.5,0}" --time_every "${TIME_EVERY:-6}"
-      --edge_frames "${EDGE_FRAMES:-120}" --edge_step "${EDGE_STEP:-0.025}")
+args=(--scene "${SCENE:-runway}" --sizes "${SIZES:-1280x720}" --frames "${FRAMES:-180}"
+      --aa "${AA:-box2}" --edge_frames "${EDGE_FRAMES:-120}")
 if [ -n "${CSV:-}" ]; then args+=(--csv "$CSV"); fi
 if [ -n "${PREVIEW:-}" ]; then args+=(--preview "$PREVIEW"); fi
-LP_NUM_THREADS=2 build/tests/light_blink_bench "${args[@]}"   # progress on stderr, tables on stdout
+LP_NUM_THREADS=2 exec build/tests/light_blink_bench "${args[@]}" "$@"

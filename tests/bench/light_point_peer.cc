@@ -34,7 +34,7 @@ double NominalArea(const std::vector<SizedPoint>& points) {
 
 LightPointPeer::~LightPointPeer() {
   if (context_ != nullptr) {
-    for (Target* t : {&single_, &multi_, &resolved_, &single8_, &multi8_}) Free(*t);
+    for (Target* t : {&single_, &multi_, &resolved_}) Free(*t);
     OSMesaDestroyContext(context_);
   }
 }
@@ -118,12 +118,11 @@ void LightPointPeer::Free(Target& target) {
 }
 
 bool LightPointPeer::Resize(int width, int height) {
-  for (Target* t : {&single_, &multi_, &resolved_, &single8_, &multi8_}) Free(*t);
+  for (Target* t : {&single_, &multi_, &resolved_}) Free(*t);
   width_ = width;
   height_ = height;
   return Make(single_, GL_RGBA16, 0, true) && Make(multi_, GL_RGBA32F, 4, true) &&
-         Make(resolved_, GL_RGBA32F, 0, false) && Make(single8_, GL_RGBA8, 0, true) &&
-         Make(multi8_, GL_RGBA8, 4, true);
+         Make(resolved_, GL_RGBA32F, 0, false);
 }
 
 void LightPointPeer::SetCamera(const Camera& camera, double near, double far) {
@@ -147,16 +146,10 @@ PixelRect LightPointPeer::GlRect(const PixelRect& window) const {
   return {window.x0, height_ - window.y1, window.x1, height_ - window.y0};
 }
 
-void LightPointPeer::Begin(bool msaa, const PixelRect& window, bool eight_bit) {
-  if (eight_bit) {
-    drawn_ = msaa ? &multi8_ : &single8_;
-    resolve_to_ = msaa ? &single8_ : nullptr;
-    read_ = nullptr;
-  } else {
-    drawn_ = msaa ? &multi_ : &single_;
-    resolve_to_ = msaa ? &resolved_ : nullptr;
-    read_ = msaa ? &resolved_ : &single_;
-  }
+void LightPointPeer::Begin(bool msaa, const PixelRect& window) {
+  drawn_ = msaa ? &multi_ : &single_;
+  resolve_to_ = msaa ? &resolved_ : nullptr;
+  read_ = msaa ? &resolved_ : &single_;
   glBindFramebuffer(GL_FRAMEBUFFER, drawn_->fbo);
   glViewport(0, 0, width_, height_);
   const PixelRect r = GlRect(window);
@@ -224,7 +217,6 @@ void LightPointPeer::End(const PixelRect& window) {
 std::vector<double> LightPointPeer::WindowLuminance(const PixelRect& window) {
   const PixelRect r = GlRect(window);
   std::vector<double> out(static_cast<size_t>(r.pixels()), 0.0);
-  if (read_ == nullptr) return out;
   readback_.resize(static_cast<size_t>(r.pixels()) * 4);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, read_->fbo);
   glReadBuffer(GL_COLOR_ATTACHMENT0);

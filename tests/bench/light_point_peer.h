@@ -9,8 +9,7 @@
 // each fragment to [0, 1] (llvmpipe's smooth points rely on it: their coverage alpha exceeds 1
 // inside the point), with steps of 1/65535 instead of 1/255; 4x MSAA to a float buffer resolved
 // into another (multisampled, llvmpipe ignores GL_POINT_SMOOTH and draws squares, so nothing
-// needs the clamp, and float keeps dim points from rounding). Timed frames go to 8-bit buffers,
-// as an image generator's.
+// needs the clamp, and float keeps dim points from rounding).
 #pragma once
 
 #include <GL/osmesa.h>
@@ -57,15 +56,14 @@ class LightPointPeer {
   // not read back what was drawn.
   bool Init();
   std::string Renderer() const;
-  // The buffers of this size: the measured ones (above) and the 8-bit ones, 1x and 4x MSAA, each
-  // drawn buffer with a 24-bit depth buffer.
+  // The buffers of this size (above), 1x and 4x MSAA, each drawn buffer with a 24-bit depth
+  // buffer.
   bool Resize(int width, int height);
 
   // The camera's projection and orientation (its position is subtracted from every vertex).
   void SetCamera(const Camera& camera, double near = 0.5, double far = 20000);
-  // Binds the 1x or 4x buffer, measured or 8-bit, and clears `window` (all of the frame when it
-  // is empty).
-  void Begin(bool msaa, const PixelRect& window = {}, bool eight_bit = false);
+  // Binds the 1x or 4x buffer and clears `window` (all of the frame when it is empty).
+  void Begin(bool msaa, const PixelRect& window = {});
   // An opaque quad (depth written), world vertices counter-clockwise or not.
   void DrawQuad(const Vec3 corners[4], float grey);
   // The points with osgSim's state, grouped by size.
@@ -73,8 +71,7 @@ class LightPointPeer {
   // Resolves the 4x buffer over `window` (all of the frame when empty) and waits for llvmpipe to
   // finish.
   void End(const PixelRect& window = {});
-  // The Rec. 709 luminance of each pixel of `window` in the last measured frame, row by row from
-  // the top.
+  // The Rec. 709 luminance of each pixel of `window` in the last frame, row by row from the top.
   std::vector<double> WindowLuminance(const PixelRect& window);
 
  private:
@@ -91,8 +88,8 @@ class LightPointPeer {
   OSMesaContext context_ = nullptr;
   std::vector<uint32_t> dummy_;  // the context's own buffer, unused: frames go to the targets
   int width_ = 0, height_ = 0;
-  // Measured: 1x 16-bit, 4x float and its float resolve; timed: 8-bit 1x (also 4x's resolve), 4x.
-  Target single_, multi_, resolved_, single8_, multi8_;
+  // 1x 16-bit, 4x float and its float resolve.
+  Target single_, multi_, resolved_;
   const Target* drawn_ = nullptr;
   const Target* resolve_to_ = nullptr;  // null: the drawn target is read
   const Target* read_ = nullptr;

@@ -6,7 +6,6 @@ namespace aperture::testing {
 namespace {
 
 constexpr double kRunwayLength = 3000, kRunwayHalfWidth = 22.5;
-constexpr double kAimingPointZ = -300;
 
 void SetVec(v1::Vec3* v, double x, double y, double z) {
   v->set_x(x);
@@ -65,13 +64,11 @@ void AddQuad(v1::Scene& scene, const std::string& id, double x0, double z0, doub
 v1::Scene MakeRunwayLightsScene(const RunwayLightsOptions& options) {
   v1::Scene scene;
   scene.set_name("runway lights");
-  if (options.surfaces) {
-    // The ground, then the runway drawn over it (coplanar: the later is seen).
-    AddQuad(scene, "ground", -4000, 4000, 4000, -8000, 0.01f);
-    AddQuad(scene, "runway", -kRunwayHalfWidth, 0, kRunwayHalfWidth, -kRunwayLength, 0.025f);
-  }
-  // Elevated lights stand 0.3 m above the surface, inset centre line lights 0.05 m: both within
-  // the distance at which the surface under a light does not hide it.
+  // The ground, then the runway drawn over it (coplanar: the later is seen).
+  AddQuad(scene, "ground", -4000, 4000, 4000, -8000, 0.01f);
+  AddQuad(scene, "runway", -kRunwayHalfWidth, 0, kRunwayHalfWidth, -kRunwayLength, 0.025f);
+  // Elevated lights stand 0.3 m above the surface, inset centre line lights 0.05 m: the view ray
+  // meets a light before the ground under it, so the ground never hides one.
   const double edge_x = kRunwayHalfWidth + 1;
   AddRow(scene, "edge-left", -edge_x, 0, -edge_x, -kRunwayLength, 0.3, 0, 60, kWhite, 2500);
   AddRow(scene, "edge-right", edge_x, 0, edge_x, -kRunwayLength, 0.3, 0, 60, kWhite, 2500);
@@ -86,11 +83,17 @@ v1::Scene MakeRunwayLightsScene(const RunwayLightsOptions& options) {
   return scene;
 }
 
+double GlidePath::DistanceAt(double time_s) const {
+  return start_distance_m - speed_mps * std::cos(Radians(slope_deg)) * time_s;
+}
+
 Camera GlidePath::At(double time_s) const {
-  const double slope = slope_deg * M_PI / 180;
-  const double distance = start_distance_m - speed_mps * std::cos(slope) * time_s;
+  const double distance = DistanceAt(time_s);
+  // The direction flown, horizontal: the camera's forward (-z) turned by the heading.
+  const Vec3 ahead{-std::sin(Radians(heading_deg)), 0, -std::cos(Radians(heading_deg))};
   Camera camera;
-  camera.position = {0, distance * std::tan(slope), kAimingPointZ + distance};
+  camera.position = aim - ahead * distance + Vec3{0, distance * std::tan(Radians(slope_deg)), 0};
+  camera.yaw_deg = heading_deg;
   camera.pitch_deg = -slope_deg;
   camera.vertical_fov_deg = 60;
   return camera;

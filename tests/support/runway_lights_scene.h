@@ -13,23 +13,28 @@
 namespace aperture::testing {
 
 struct RunwayLightsOptions {
-  bool surfaces = true;    // the ground and the runway (dark, unlit), else the lights alone
   double exposure = 0.01;  // LightSettings.exposure
 };
 
-// The scene. Every light is omnidirectional and steady, and each row is a light group named after
-// it ("edge-left", "centre", "approach", ...), so a light's group says which row it belongs to.
+// The scene: the ground and the runway (dark, unlit) and the lights. Every light is omnidirectional
+// and steady, and each row is a light group named after it ("edge-left", "centre", "approach",
+// ...), so a light's group says which row it belongs to.
 v1::Scene MakeRunwayLightsScene(const RunwayLightsOptions& options = {});
 
-// The approach: the 3 degree glide path towards the aiming point 300 m past the threshold, at
-// `speed_mps` along the path, starting `start_distance_m` (horizontally) before the aiming point,
-// looking along the path (pitch -3 degrees), 60 degrees vertical field of view.
+// The approach: the `slope_deg` glide path towards the aiming point `aim` (on the runway, 300 m
+// past this scene's threshold), flying along `heading_deg` (a yaw: 0 flies along -z, 90 along
+// -x), at `speed_mps` along the path, starting `start_distance_m` (horizontally) before the aiming
+// point, looking along the path, 60 degrees vertical field of view.
 struct GlidePath {
+  Vec3 aim{0, 0, -300};
+  double heading_deg = 0;
   double start_distance_m = 1800;
   double speed_mps = 70;
   double slope_deg = 3;
 
   Camera At(double time_s) const;
+  // How far (horizontally) before the aiming point the camera is at `time_s`.
+  double DistanceAt(double time_s) const;
 };
 
 }  // namespace aperture::testing
