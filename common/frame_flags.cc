@@ -81,6 +81,8 @@ ABSL_FLAG(bool, transparent_sky, false,
           "it (for compositing the frame over other imagery)");
 ABSL_FLAG(double, scene_time_s, 0,
           "the scene's clock, seconds: which flashing light points are on (LightFlash)");
+ABSL_FLAG(bool, light_points, true,
+          "draw the scene's light points; false: the frame without them (to compare their cost)");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (aperture batch: an output directory)");
 
 namespace aperture {
@@ -241,6 +243,7 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(
   options.set_pixel_type(absl::GetFlag(FLAGS_float_pixels) ? v1::PIXEL_TYPE_FLOAT
                                                            : v1::PIXEL_TYPE_HALF);
   options.set_transparent_sky(absl::GetFlag(FLAGS_transparent_sky));
+  options.set_hide_light_points(!absl::GetFlag(FLAGS_light_points));
   request.set_scene_time_s(absl::GetFlag(FLAGS_scene_time_s));
   return request;
 }

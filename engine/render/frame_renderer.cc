@@ -73,7 +73,8 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
   // Light points: projected first, so that the raster pass keeps what it sees in their cells.
   const Stopwatch lights_timer;
   const std::vector<LightFootprint> footprints =
-      ProjectLightPoints(scene, camera, geometry, settings);
+      settings.draw_light_points ? ProjectLightPoints(scene, camera, geometry, settings)
+                                 : std::vector<LightFootprint>{};
   const double project_ms = lights_timer.Milliseconds();
   std::optional<VisibleSurfaces> surfaces;
   size_t surfaces_held = 0;

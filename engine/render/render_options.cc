@@ -57,6 +57,7 @@ absl::StatusOr<RenderSettings> RenderSettingsFromProto(const v1::RenderOptions& 
                                                      "; must be in (0, 16] pixels"));
   }
   settings.transparent_sky = options.transparent_sky();
+  settings.draw_light_points = !options.hide_light_points();
   return settings;
 }
 

@@ -36,6 +36,8 @@ struct RenderSettings {
   size_t max_frame_bytes = 0;
   // The scene's clock, seconds: which flashing light points are on (RenderFrameRequest's).
   double scene_time_s = 0;
+  // Whether the scene's light points are drawn (v1::RenderOptions.hide_light_points).
+  bool draw_light_points = true;
 };
 
 // The sky a frame's pixels show where nothing covers them.

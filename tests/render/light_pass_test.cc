@@ -97,6 +97,19 @@ TEST(LightPass, ThePixelSumIsTheAnalyticEnergyWhereverTheLightFalls) {
   }
 }
 
+TEST(LightPass, AFrameWithoutLightPointsHasNone) {
+  auto scene = BuildScene(OneLight(0.5, 0.3, -30, 40));
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  RenderSettings settings = Settings(AntiAliasing::kBox2);
+  auto lit = RenderFrame(*scene, OriginCamera(), settings);
+  settings.draw_light_points = false;
+  auto dark = RenderFrame(*scene, OriginCamera(), settings);
+  ASSERT_TRUE(lit.ok() && dark.ok());
+  EXPECT_GT(RedSum(lit->image), 0.5 * AnalyticEnergy({0.5, 0.3, -30}, 40));
+  EXPECT_EQ(RedSum(dark->image), 0);
+  EXPECT_EQ(dark->stats.lights_drawn, 0u);
+}
+
 // Under the tent filter, which reproduces linear functions, the image's centroid is the light's
 // projection: a slide of a hundredth of a pixel moves it by that much.
 TEST(LightPass, TheCentroidFollowsTheProjectionContinuously) {
