@@ -220,8 +220,8 @@ void AddThresholdLights(const RunwayDescription& r, const RunwayFrame& f, v1::Sc
 }
 
 // Annex 14 5.3.11: a row at right angles to the runway at most 3 m outside its end, at least six
-// lights, at most 6 m apart on a category III runway; fixed red towards the runway, 2,500 cd main
-// beam (Figure A2-8).
+// lights, at most 6 m apart on a category III runway; fixed red in the direction of the runway
+// (back towards the landing aircraft, dark beyond the end), 2,500 cd main beam (Figure A2-8).
 void AddEndLights(const RunwayDescription& r, const RunwayFrame& f, v1::Scene* scene) {
   const int count = r.category == RunwayCategory::kPrecisionCatIII
                         ? std::max(6, static_cast<int>(std::ceil(r.width_m / 6 - 1e-9)) + 1)
@@ -230,7 +230,7 @@ void AddEndLights(const RunwayDescription& r, const RunwayFrame& f, v1::Scene* s
       f, r.length_m + 1, r.width_m, count, kInsetM,
       [&](double) {
         return AnnexLight(kRunwayEndGroup, Red(), 2500, kRunwayEndBeam,
-                          f.Beam(false, 0, 0, kRunwayEndBeam.b[0]));
+                          f.Beam(true, 0, 0, kRunwayEndBeam.b[0]));
       },
       scene);
 }
@@ -435,6 +435,9 @@ absl::Status ValidateRunway(const RunwayDescription& r) {
   if (!(r.approach_slope_deg >= 1 && r.approach_slope_deg <= 8))
     return InvalidRunway(r, "approach_slope_deg",
                          absl::StrCat("must be 1 to 8 degrees, is ", r.approach_slope_deg));
+  if (!(r.intensity_scale > 0 && r.intensity_scale <= 1))
+    return InvalidRunway(r, "intensity_scale",
+                         absl::StrCat("must be > 0 and at most 1, is ", r.intensity_scale));
   if (!(r.papi_distance_m >= 0 && r.papi_distance_m < r.length_m))
     return InvalidRunway(
         r, "papi_distance_m",
@@ -546,6 +549,7 @@ void PointAlong(const std::vector<Vec3>& line, double s, Vec3* at, Vec3* directi
 absl::Status AddRunwayLights(const RunwayDescription& runway, v1::Scene* scene) {
   if (absl::Status valid = ValidateRunway(runway); !valid.ok()) return valid;
   const RunwayFrame frame(runway);
+  const int first_light = scene->lights_size(), first_row = scene->light_rows_size();
   AddApproachLights(runway, frame, scene);
   AddThresholdLights(runway, frame, scene);
   AddEdgeLights(runway, frame, scene);
@@ -553,6 +557,15 @@ absl::Status AddRunwayLights(const RunwayDescription& runway, v1::Scene* scene) 
   AddTouchdownZoneLights(runway, frame, scene);
   AddEndLights(runway, frame, scene);
   AddPapi(runway, frame, scene);
+  // The selected brightness step dims every system alike.
+  for (int i = first_light; i < scene->lights_size(); ++i) {
+    v1::LightPoint& light = *scene->mutable_lights(i);
+    light.set_intensity_cd(light.intensity_cd() * runway.intensity_scale);
+  }
+  for (int i = first_row; i < scene->light_rows_size(); ++i) {
+    v1::LightPoint& light = *scene->mutable_light_rows(i)->mutable_light();
+    light.set_intensity_cd(light.intensity_cd() * runway.intensity_scale);
+  }
   return absl::OkStatus();
 }
 

@@ -56,6 +56,10 @@ struct RunwayDescription {
   RunwayCategory category = RunwayCategory::kPrecisionCatI;
   double approach_slope_deg = 3;  // the PAPI's approach slope, 1 to 8 degrees
   double papi_distance_m = 300;   // from the threshold to the PAPI's wing bar, less than length_m
+  // The brightness step the tower has selected, as a share of the full intensities below (0 to
+  // 1]: a five-step system's steps are about 100, 25, 5, 1 and 0.2 %. The intensities given in
+  // the scene are these (SceneUpdate.light_groups scales them further).
+  double intensity_scale = 1;
 };
 
 // Appends the runway's lights to `scene`: edge, threshold, end, centre line and touchdown zone
