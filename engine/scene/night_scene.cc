@@ -16,6 +16,11 @@ namespace {
 
 using demo::SetColor;
 
+// The runways' brightness step: step 3 of five (5 % of full intensity). FAA Order JO 7110.65,
+// Table 3-4-8, has the tower select it at night for visibilities of 1 to 3 miles, and the lower
+// steps beyond; step 3 keeps the runway the brightest thing in a frame that also shows a town.
+constexpr double kNightStep = 0.05;
+
 // The light group of the apron's floodlight masts.
 constexpr char kApronFloodlightGroup[] = "apron-floodlights";
 
@@ -120,12 +125,11 @@ std::vector<NightAircraft> Aircraft() {
     p.y = 0.15;
     return p;
   };
-  const double glide = std::tan(Radians(3));
   return {
       // Lined up on 36L where the demo puts it (DemoAircraftAt(0)).
       {kDemoAircraft, {0, 0.15, 50}, 0, 0, 1, false},
-      // On final ahead of the camera, on the 3 degree path to the PAPI 300 m in.
-      {"arrival", {0, (2300 + 100) * glide, 2300}, 0, 2, 1, true},
+      // Climbing out of 36L ahead of the camera, its landing lights still on.
+      {"climb-out", {0, 150, -2900}, 0, 8, 1, true},
       {"rollout", {0, 0.15, -1900}, 0, 0, 1, false},
       {"taxi-b1", OnMap(1297, 3290, 1297, 3570, 0.3), MapYaw(1297, 3290, 1297, 3570), 0, 1, false},
       {"taxi-b2", OnMap(1326, 2850, 1312, 3150, 0.2), MapYaw(1326, 2850, 1312, 3150), 0, 0.8,
@@ -135,10 +139,10 @@ std::vector<NightAircraft> Aircraft() {
        false},
       {"taxi-z2", OnMap(1900, 4000, 2090, 4170, 0.8), MapYaw(1900, 4000, 2090, 4170), 0, 1.2,
        false},
-      {"stand-1", {-196, 0.15, -130}, 90, 0, 1, false},
-      {"stand-2", {-196, 0.15, -220}, 90, 0, 1.1, false},
-      {"stand-3", {-196, 0.15, -310}, 90, 0, 0.8, false},
-      {"stand-4", {-196, 0.15, -400}, 90, 0, 1, false},
+      {"stand-1", {-196, 0.15, -130}, -90, 0, 1, false},
+      {"stand-2", {-196, 0.15, -220}, -90, 0, 1.1, false},
+      {"stand-3", {-196, 0.15, -310}, -90, 0, 0.8, false},
+      {"stand-4", {-196, 0.15, -400}, -90, 0, 1, false},
       {"departure-36c", on_36c(0.15), c36_yaw, 0, 1, true},
       {"rollout-36c", on_36c(0.55), c36_yaw, 0, 1.1, false},
       {"taxi-w1", OnMap(2700, 4200, 2730, 3700, 0.4), MapYaw(2700, 4200, 2730, 3700), 0, 1, false},
@@ -153,17 +157,17 @@ void SetVec(v1::Vec3* out, const Vec3& v) {
   out->set_z(v.z);
 }
 
-// Dark sky, starlight and a little sky glow as ambient, a faint moon for the sun, a thin haze
-// (the lights' halos).
+// A clear, moonlit night: a dark sky, starlight and a little sky glow as ambient, a low moon for
+// the sun. No haze: the air is clear (a hazy night's fog would also give every light a halo, a
+// second footprint).
 void SetNight(v1::Scene& scene) {
   SetColor(scene.mutable_sky(), 0.004f, 0.006f, 0.014f);
-  SetColor(scene.mutable_ambient(), 0.035f, 0.035f, 0.05f);
+  SetColor(scene.mutable_ambient(), 0.006f, 0.006f, 0.009f);
   scene.mutable_sun()->mutable_direction()->set_x(-0.3);
   scene.mutable_sun()->mutable_direction()->set_y(0.6);
   scene.mutable_sun()->mutable_direction()->set_z(-0.5);
-  SetColor(scene.mutable_sun()->mutable_color(), 0.02f, 0.025f, 0.035f);
-  SetColor(scene.mutable_fog()->mutable_color(), 0.006f, 0.008f, 0.016f);
-  scene.mutable_fog()->set_visibility(30000);
+  SetColor(scene.mutable_sun()->mutable_color(), 0.012f, 0.014f, 0.02f);
+  scene.clear_fog();
   scene.mutable_light_settings()->set_exposure(0.01);
 }
 
@@ -201,6 +205,7 @@ v1::Scene BuildNightScene() {
   polderbaan.length_m = 3800;
   polderbaan.width_m = 60;
   polderbaan.category = RunwayCategory::kPrecisionCatIII;
+  polderbaan.intensity_scale = kNightStep;
   RunwayDescription zwanenburgbaan;
   zwanenburgbaan.designator = "36C";
   zwanenburgbaan.threshold = AirportMapToWorld(k36CSouthX, k36CSouthY);
@@ -209,6 +214,7 @@ v1::Scene BuildNightScene() {
       Length(AirportMapToWorld(k36CNorthX, k36CNorthY) - zwanenburgbaan.threshold);
   zwanenburgbaan.width_m = 45;
   zwanenburgbaan.category = RunwayCategory::kPrecisionCatI;
+  zwanenburgbaan.intensity_scale = kNightStep;
   // The built-in data is known good: a failure here is a programming error the tests catch.
   for (const RunwayDescription& runway : {polderbaan, zwanenburgbaan})
     if (!AddRunwayLights(runway, &scene).ok()) return {};
@@ -229,10 +235,23 @@ v1::Scene BuildNightScene() {
       return {};
   AddApron(scene);
 
-  // The town: west of the approach, and east of it up to the taxiway west of 36C.
+  // The town: west of the runway (clear of the hangars, the tower and the trees), and on both
+  // sides of the approach, east of it up to taxiway Z and runway 36C; a motorway crosses under the
+  // approach 1,400 m before the threshold.
   AddTownMaterials(&scene);
-  AddTownDistrict({"town-west", -2500, 700, -260, 3700, -1300, 2300, 900, 11}, &scene);
-  AddTownDistrict({"town-east", 260, 1300, 1560, 3700, 900, 2600, 500, 23}, &scene);
+  constexpr double kMotorwayZ = 1600, kMotorwayHalfWidth = 40;
+  constexpr double kSouth = kMotorwayZ + kMotorwayHalfWidth,
+                   kNorth = kMotorwayZ - kMotorwayHalfWidth;
+  const TownDistrict districts[] = {
+      {"town-west", -4000, -4200, -480, 300, -1900, -1500, 1300, 5},
+      {"town-south-west", -2600, 300, -260, kNorth, -1300, 1000, 800, 11},
+      {"town-south-west-2", -2600, kSouth, -260, 3700, -1400, 2600, 700, 13},
+      {"town-east", 300, 400, 1050, kNorth, 700, 1100, 500, 23},
+      {"town-far-east", 1050, 1100, 1950, kNorth, 1500, 1300, 400, 29},
+      {"town-south-east", 300, kSouth, 1950, 3700, 1100, 2600, 600, 31},
+  };
+  for (const TownDistrict& district : districts) AddTownDistrict(district, &scene);
+  AddMotorway({"motorway", -4000, 2000, kMotorwayZ, 30}, &scene);
 
   // The aircraft: the airport already places the demo's; 15 more share its mesh.
   int index = 0;
@@ -266,11 +285,11 @@ v1::Scene MakeNightScene() {
 
 Camera NightCamera() {
   Camera camera;
-  constexpr double kFromThresholdM = 3704;  // 2 NM
+  constexpr double kFromThresholdM = 1852;  // 1 NM
   // On the path through the PAPI's 300 m point, 3 degrees up.
   camera.position = {0, (kFromThresholdM + 300) * std::tan(Radians(3)), 200 + kFromThresholdM};
-  camera.pitch_deg = -5;
-  camera.vertical_fov_deg = 40;
+  camera.pitch_deg = -4;
+  camera.vertical_fov_deg = 30;
   camera.near = 1;
   return camera;
 }

@@ -17,8 +17,8 @@ using demo::AddPolygon;
 
 // Street centre lines every kBlockX m along x and kBlockZ m along z; buildings stand kSetbackM
 // from a street's centre line, the lights kKerbM from it, kLampM up, every kLampSpacingM.
-constexpr double kBlockX = 70, kBlockZ = 55;
-constexpr double kSetbackM = 8, kKerbM = 5, kLampM = 8, kLampSpacingM = 22;
+constexpr double kBlockX = 60, kBlockZ = 48;
+constexpr double kSetbackM = 8, kKerbM = 5, kLampM = 8, kLampSpacingM = 26;
 // Every kAvenueEvery-th street is an avenue under white LED lamps; the others have sodium lamps.
 constexpr int kAvenueEvery = 4;
 // Facade texture: kCells x kCells windows of kFloorM, one repeat kCells x kFloorM metres square.
@@ -71,24 +71,28 @@ void AddBuilding(v1::Mesh* mesh, double x0, double z0, double x1, double z1, dou
   AddPolygon(mesh, {{x0, y, z1}, {x1, y, z1}, {x1, y, z0}, {x0, y, z0}})->set_material_id("roof");
 }
 
-// The buildings of the block whose south-west street corner is (x, z): two by two lots, some
-// left empty (a square, a car park), tall near the district's centre.
+// The buildings of the block whose south-west street corner is (x, z): near the district's
+// centre two by two lots, tall; elsewhere two lots side by side, low; some left empty (a square,
+// a car park).
 void AddBlock(const TownDistrict& d, int i, int j, double x, double z, v1::Mesh* mesh) {
   const double inner_x0 = x + kSetbackM, inner_x1 = x + kBlockX - kSetbackM;
   const double inner_z0 = z + kSetbackM, inner_z1 = z + kBlockZ - kSetbackM;
   if (Hash01(i, j, d.seed, 1) < 0.06) return;  // a square
   const double from_centre = std::hypot(x + kBlockX / 2 - d.centre_x, z + kBlockZ / 2 - d.centre_z);
   const double central = std::max(0.0, 1 - from_centre / d.centre_radius_m);
+  const int lots_z = central > 0 ? 2 : 1;
   constexpr double kGap = 4;
-  const double lot_x = (inner_x1 - inner_x0 - kGap) / 2, lot_z = (inner_z1 - inner_z0 - kGap) / 2;
-  for (int lot = 0; lot < 4; ++lot) {
+  const double lot_x = (inner_x1 - inner_x0 - kGap) / 2;
+  const double lot_z = (inner_z1 - inner_z0 - kGap * (lots_z - 1)) / lots_z;
+  for (int lot = 0; lot < 2 * lots_z; ++lot) {
     const double r = Hash01(i, j, d.seed, 10 + lot), s = Hash01(i, j, d.seed, 20 + lot);
     if (r < 0.05) continue;  // an empty lot
-    const double lx0 = inner_x0 + (lot % 2) * (lot_x + kGap),
-                 lz0 = inner_z0 + (lot / 2) * (lot_z + kGap);
+    const int column = lot % 2, row = lot / 2;
+    const double lx0 = inner_x0 + column * (lot_x + kGap), lz0 = inner_z0 + row * (lot_z + kGap);
     // Set back from the lot's inner sides by up to a third of it.
     const double w = lot_x * (0.65 + 0.35 * s), depth = lot_z * (0.65 + 0.35 * r);
-    const double bx0 = lot % 2 ? lx0 + lot_x - w : lx0, bz0 = lot / 2 ? lz0 + lot_z - depth : lz0;
+    const double bx0 = column ? lx0 + lot_x - w : lx0;
+    const double bz0 = lots_z > 1 && row ? lz0 + lot_z - depth : lz0;
     const int floors = central > 0 ? 4 + static_cast<int>(central * 14 * (0.4 + 0.6 * r))
                                    : 2 + static_cast<int>(4 * s);
     AddBuilding(mesh, bx0, bz0, bx0 + w, bz0 + depth, floors * kFloorM);
@@ -101,13 +105,15 @@ void SetVec(v1::Vec3* out, const Vec3& v) {
   out->set_z(v.z);
 }
 
-// A row of street lamps from `a` to `b`: sodium lamps seen from above at 300 cd, LED avenue
-// lamps at 400 cd (realistic orders of magnitude for semi-cut-off luminaires seen from the air).
-void AddLamps(const Vec3& a, const Vec3& b, bool avenue, v1::Scene* scene) {
-  const int count = static_cast<int>(std::floor(Length(b - a) / kLampSpacingM)) + 1;
+// A row of street lamps from `a` to `b`, `spacing` apart: sodium lamps seen from above at 300 cd,
+// LED avenue lamps at 400 cd (realistic orders of magnitude for semi-cut-off luminaires seen from
+// the air).
+void AddLamps(const Vec3& a, const Vec3& b, bool avenue, v1::Scene* scene,
+              double spacing = kLampSpacingM) {
+  const int count = static_cast<int>(std::floor(Length(b - a) / spacing)) + 1;
   v1::LightRow* row = scene->add_light_rows();
   SetVec(row->mutable_start(), a);
-  SetVec(row->mutable_end(), a + Normalize(b - a) * (kLampSpacingM * (count - 1)));
+  SetVec(row->mutable_end(), a + Normalize(b - a) * (spacing * (count - 1)));
   row->set_count(static_cast<uint32_t>(count));
   v1::LightPoint* lamp = row->mutable_light();
   // Linear colours scaled to luminance 1 (intensity_cd is photometric).
@@ -173,6 +179,20 @@ void AddTownDistrict(const TownDistrict& d, v1::Scene* scene) {
              scene);
   }
   for (v1::Mesh* mesh : {ground, buildings}) scene->add_objects()->set_mesh_id(mesh->id());
+}
+
+void AddMotorway(const Motorway& road, v1::Scene* scene) {
+  v1::Mesh* surface = scene->add_meshes();
+  surface->set_id(std::string(road.name) + "-surface");
+  surface->set_material_id("town-ground");
+  demo::AddFlatRect(surface, road.x0, road.z - road.width_m / 2, road.x1, road.z + road.width_m / 2,
+                    0.015);
+  scene->add_objects()->set_mesh_id(surface->id());
+  // Masts on the central reservation, 12 m up, 40 m apart, an arm over each carriageway.
+  constexpr double kMastM = 12, kMastSpacingM = 40, kArmM = 3;
+  for (double arm : {-kArmM, kArmM})
+    AddLamps({road.x0, kMastM, road.z + arm}, {road.x1, kMastM, road.z + arm}, false, scene,
+             kMastSpacingM);
 }
 
 }  // namespace aperture
