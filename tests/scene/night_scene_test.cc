@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,43 @@ TEST(NightScene, SixteenAircraftMoveWithTheirOwnLights) {
   }
   EXPECT_GE(changed, 1);  // its tail light at least (the strobes may be off at time 0)
   EXPECT_LE(changed, 9);  // its own lights only
+}
+
+// The map's colour at world point (x, 0, z): its nearest texel, through the ground polygon's own
+// texture mapping (as tests/scene/airport_scene_test.cc reads it).
+Rgba MapAt(const Scene& scene, double x, double z) {
+  for (const ScenePolygon& p : scene.polygons) {
+    const Material& m = scene.materials[p.material];
+    if (m.id != "map") continue;
+    const Vec3 at{x, 0, z};
+    TextureFootprint f;
+    f.u = Dot(p.mapping.su, at) + p.mapping.u0;
+    f.v = Dot(p.mapping.sv, at) + p.mapping.v0;
+    f.u -= std::floor(f.u), f.v -= std::floor(f.v);
+    return scene.textures[m.texture]->Sampler(FilterMode::kNearest).Sample(f);
+  }
+  ADD_FAILURE() << "no map polygon";
+  return {};
+}
+
+// The taxiways' lights were placed from the map's texels (AirportMapToWorld): nine in ten of
+// their centre line lights stand on the map's paved taxiways (the rest where the measured centre
+// lines cut a bend short); 60 m to the side, nearly all would stand on grass.
+TEST(NightScene, TaxiwayLightsStandOnTheMapsTaxiways) {
+  const Scene& scene = ClearNight();
+  const auto group = scene.lights.group_index.find("taxiway-centre");
+  ASSERT_NE(group, scene.lights.group_index.end());
+  const Rgba grass{141 / 255.0f, 179 / 255.0f, 96 / 255.0f, 1};
+  int on_grass = 0, lights = 0;
+  for (const PointLight& light : scene.lights.lights) {
+    if (light.group != static_cast<int>(group->second)) continue;
+    ++lights;
+    const Rgba c = MapAt(scene, light.position.x, light.position.z);
+    on_grass += std::abs(c.r - grass.r) < 0.02f && std::abs(c.g - grass.g) < 0.02f &&
+                std::abs(c.b - grass.b) < 0.02f;
+  }
+  ASSERT_GT(lights, 1000);
+  EXPECT_LT(on_grass, lights / 10) << "of " << lights;
 }
 
 // Where a world point lands in a frame of `width` x `height` seen by `camera`.
