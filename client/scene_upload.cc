@@ -98,8 +98,8 @@ absl::StatusOr<std::filesystem::path> TexturePath(const std::string& scene_file,
 }  // namespace
 
 bool IsBuiltinScene(const std::string& argument) {
-  if (argument == "demo" || argument == "airport" || argument == "triangles" ||
-      argument == "skewed")
+  if (argument == "demo" || argument == "airport" || argument == "night" ||
+      argument == "triangles" || argument == "skewed")
     return true;
   // tris-N, slivers-N: the server checks N's range and names it when it is out of range.
   for (const std::string_view prefix : {std::string_view("tris-"), std::string_view("slivers-")})

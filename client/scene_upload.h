@@ -1,6 +1,6 @@
-// Gets a scene onto a server: a built-in scene by name (demo, airport, triangles, skewed, tris-N:
-// the server builds it), or a scene JSON file or glTF model whose image textures are uploaded
-// (skipping those the server already has) and then referenced by hash.
+// Gets a scene onto a server: a built-in scene by name (demo, airport, night, triangles, skewed,
+// tris-N: the server builds it), or a scene JSON file or glTF model whose image textures are
+// uploaded (skipping those the server already has) and then referenced by hash.
 #pragma once
 
 #include <optional>

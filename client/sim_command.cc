@@ -55,6 +55,7 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
       *request.mutable_camera() = path[i].camera;
       if (frustum != nullptr) *request.mutable_camera()->mutable_frustum() = *frustum;
       if (path[i].update) *request.mutable_update() = *path[i].update;
+      request.set_scene_time_s(path[i].scene_time_s);
       request.set_frame_index(i);
       {
         std::lock_guard lock(mutex);

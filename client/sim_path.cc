@@ -53,8 +53,8 @@ absl::StatusOr<std::vector<SimFrame>> MakeSimPath(const std::string& file, const
   std::vector<SimFrame> path;
   if (file.empty()) {
     for (int i = 0; i < frames; ++i) {
-      SimFrame frame{base, std::nullopt};
       const double seconds = i / rate;
+      SimFrame frame{base, std::nullopt, seconds};
       frame.camera.mutable_position()->set_z(base.position().z() - kCameraSpeed * seconds);
       if (!objects.empty()) frame.update = RollForward(objects, seconds);
       path.push_back(std::move(frame));
@@ -70,6 +70,7 @@ absl::StatusOr<std::vector<SimFrame>> MakeSimPath(const std::string& file, const
     if (text.empty() || text[0] == '#') continue;
     const std::string where = absl::StrCat(file, ":", number, ": ");
     SimFrame frame;
+    frame.scene_time_s = static_cast<double>(path.size()) / rate;
     if (text[0] == '{') {
       v1::RenderFrameRequest request;
       google::protobuf::util::JsonParseOptions options;
@@ -80,6 +81,7 @@ absl::StatusOr<std::vector<SimFrame>> MakeSimPath(const std::string& file, const
         return absl::InvalidArgumentError(absl::StrCat(where, std::string(s.message())));
       if (request.has_camera()) camera = CameraFromLine(request.camera(), base);
       if (request.has_update()) frame.update = request.update();
+      if (request.scene_time_s() != 0) frame.scene_time_s = request.scene_time_s();
     } else if (auto s = ParseCameraInto(std::string(text), &camera); !s.ok()) {
       return absl::InvalidArgumentError(absl::StrCat(where, s.message()));
     }

@@ -34,15 +34,20 @@ std::string NameList(const google::protobuf::EnumDescriptor* descriptor) {
 // The lists of names in the help are read from the proto's enums, so the help cannot drift from
 // what the parser accepts.
 ABSL_FLAG(std::string, scene, "airport",
-          "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'demo' (the "
-          "benchmarks' synthetic airfield), 'triangles' (10,000 random triangles), 'skewed' (a "
-          "city block in one corner of the view), 'tris-N' (N triangles painted in order, the peer "
-          "benchmark's), 'slivers-N' (N slivers on 13 planes, the service tests' slow frame), a "
-          "scene JSON file or a glTF 2.0 model (.gltf, .glb)");
+          "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'night' (that "
+          "airport at night: runway, approach and taxiway lights, a lit town, 16 aircraft with "
+          "their own lights), 'demo' (the benchmarks' synthetic airfield), 'triangles' (10,000 "
+          "random triangles), 'skewed' (a city block in one corner of the view), 'tris-N' (N "
+          "triangles painted in order, the peer benchmark's), 'slivers-N' (N slivers on 13 "
+          "planes, the service tests' slow frame), a scene JSON file or a glTF 2.0 model (.gltf, "
+          ".glb)");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: a built-in "
           "scene's approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
-ABSL_FLAG(double, fov, 0, "vertical field of view, degrees; 0: a glTF model camera's own, else 60");
+ABSL_FLAG(
+    double, fov, 0,
+    "vertical field of view, degrees; 0: the scene's camera's own (a built-in scene's, a glTF "
+    "model camera's), else 60");
 ABSL_FLAG(double, near, 0, "near plane distance (0: a built-in scene's camera's, else 0.1)");
 ABSL_FLAG(std::string, size, "1920x1080", "image size WIDTHxHEIGHT (each 1..16384)");
 ABSL_FLAG(std::string, region, "",
@@ -188,7 +193,7 @@ absl::Status CameraFromFlags(const std::optional<v1::Camera>& own,
   }
   if (const double fov = absl::GetFlag(FLAGS_fov); fov != 0)
     camera->set_vertical_fov_deg(fov);
-  else if (!model_camera)
+  else if (!model_camera && !(own && own->vertical_fov_deg() > 0))
     camera->set_vertical_fov_deg(60);
   if (absl::GetFlag(FLAGS_near) != 0) camera->set_near(absl::GetFlag(FLAGS_near));
   return absl::OkStatus();

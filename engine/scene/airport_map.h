@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <span>
 
+#include "scene/vec.h"
+
 namespace aperture {
 
 // The .apv file's bytes.
@@ -18,5 +20,11 @@ std::span<const uint8_t> AirportMapApv();
 inline constexpr double kAirportMapMetres = 9160;  // one side of the map
 inline constexpr double kPolderbaanSouthX = 1089.5, kPolderbaanSouthY = 3990;
 inline constexpr double kPolderbaanNorthX = 1278.8, kPolderbaanNorthY = 594;
+
+// Where the built-in airport puts the map's texel (x, y) (column, row from the top) on the ground
+// (y = 0): the Polderbaan's south end at (0, 0, 200), the runway running along -z, +x east of it
+// (scene/airport_scene.cc's texture transform). Features read off the map (taxiways, another
+// runway) are placed with it.
+Vec3 AirportMapToWorld(double texel_x, double texel_y);
 
 }  // namespace aperture

@@ -6,6 +6,7 @@
 #include "scene/airport_scene.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/demo_scene.h"
+#include "scene/night_scene.h"
 
 namespace aperture {
 namespace {
@@ -32,6 +33,7 @@ bool NamesCountedBuiltinScene(const std::string& name) {
 absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   if (name == "demo") return BuiltinScene{MakeDemoScene(), DemoCamera()};
   if (name == "airport") return BuiltinScene{MakeAirportScene(), DemoCamera()};
+  if (name == "night") return BuiltinScene{MakeNightScene(), NightCamera()};
   // The benchmark scenes are laid out around a camera at the origin looking along -z.
   if (name == "triangles") return BuiltinScene{MakeTriangleFieldScene(10000), Camera{}};
   if (name == "skewed") return BuiltinScene{MakeSkewedCityScene(), Camera{}};
@@ -44,8 +46,9 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
                                                      "N takes N in 1..", family.max_count));
     return BuiltinScene{family.make(count), Camera{}};
   }
-  return absl::InvalidArgumentError(absl::StrCat(
-      "unknown built-in scene '", name, "' (demo, airport, triangles, skewed, tris-N, slivers-N)"));
+  return absl::InvalidArgumentError(
+      absl::StrCat("unknown built-in scene '", name,
+                   "' (demo, airport, night, triangles, skewed, tris-N, slivers-N)"));
 }
 
 }  // namespace aperture

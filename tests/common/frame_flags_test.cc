@@ -90,12 +90,23 @@ TEST(FrameFlags, CameraFromNumbersFromAModelOrTheScenes) {
   own.mutable_position()->set_x(5);
   own.set_near(0.5);
   own.set_vertical_fov_deg(30);
-  // The scene's own camera, its near kept; the field of view is the flag's (60).
+  // The scene's own camera, its near and field of view kept; --fov overrides the latter, and a
+  // camera without one gets 60 degrees.
   auto request = FrameRequestFromFlags(own, {});
   ASSERT_TRUE(request.ok());
   EXPECT_EQ(request->camera().position().x(), 5);
   EXPECT_EQ(request->camera().near(), 0.5);
+  EXPECT_EQ(request->camera().vertical_fov_deg(), 30);
+  absl::SetFlag(&FLAGS_fov, 45);
+  request = FrameRequestFromFlags(own, {});
+  ASSERT_TRUE(request.ok());
+  EXPECT_EQ(request->camera().vertical_fov_deg(), 45);
+  absl::SetFlag(&FLAGS_fov, 0);
+  own.clear_vertical_fov_deg();
+  request = FrameRequestFromFlags(own, {});
+  ASSERT_TRUE(request.ok());
   EXPECT_EQ(request->camera().vertical_fov_deg(), 60);
+  own.set_vertical_fov_deg(30);
 
   absl::SetFlag(&FLAGS_camera, "1,2,3,10,-5,0");
   request = FrameRequestFromFlags(own, {});

@@ -489,6 +489,31 @@ TEST_F(ClientTest, SimStreamsFramesAtARate) {
   EXPECT_TRUE(report.channels().empty());
 }
 
+// The scene's clock runs with the slots (frame i at i / rate seconds): a light flashing on for
+// the first half of every second shows in the last frame of two at 4 Hz (0.25 s) and not in the
+// last of three (0.5 s).
+TEST_F(ClientTest, SimRunsTheScenesClockWithTheSlots) {
+  const std::string scene = (dir_ / "flasher.json").string();
+  std::ofstream(scene) << R"({"name": "flasher", "sky": {"r": 0, "g": 0, "b": 0},
+    "lights": [{"position": {"z": -50}, "intensityCd": 1000,
+                "flash": {"periodS": 1, "onS": 0.5}}]})";
+  auto light_in_last_frame = [&](int frames) {
+    const std::filesystem::path last = dir_ / ("last-" + std::to_string(frames));
+    const CommandResult result =
+        Client({"sim", "--scene=" + scene, "--camera=0,0,0,0,0,0", "--rate=4",
+                "--frames=" + std::to_string(frames), "--size=32x20", "--float_pixels",
+                "--last_frames=" + last.string()});
+    EXPECT_EQ(result.exit_code, 0) << result.out << result.err;
+    int w = 0, h = 0;
+    const std::vector<float> pixels = Pixels((last / "channel-0.exr").string(), &w, &h);
+    double sum = 0;
+    for (size_t k = 0; k < pixels.size(); k += 4) sum += pixels[k];
+    return sum;
+  };
+  EXPECT_GT(light_in_last_frame(2), 0.1);
+  EXPECT_EQ(light_in_last_frame(3), 0);
+}
+
 // Three channels of a JSON-lines path (a camera and an update on its first line): their last
 // frames side by side are one wide frame, the one a single camera with the whole frustum and the
 // same update renders.
