@@ -99,6 +99,7 @@ absl::StatusOr<std::filesystem::path> TexturePath(const std::string& scene_file,
 
 bool IsBuiltinScene(const std::string& argument) {
   if (argument == "demo" || argument == "airport" || argument == "night" ||
+      argument == "night-by-day" ||
       argument == "triangles" || argument == "skewed")
     return true;
   // tris-N, slivers-N: the server checks N's range and names it when it is out of range.

@@ -36,7 +36,8 @@ std::string NameList(const google::protobuf::EnumDescriptor* descriptor) {
 ABSL_FLAG(std::string, scene, "airport",
           "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'night' (that "
           "airport at night: runway, approach and taxiway lights, a lit town, 16 aircraft with "
-          "their own lights), 'demo' (the benchmarks' synthetic airfield), 'triangles' (10,000 "
+          "their own lights), 'night-by-day' (the same by day, without its lights: the night's load "
+          "to compare), 'demo' (the benchmarks' synthetic airfield), 'triangles' (10,000 "
           "random triangles), 'skewed' (a city block in one corner of the view), 'tris-N' (N "
           "triangles painted in order, the peer benchmark's), 'slivers-N' (N slivers on 13 "
           "planes, the service tests' slow frame), a scene JSON file or a glTF 2.0 model (.gltf, "

@@ -1,5 +1,7 @@
 #include "render/light_pass.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -177,24 +179,35 @@ class LightProjector {
 // one's nearest inverse depth), so that the search stops at the first polygon behind the light.
 struct PolygonTiles {
   static constexpr int kTile = 8;  // a footprint is a few pixels: small tiles, few candidates
+  int x0 = 0, y0 = 0;              // the frame region's first pixel, where tile (0, 0) starts
   int columns = 0, rows = 0;
   std::vector<std::vector<int>> tiles;
   std::vector<double> nearest;
 };
 
-// Splats footprints into the image, rows [row0, row1) of the frame only (so bands of rows can be
-// drawn at once), resolving each footprint's cells against the polygons nearer than it.
+// The pixels of `region` a footprint's filter apertures may reach.
+PixelRect FootprintPixels(const Footprint& f, const AaFilterShape& shape, const PixelRect& region) {
+  const int span = shape.cells_per_axis - 1;
+  PixelRect r{std::max(f.CellX0(shape) - span, region.x0),
+              std::max(f.CellY0(shape) - span, region.y0), std::min(f.CellX1(shape) + 1, region.x1),
+              std::min(f.CellY1(shape) + 1, region.y1)};
+  if (r.x1 < r.x0) r.x1 = r.x0;
+  if (r.y1 < r.y0) r.y1 = r.y0;
+  return r;
+}
+
+// Resolves footprints one at a time against the polygons nearer than each, into the filter
+// weights of the pixels they reach (a light's energy per square pixel times its weight is what it
+// adds to a pixel).
 class Splatter {
  public:
-  Splatter(const FrameGeometry& geometry, const RenderSettings& settings, const PixelRect& region,
-           const VisibleSurfaces* surfaces, const PolygonTiles* tiles, Image& image)
+  Splatter(const FrameGeometry& geometry, const RenderSettings& settings,
+           const VisibleSurfaces* surfaces, const PolygonTiles* tiles)
       : geo_(geometry),
         aa_(settings.aa),
         shape_(ShapeOf(settings.aa)),
-        region_(region),
         surfaces_(surfaces),
-        tiles_(tiles),
-        image_(image) {}
+        tiles_(tiles) {}
 
   // Whether the raster pass recorded every cell of the footprint (else its occluders are searched
   // among the polygon tiles).
@@ -207,8 +220,9 @@ class Splatter {
     return true;
   }
 
-  // Whether polygons nearer than the light reached its footprint.
-  bool Splat(const Footprint& f, int row0, int row1) {
+  // Adds the footprint's weights to `weights`, the pixels of `pixels` (FootprintPixels) row by row;
+  // whether polygons nearer than the light reached it.
+  bool Splat(const Footprint& f, const PixelRect& pixels, float* weights) {
     const std::array<Vec2, 8> octagon = OctagonVertices(f);
     Box box{octagon[0].x, octagon[0].y, octagon[0].x, octagon[0].y};
     for (const Vec2& v : octagon) {
@@ -238,11 +252,12 @@ class Splatter {
     if (!in_pieces) StackOccluders(f);
     const int span = shape_.cells_per_axis - 1;
     const double offset = shape_.cell_offset;
-    // The cells the footprint reaches whose pixels lie in the rows drawn.
+    // The cells the footprint reaches.
     const int kx0 = static_cast<int>(std::floor(box.x0 - offset));
     const int kx1 = static_cast<int>(std::floor(box.x1 - offset));
-    const int ky0 = std::max(static_cast<int>(std::floor(box.y0 - offset)), row0);
-    const int ky1 = std::min(static_cast<int>(std::floor(box.y1 - offset)), row1 - 1 + span);
+    const int ky0 = static_cast<int>(std::floor(box.y0 - offset));
+    const int ky1 = static_cast<int>(std::floor(box.y1 - offset));
+    const int stride = pixels.width();
     row_.resize(kx1 - kx0 + 1);
     for (int ky = ky0; ky <= ky1; ++ky) {
       if (in_pieces)
@@ -260,15 +275,10 @@ class Splatter {
             if (piece.polygon == 0) Accumulate(m, piece.moments);
         }
         if (!(m.area > 0)) continue;
-        for (int py = std::max({ky - span, row0, region_.y0});
-             py <= std::min({ky, row1 - 1, region_.y1 - 1}); ++py) {
-          for (int px = std::max(kx - span, region_.x0); px <= std::min(kx, region_.x1 - 1); ++px) {
-            const double w = CellWeight(aa_, m, kx - px, ky - py);
-            Rgba& pixel = image_.at(px - region_.x0, py - region_.y0);
-            pixel.r += static_cast<float>(f.r * w);
-            pixel.g += static_cast<float>(f.g * w);
-            pixel.b += static_cast<float>(f.b * w);
-          }
+        for (int py = std::max(ky - span, pixels.y0); py <= std::min(ky, pixels.y1 - 1); ++py) {
+          float* row = weights + static_cast<size_t>(py - pixels.y0) * stride - pixels.x0;
+          for (int px = std::max(kx - span, pixels.x0); px <= std::min(kx, pixels.x1 - 1); ++px)
+            row[px] += static_cast<float>(CellWeight(aa_, m, kx - px, ky - py));
         }
       }
     }
@@ -293,11 +303,10 @@ class Splatter {
   void SearchTiles(const Box& box, double inv_depth) {
     const PolygonTiles& t = *tiles_;
     const int tile = PolygonTiles::kTile;
-    const int c0 = std::max(0, static_cast<int>(std::floor((box.x0 - region_.x0) / tile)));
-    const int c1 =
-        std::min(t.columns - 1, static_cast<int>(std::floor((box.x1 - region_.x0) / tile)));
-    const int r0 = std::max(0, static_cast<int>(std::floor((box.y0 - region_.y0) / tile)));
-    const int r1 = std::min(t.rows - 1, static_cast<int>(std::floor((box.y1 - region_.y0) / tile)));
+    const int c0 = std::max(0, static_cast<int>(std::floor((box.x0 - t.x0) / tile)));
+    const int c1 = std::min(t.columns - 1, static_cast<int>(std::floor((box.x1 - t.x0) / tile)));
+    const int r0 = std::max(0, static_cast<int>(std::floor((box.y0 - t.y0) / tile)));
+    const int r1 = std::min(t.rows - 1, static_cast<int>(std::floor((box.y1 - t.y0) / tile)));
     const double nearer = inv_depth * (1 + 1e-9);
     for (int r = r0; r <= r1; ++r)
       for (int c = c0; c <= c1; ++c)
@@ -349,10 +358,8 @@ class Splatter {
   const FrameGeometry& geo_;
   AntiAliasing aa_;
   AaFilterShape shape_;
-  PixelRect region_;
   const VisibleSurfaces* surfaces_;
   const PolygonTiles* tiles_;
-  Image& image_;
   VisibleFootprint visible_;
   std::vector<int> found_, occluders_;
   std::vector<CellMoments> row_;
@@ -367,6 +374,9 @@ class Splatter {
 };
 
 constexpr int kBandRows = 32;
+// The pixel weights of one batch of footprints at most (floats): a frame of many large footprints
+// is drawn in batches.
+constexpr size_t kBatchWeights = size_t{1} << 21;
 
 }  // namespace
 
@@ -395,32 +405,21 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
     if (stats != nullptr) *stats = s;
     return absl::OkStatus();
   }
-  // The rows each footprint's pixels reach, by bands of rows.
   const AaFilterShape shape = ShapeOf(settings.aa);
-  const int bands = (region.height() + kBandRows - 1) / kBandRows;
-  std::vector<std::vector<int>> band_lights(std::max(bands, 0));
-  for (size_t k = 0; k < footprints.size(); ++k) {
-    const Footprint& f = footprints[k];
-    const int first = static_cast<int>(std::floor(f.y - f.radius * 1.06 - shape.margin)) - 1;
-    const int last = static_cast<int>(std::floor(f.y + f.radius * 1.06 + shape.margin)) + 1;
-    const int b0 = std::max(0, (first - region.y0) / kBandRows);
-    const int b1 = std::min(bands - 1, (last - region.y0) / kBandRows);
-    if (last < region.y0 || first >= region.y1) continue;
-    for (int b = b0; b <= b1; ++b) band_lights[b].push_back(static_cast<int>(k));
-  }
   // The polygons by tile, nearest first, only when some footprint's cells were not all recorded.
   std::optional<PolygonTiles> tiles;
-  size_t held = 0;
+  size_t held = 0, tile_bytes = 0;
   if (!std::all_of(footprints.begin(), footprints.end(), [&](const LightFootprint& f) {
         return Splatter::Recorded(f, shape, surfaces);
       })) {
     PolygonTiles& t = tiles.emplace();
     t.tiles = BinPolygons(geometry, shape.margin + 1, region, PolygonTiles::kTile, &t.columns);
+    t.x0 = region.x0, t.y0 = region.y0;
     t.rows = t.columns > 0 ? static_cast<int>(t.tiles.size()) / t.columns : 0;
-    size_t bytes = HeldBytes(t.tiles) + geometry.polygons.size() * sizeof(double);
-    for (const std::vector<int>& tile : t.tiles) bytes += HeldBytes(tile);
-    if (memory != nullptr && !memory->Hold(held, bytes)) {
-      memory->Refuse("the light points' lists of polygons by tile", bytes);
+    tile_bytes = HeldBytes(t.tiles) + geometry.polygons.size() * sizeof(double);
+    for (const std::vector<int>& tile : t.tiles) tile_bytes += HeldBytes(tile);
+    if (memory != nullptr && !memory->Hold(held, tile_bytes)) {
+      memory->Refuse("the light points' lists of polygons by tile", tile_bytes);
       return memory->Error();
     }
     t.nearest.resize(geometry.polygons.size());
@@ -431,23 +430,63 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
                 [&](int a, int b) { return t.nearest[a] > t.nearest[b]; });
     });
   }
+  // In batches: each footprint resolved on its own (any worker, any order) into its pixels'
+  // weights, then the weights added to the image by bands of rows, each band taking the
+  // footprints in their order (so the sums do not depend on the workers).
+  std::vector<PixelRect> pixels(footprints.size());
+  std::vector<size_t> offset(footprints.size() + 1, 0);
+  for (size_t k = 0; k < footprints.size(); ++k) {
+    pixels[k] = FootprintPixels(footprints[k], shape, region);
+    offset[k + 1] = offset[k] + static_cast<size_t>(pixels[k].width()) * pixels[k].height();
+  }
+  tbb::enumerable_thread_specific<Splatter> splatters(
+      [&] { return Splatter(geometry, settings, surfaces, tiles ? &*tiles : nullptr); });
+  std::vector<float> weights;
   std::atomic<size_t> occluded{0};
   std::atomic<bool> stopped{false};
-  tbb::parallel_for(0, bands, [&](int b) {
-    if (stopped.load(std::memory_order_relaxed) || (stop && stop())) {
-      stopped = true;
-      return;
+  for (size_t first = 0; first < footprints.size() && !stopped;) {
+    size_t last = first + 1;
+    while (last < footprints.size() && offset[last + 1] - offset[first] <= kBatchWeights) ++last;
+    weights.assign(offset[last] - offset[first], 0.0f);
+    if (memory != nullptr && !memory->Hold(held, tile_bytes + HeldBytes(weights))) {
+      memory->Refuse("the light points' pixel weights", HeldBytes(weights));
+      return memory->Error();
     }
-    Splatter splatter(geometry, settings, region, surfaces, tiles ? &*tiles : nullptr, image);
-    const int row0 = region.y0 + b * kBandRows, row1 = std::min(region.y1, row0 + kBandRows);
-    size_t hidden = 0;  // counted in the band that holds the footprint's centre
-    for (int k : band_lights[b]) {
-      const Footprint& f = footprints[k];
-      const bool behind = splatter.Splat(f, row0, row1);
-      hidden += behind && f.y >= row0 && f.y < row1;
-    }
-    occluded += hidden;
-  });
+    tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        if (stopped.load(std::memory_order_relaxed) || (stop && stop())) {
+                          stopped = true;
+                          return;
+                        }
+                        Splatter& splatter = splatters.local();
+                        size_t behind = 0;
+                        for (size_t k = range.begin(); k < range.end(); ++k)
+                          behind += splatter.Splat(footprints[k], pixels[k],
+                                                   weights.data() + offset[k] - offset[first]);
+                        occluded += behind;
+                      });
+    if (stopped) break;
+    const int bands = (region.height() + kBandRows - 1) / kBandRows;
+    tbb::parallel_for(0, bands, [&](int b) {
+      const int row0 = region.y0 + b * kBandRows, row1 = std::min(region.y1, row0 + kBandRows);
+      for (size_t k = first; k < last; ++k) {
+        const PixelRect& p = pixels[k];
+        const Footprint& f = footprints[k];
+        const float* w = weights.data() + offset[k] - offset[first];
+        for (int y = std::max(p.y0, row0); y < std::min(p.y1, row1); ++y) {
+          const float* row = w + static_cast<size_t>(y - p.y0) * p.width();
+          for (int x = p.x0; x < p.x1; ++x) {
+            Rgba& pixel = image.at(x - region.x0, y - region.y0);
+            const float weight = row[x - p.x0];
+            pixel.r += f.r * weight;
+            pixel.g += f.g * weight;
+            pixel.b += f.b * weight;
+          }
+        }
+      }
+    });
+    first = last;
+  }
   if (memory != nullptr) memory->Hold(held, 0);
   if (stopped) return absl::CancelledError("the frame was stopped while its lights were drawn");
   s.drawn = footprints.size();

@@ -34,6 +34,7 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   if (name == "demo") return BuiltinScene{MakeDemoScene(), DemoCamera()};
   if (name == "airport") return BuiltinScene{MakeAirportScene(), DemoCamera()};
   if (name == "night") return BuiltinScene{MakeNightScene(), NightCamera()};
+  if (name == "night-by-day") return BuiltinScene{MakeNightSceneByDay(), NightCamera()};
   // The benchmark scenes are laid out around a camera at the origin looking along -z.
   if (name == "triangles") return BuiltinScene{MakeTriangleFieldScene(10000), Camera{}};
   if (name == "skewed") return BuiltinScene{MakeSkewedCityScene(), Camera{}};
@@ -48,7 +49,7 @@ absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   }
   return absl::InvalidArgumentError(
       absl::StrCat("unknown built-in scene '", name,
-                   "' (demo, airport, night, triangles, skewed, tris-N, slivers-N)"));
+                   "' (demo, airport, night, night-by-day, triangles, skewed, tris-N, slivers-N)"));
 }
 
 }  // namespace aperture

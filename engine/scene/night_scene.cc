@@ -283,6 +283,20 @@ v1::Scene MakeNightScene() {
   return *night;
 }
 
+v1::Scene MakeNightSceneByDay() {
+  v1::Scene scene = MakeNightScene();
+  const v1::Scene day = MakeAirportScene();
+  scene.set_name("airport-night-by-day");
+  *scene.mutable_sky() = day.sky();
+  *scene.mutable_ambient() = day.ambient();
+  *scene.mutable_sun() = day.sun();
+  *scene.mutable_fog() = day.fog();
+  scene.clear_lights();
+  scene.clear_light_rows();
+  scene.clear_light_settings();
+  return scene;
+}
+
 Camera NightCamera() {
   Camera camera;
   constexpr double kFromThresholdM = 1852;  // 1 NM

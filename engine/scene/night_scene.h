@@ -18,6 +18,9 @@
 namespace aperture {
 
 v1::Scene MakeNightScene();
+// The same airport, town and aircraft by day ("night-by-day"): the built-in airport's sun, sky
+// and haze, and no light points. What a night frame's cost is compared with.
+v1::Scene MakeNightSceneByDay();
 
 // On the 3 degree approach to 36L, 1 NM (1,852 m) from its threshold, looking 4 degrees down
 // the approach through a 30 degree vertical field of view (the approach lights, the runway and the

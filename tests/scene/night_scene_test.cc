@@ -62,6 +62,18 @@ TEST(NightScene, IsTheBuiltInNightWithItsApproachCamera) {
   EXPECT_NE(unknown.status().message().find("night"), std::string::npos) << unknown.status();
 }
 
+// By day: the same polygons and camera, the airport's sun and sky, no lights.
+TEST(NightScene, ByDayHasItsPolygonsAndNoLights) {
+  auto night = FindBuiltinScene("night");
+  auto day = FindBuiltinScene("night-by-day");
+  ASSERT_TRUE(night.ok() && day.ok()) << day.status();
+  EXPECT_EQ(day->scene.meshes_size(), night->scene.meshes_size());
+  EXPECT_EQ(day->scene.objects_size(), night->scene.objects_size());
+  EXPECT_EQ(day->scene.lights_size() + day->scene.light_rows_size(), 0);
+  EXPECT_GT(day->scene.sun().color().r(), 10 * night->scene.sun().color().r());
+  EXPECT_EQ(day->camera.position.z, night->camera.position.z);
+}
+
 TEST(NightScene, StaysWithinTheSceneLimits) {
   const v1::Scene proto = MakeNightScene();
   // Rows keep the scene small: a few thousand messages for tens of thousands of lights.
