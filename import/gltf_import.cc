@@ -184,10 +184,13 @@ class Importer {
     Note(morph_targets_, "primitives' morph targets ignored");
     Note(points_or_lines_, "point or line primitives not drawn");
     Note(orthographic_, "orthographic cameras not supported");
+    Note(directional_lights_, "directional lights ignored (a light point has a position)");
+    Note(dark_lights_, "lights of zero intensity skipped");
+    Note(ranged_lights_, "lights' ranges ignored (a light point's energy falls as 1 / d^2)");
     if (!model_.extensionsUsed.empty()) {
       std::vector<std::string> other;
       for (const std::string& e : model_.extensionsUsed)
-        if (e != "KHR_texture_transform") other.push_back(e);
+        if (e != "KHR_texture_transform" && e != "KHR_lights_punctual") other.push_back(e);
       if (!other.empty())
         out_.notes.push_back(absl::StrCat("extensions ignored: ", absl::StrJoin(other, ", ")));
     }
@@ -324,6 +327,73 @@ class Importer {
       if (auto s = Mesh(node, n.mesh, world); !s.ok()) return s;
     if (n.camera >= 0)
       if (auto s = Camera(node, n.camera, world); !s.ok()) return s;
+    if (n.extensions.count("KHR_lights_punctual"))
+      if (auto s = Light(node, world); !s.ok()) return s;
+    return absl::OkStatus();
+  }
+
+  // KHR_lights_punctual: a point or spot light becomes a light point at the node's origin, its
+  // intensity in candela as Aperture's; a spot's outer cone becomes its lobe's half-widths about
+  // the node's -z (Aperture's lobe falls off as 1 - tan^2 / tan^2(half-width), not the
+  // extension's smooth step from the inner cone). Directional lights are not light points.
+  absl::Status Light(int node, const Mat4& world) {
+    const std::string where = absl::StrCat("nodes[", node, "].extensions.KHR_lights_punctual");
+    const tinygltf::Value& ext = model_.nodes[node].extensions.at("KHR_lights_punctual");
+    if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsInt())
+      return Invalid(where + ".light", "needs the index of a light");
+    const int index = ext.Get("light").GetNumberAsInt();
+    if (index < 0 || index >= static_cast<int>(model_.lights.size()))
+      return Invalid(where + ".light", absl::StrCat("light ", index, " does not exist (",
+                                                    model_.lights.size(), " lights)"));
+    const tinygltf::Light& light = model_.lights[index];
+    const std::string at = absl::StrCat("extensions.KHR_lights_punctual.lights[", index, "]");
+    if (light.type == "directional") {
+      ++directional_lights_;
+      return absl::OkStatus();
+    }
+    if (light.type != "point" && light.type != "spot")
+      return Invalid(at + ".type",
+                     absl::StrCat("'", light.type, "' is not point, spot or directional"));
+    if (!std::isfinite(light.intensity) || light.intensity < 0)
+      return Invalid(at + ".intensity", "must be a finite number >= 0 (candela)");
+    if (light.intensity == 0) {
+      ++dark_lights_;
+      return absl::OkStatus();
+    }
+    if (!light.color.empty() && light.color.size() != 3)
+      return Invalid(at + ".color", "needs 3 numbers");
+    for (double c : light.color)
+      if (!std::isfinite(c) || c < 0) return Invalid(at + ".color", "must be finite and >= 0");
+    if (light.range > 0) ++ranged_lights_;
+    v1::LightPoint& point = *out_.scene.add_lights();
+    point.mutable_position()->set_x(world[12]);
+    point.mutable_position()->set_y(world[13]);
+    point.mutable_position()->set_z(world[14]);
+    if (light.color.size() == 3) {
+      point.mutable_color()->set_r(static_cast<float>(light.color[0]));
+      point.mutable_color()->set_g(static_cast<float>(light.color[1]));
+      point.mutable_color()->set_b(static_cast<float>(light.color[2]));
+    }
+    point.set_intensity_cd(light.intensity);
+    point.set_group(!light.name.empty() ? light.name : absl::StrCat("light", index));
+    if (light.type == "spot") {
+      const double outer = light.spot.outerConeAngle;
+      if (!(outer > 0 && outer <= std::numbers::pi / 2))
+        return Invalid(at + ".spot.outerConeAngle", "must be in (0, pi/2]");
+      // The node's -z in the world (the third column of its transform), unit length.
+      const double ax = -world[8], ay = -world[9], az = -world[10];
+      const double length = std::sqrt(ax * ax + ay * ay + az * az);
+      if (!(length > 0))
+        return Invalid(absl::StrCat("nodes[", node, "]"), "light transform is singular");
+      v1::LightLobe& lobe = *point.mutable_lobe();
+      lobe.mutable_axis()->set_x(ax / length);
+      lobe.mutable_axis()->set_y(ay / length);
+      lobe.mutable_axis()->set_z(az / length);
+      // A beam of half a right angle or wider is wider than a lobe's tangents can say: 89.9.
+      const double deg = std::min(outer * 180.0 / std::numbers::pi, 89.9);
+      lobe.set_horizontal_deg(deg);
+      lobe.set_vertical_deg(deg);
+    }
     return absl::OkStatus();
   }
 
@@ -522,6 +592,7 @@ class Importer {
   std::vector<std::string> material_notes_;
   bool default_material_added_ = false;
   int dropped_degenerate_ = 0, morph_targets_ = 0, points_or_lines_ = 0, orthographic_ = 0;
+  int directional_lights_ = 0, dark_lights_ = 0, ranged_lights_ = 0;
 };
 
 // tinygltf's file reads, kept inside the model's folder.
@@ -648,7 +719,8 @@ absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool a
   std::error_code ec;
   const fs::path base = scene_dir.empty() ? fs::path(".") : fs::path(scene_dir);
   const fs::path base_canonical = fs::weakly_canonical(fs::absolute(base), ec);
-  uint64_t triangles = 0;  // of the models read so far
+  uint64_t triangles = 0;                                           // of the models read so far
+  std::map<std::string, std::vector<v1::LightPoint>> model_lights;  // in each model's frame
   for (int k = 0; k < scene.models_size(); ++k) {
     const v1::Model& model = scene.models(k);
     const std::string where = absl::StrCat("models[", k, "] ('", model.id(), "')");
@@ -688,6 +760,10 @@ absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool a
       if (!material.texture_id().empty()) material.set_texture_id(prefix + material.texture_id());
       *scene.add_materials() = std::move(material);
     }
+    for (v1::LightPoint light : imported->scene.lights()) {
+      light.set_group(prefix + light.group());
+      model_lights[model.id()].push_back(std::move(light));
+    }
     v1::Mesh* mesh = scene.add_meshes();
     mesh->set_id(model.id());
     for (const v1::Mesh& part : imported->scene.meshes())
@@ -696,8 +772,10 @@ absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool a
         *mesh->add_polygons() = std::move(polygon);
       }
   }
-  std::set<std::string> models;
+  std::set<std::string> models, names;
   for (const v1::Model& m : scene.models()) models.insert(m.id());
+  for (const v1::Object& o : scene.objects())
+    if (!o.name().empty()) names.insert(o.name());
   for (int i = 0; i < scene.objects_size(); ++i) {
     v1::Object& object = *scene.mutable_objects(i);
     if (object.model_id().empty()) continue;
@@ -706,6 +784,20 @@ absl::Status ExpandModels(v1::Scene& scene, const std::string& scene_dir, bool a
     if (!models.count(object.model_id()))
       return Invalid(where + ".model_id",
                      absl::StrCat("'", object.model_id(), "' is not a model of the scene"));
+    // The model's lights move with each object placing it: attached to it by its name (an
+    // unnamed object is given one, "<model>#<index>").
+    const auto lights = model_lights.find(object.model_id());
+    if (lights != model_lights.end() && !lights->second.empty()) {
+      if (object.name().empty()) {
+        std::string name = absl::StrCat(object.model_id(), "#", i);
+        while (!names.insert(name).second) name += "'";
+        object.set_name(name);
+      }
+      for (v1::LightPoint light : lights->second) {
+        light.set_object(object.name());
+        *scene.add_lights() = std::move(light);
+      }
+    }
     object.set_mesh_id(object.model_id());
     object.clear_model_id();
   }

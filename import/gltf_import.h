@@ -9,7 +9,8 @@
 // Mapping (docs/SCENE.md, "glTF models"): the default scene's node hierarchy (matrices and TRS)
 // is applied to the vertices, one mesh per node that has one; triangle primitives (lists, strips
 // and fans) with or without indices become triangles, with TEXCOORD_0 as their uvs;
-// baseColorFactor and baseColorTexture (with KHR_texture_transform) become the material.
+// baseColorFactor and baseColorTexture (with KHR_texture_transform) become the material;
+// KHR_lights_punctual's point and spot lights become light points at their nodes.
 // External images stay files (relative to the model, which they may not leave); embedded ones
 // are carried as encoded bytes. What Aperture does not draw is listed in `notes`, once each.
 #pragma once
