@@ -144,7 +144,8 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
         !s.ok())
       return s;
     frame.stats.lights_drawn = lights.drawn;
-    frame.stats.lights_occluded = lights.occluded;
+    frame.stats.lights_hidden = lights.hidden;
+    frame.stats.lights_partly_hidden = lights.partly_hidden;
     frame.stats.lights_ms = project_ms + lights.ms;
   }
   frame.stats.raster_ms = timer.Milliseconds();

@@ -196,6 +196,9 @@ PixelRect FootprintPixels(const Footprint& f, const AaFilterShape& shape, const 
   return r;
 }
 
+// How much of a footprint the polygons in front leave.
+enum class Shown { kWhole, kPartly, kNone };
+
 // Resolves footprints one at a time against the polygons nearer than each, into the filter
 // weights of the pixels they reach (a light's energy per square pixel times its weight is what it
 // adds to a pixel).
@@ -221,8 +224,8 @@ class Splatter {
   }
 
   // Adds the footprint's weights to `weights`, the pixels of `pixels` (FootprintPixels) row by row;
-  // whether polygons nearer than the light reached it.
-  bool Splat(const Footprint& f, const PixelRect& pixels, float* weights) {
+  // how much of it shows.
+  Shown Splat(const Footprint& f, const PixelRect& pixels, float* weights) {
     const std::array<Vec2, 8> octagon = OctagonVertices(f);
     Box box{octagon[0].x, octagon[0].y, octagon[0].x, octagon[0].y};
     for (const Vec2& v : octagon) {
@@ -245,10 +248,11 @@ class Splatter {
     // The footprint less the occluders' outlines, in pieces; behind a lattice of outlines, each
     // cell resolved among them instead.
     visible_.Start(octagon);
+    const double octagon_area = visible_.Area();
     bool in_pieces = true;
     for (size_t k = 0; k < occluders_.size() && in_pieces && !visible_.empty(); ++k)
       in_pieces = visible_.Subtract(geo_.polygons[occluders_[k]]);
-    if (in_pieces && visible_.empty()) return true;
+    if (in_pieces && visible_.empty()) return Shown::kNone;
     if (!in_pieces) StackOccluders(f);
     const int span = shape_.cells_per_axis - 1;
     const double offset = shape_.cell_offset;
@@ -282,7 +286,10 @@ class Splatter {
         }
       }
     }
-    return !occluders_.empty();
+    // (Resolved cell by cell, a footprint its occluders reach counts as partly hidden.)
+    if (occluders_.empty() || (in_pieces && visible_.Area() >= octagon_area * (1 - 1e-9)))
+      return Shown::kWhole;
+    return Shown::kPartly;
   }
 
  private:
@@ -442,7 +449,7 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
   tbb::enumerable_thread_specific<Splatter> splatters(
       [&] { return Splatter(geometry, settings, surfaces, tiles ? &*tiles : nullptr); });
   std::vector<float> weights;
-  std::atomic<size_t> occluded{0};
+  std::atomic<size_t> hidden{0}, partly_hidden{0};
   std::atomic<bool> stopped{false};
   for (size_t first = 0; first < footprints.size() && !stopped;) {
     size_t last = first + 1;
@@ -459,11 +466,21 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
                           return;
                         }
                         Splatter& splatter = splatters.local();
-                        size_t behind = 0;
+                        size_t wholly = 0, partly = 0;
                         for (size_t k = range.begin(); k < range.end(); ++k)
-                          behind += splatter.Splat(footprints[k], pixels[k],
-                                                   weights.data() + offset[k] - offset[first]);
-                        occluded += behind;
+                          switch (splatter.Splat(footprints[k], pixels[k],
+                                                 weights.data() + offset[k] - offset[first])) {
+                            case Shown::kWhole:
+                              break;
+                            case Shown::kPartly:
+                              ++partly;
+                              break;
+                            case Shown::kNone:
+                              ++wholly;
+                              break;
+                          }
+                        hidden += wholly;
+                        partly_hidden += partly;
                       });
     if (stopped) break;
     const int bands = (region.height() + kBandRows - 1) / kBandRows;
@@ -490,7 +507,8 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
   if (memory != nullptr) memory->Hold(held, 0);
   if (stopped) return absl::CancelledError("the frame was stopped while its lights were drawn");
   s.drawn = footprints.size();
-  s.occluded = occluded.load();
+  s.hidden = hidden.load();
+  s.partly_hidden = partly_hidden.load();
   s.ms = timer.Milliseconds();
   if (stats != nullptr) *stats = s;
   return absl::OkStatus();

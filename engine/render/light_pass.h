@@ -48,9 +48,10 @@ inline constexpr double kBloomEnergy = 2.0;
 inline constexpr double kMaxFootprintPx = 64.0;
 
 struct LightPassStats {
-  size_t drawn = 0;     // footprints (lights, and halos in fog) that reached the frame
-  size_t occluded = 0;  // of those, the ones a polygon nearer than the light reached
-  double ms = 0;        // the pass
+  size_t drawn = 0;          // footprints (lights, and halos in fog) that reached the frame
+  size_t hidden = 0;         // of those, the ones polygons in front hide wholly
+  size_t partly_hidden = 0;  // and those they hide in part
+  double ms = 0;             // the pass
 };
 
 // A regular octagon of a disc's area (2 sqrt(2) R^2 = pi r^2) has circumradius R = 1.0547 r.

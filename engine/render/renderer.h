@@ -63,7 +63,8 @@ struct FrameStats {
   size_t peak_memory_bytes = 0;
   // Light points (render/light_pass.h): footprints drawn, those partly hidden, and the time
   // their pass took (part of raster_ms).
-  size_t lights_drawn = 0, lights_occluded = 0;
+  // Light points' footprints drawn, and of those the ones hidden wholly and in part.
+  size_t lights_drawn = 0, lights_hidden = 0, lights_partly_hidden = 0;
   double lights_ms = 0;
   std::vector<TaskTiming> tasks;  // in the order they were started
 

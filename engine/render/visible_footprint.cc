@@ -28,14 +28,21 @@ double TwiceSignedArea(const Vec2* v, size_t n) {
 
 void VisibleFootprint::AddPiece(std::vector<Piece>& pieces, std::vector<Vec2>& verts, const Vec2* v,
                                 size_t n) {
-  if (n < 3 || !(TwiceSignedArea(v, n) > 2 * kSliverArea)) return;
-  Piece p{verts.size(), verts.size() + n, v[0].x, v[0].y, v[0].x, v[0].y};
+  const double twice_area = n < 3 ? 0 : TwiceSignedArea(v, n);
+  if (!(twice_area > 2 * kSliverArea)) return;
+  Piece p{verts.size(), verts.size() + n, v[0].x, v[0].y, v[0].x, v[0].y, 0.5 * twice_area};
   for (size_t i = 0; i < n; ++i) {
     p.min_x = std::min(p.min_x, v[i].x), p.max_x = std::max(p.max_x, v[i].x);
     p.min_y = std::min(p.min_y, v[i].y), p.max_y = std::max(p.max_y, v[i].y);
   }
   verts.insert(verts.end(), v, v + n);
   pieces.push_back(p);
+}
+
+double VisibleFootprint::Area() const {
+  double area = 0;
+  for (const Piece& p : pieces_) area += p.area;
+  return area;
 }
 
 void VisibleFootprint::Start(std::span<const Vec2> outline) {

@@ -29,6 +29,8 @@ class VisibleFootprint {
   // pass kMaxPieces (the pieces are then unspecified).
   bool Subtract(const ScreenPolygon& occluder);
   bool empty() const { return pieces_.empty(); }
+  // The pieces' area, square pixels.
+  double Area() const;
 
   // The area and moments of the pieces in a row of `cells` cells: cell i is [x0 + i, x0 + i + 1]
   // x [cy - 0.5, cy + 0.5], its moments relative to its centre (x0 + i + 0.5, cy)
@@ -40,6 +42,7 @@ class VisibleFootprint {
   struct Piece {
     size_t begin, end;  // its vertices in verts_
     double min_x, min_y, max_x, max_y;
+    double area;
   };
   void AddPiece(std::vector<Piece>& pieces, std::vector<Vec2>& verts, const Vec2* v, size_t n);
   // Clips a_[0, n) by a x + b y + c >= 0 into a_; returns the count left.

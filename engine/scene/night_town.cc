@@ -18,7 +18,7 @@ using demo::AddPolygon;
 // Street centre lines every kBlockX m along x and kBlockZ m along z; buildings stand kSetbackM
 // from a street's centre line, the lights kKerbM from it, kLampM up, every kLampSpacingM.
 constexpr double kBlockX = 60, kBlockZ = 48;
-constexpr double kSetbackM = 8, kKerbM = 5, kLampM = 8, kLampSpacingM = 26;
+constexpr double kSetbackM = 8, kKerbM = 5, kLampM = 10, kLampSpacingM = 22;
 // Every kAvenueEvery-th street is an avenue under white LED lamps; the others have sodium lamps.
 constexpr int kAvenueEvery = 4;
 // Facade texture: kCells x kCells windows of kFloorM, one repeat kCells x kFloorM metres square.
@@ -94,7 +94,7 @@ void AddBlock(const TownDistrict& d, int i, int j, double x, double z, v1::Mesh*
     const double bx0 = column ? lx0 + lot_x - w : lx0;
     const double bz0 = lots_z > 1 && row ? lz0 + lot_z - depth : lz0;
     const int floors = central > 0 ? 4 + static_cast<int>(central * 14 * (0.4 + 0.6 * r))
-                                   : 2 + static_cast<int>(4 * s);
+                                   : 1 + static_cast<int>(2.2 * s);
     AddBuilding(mesh, bx0, bz0, bx0 + w, bz0 + depth, floors * kFloorM);
   }
 }

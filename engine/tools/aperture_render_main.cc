@@ -280,8 +280,9 @@ int Run() {
                   stats.BalanceEfficiency());
       std::printf("cost model: %s\n", DefaultCostModelSource().c_str());
       if (stats.lights_drawn > 0)
-        std::printf("light points: %zu footprints drawn (%zu partly hidden) in %.2f ms\n",
-                    stats.lights_drawn, stats.lights_occluded, stats.lights_ms);
+        std::printf(
+            "light points: %zu footprints drawn (%zu hidden, %zu partly hidden) in %.2f ms\n",
+            stats.lights_drawn, stats.lights_hidden, stats.lights_partly_hidden, stats.lights_ms);
       std::printf("working memory: %.1f MiB at most (budget %.0f MiB)\n",
                   stats.peak_memory_bytes / 1048576.0, settings.max_frame_bytes / 1048576.0);
       std::printf(

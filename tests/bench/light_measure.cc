@@ -130,7 +130,7 @@ absl::StatusOr<ApertureLightSample> ApertureLightProbe::Measure(const PointLight
           Luminance(a.at(x, y)) - Luminance(b.at(x, y));
   ApertureLightSample out;
   out.image = ImageOf(luminance, settings.region);
-  out.occluded = with->stats.lights_occluded > 0;
+  out.occluded = with->stats.lights_hidden + with->stats.lights_partly_hidden > 0;
   if (whole_in_window && out.image.at_border)
     return absl::InternalError(absl::StrCat(
         "the image of the light at (", light.position.x, ", ", light.position.y, ", ",

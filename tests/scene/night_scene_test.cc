@@ -101,6 +101,11 @@ TEST(NightScene, ShowsFifteenThousandLightsAndTenThousandTexturedPolygons) {
   for (const LightFootprint& f : footprints)
     on_screen += f.x >= 0 && f.x < kWidth && f.y >= 0 && f.y < kHeight;
   EXPECT_GE(on_screen, 15000u) << "of " << footprints.size() << " footprints";
+  // Visible: of those, the ones that polygons in front (the town's houses) do not hide wholly.
+  auto frame = RenderFrame(scene, camera, settings);
+  ASSERT_TRUE(frame.ok()) << frame.status();
+  EXPECT_GE(frame->stats.lights_drawn - frame->stats.lights_hidden, 15000u)
+      << frame->stats.lights_hidden << " of " << frame->stats.lights_drawn << " hidden";
   size_t textured = 0;
   for (const ScreenPolygon& p : geometry.polygons)
     textured += scene.materials[p.material].texture >= 0;
