@@ -41,6 +41,9 @@ them: --aim, --heading, --start_m to fly towards another scene's runway, --peer_
   AA=box2,box1,tent2 scripts/bench-lights.sh                # every filter
   SIZES=640x360 FRAMES=60 EDGE_FRAMES=40 scripts/bench-lights.sh   # a quick look
   SCENE=airfield.json scripts/bench-lights.sh --aim X,Y,Z --heading DEG   # another runway
+  SCENE=night EDGE_FRAMES=0 scripts/bench-lights.sh --aim 0,0,-100 --start_m 2150 \
+    --groups approach,runway-threshold,runway-edge,runway-centre,touchdown-zone,runway-end
+                                       # the night scene's runway and approach lights (36L, 36C)
 EOF
 }
 

@@ -72,6 +72,9 @@ monotone and continuous), 3 when not, 1 on an error, 2 on a bad flag.
 
   --scene NAME|FILE    runway (this benchmark's own, the default), a built-in scene of the engine
                        (scene/builtin_scenes.h), or a scene file (.json, .gltf, .glb)
+  --groups LIST        a built-in scene's lights of these groups only, comma separated (e.g. the
+                       night scene's approach,runway-edge,runway-centre,touchdown-zone,
+                       runway-threshold,runway-end); its polygons and attached lights dropped
   --aim X,Y,Z          the aiming point of the approach (default 0,0,-300: runway's)
   --heading DEG        the direction flown, a yaw: 0 along -z, 90 along -x (default 0)
   --start_m M          how far before the aiming point the approach starts (default 1800)
@@ -93,6 +96,7 @@ monotone and continuous), 3 when not, 1 on an error, 2 on a bad flag.
 
 struct Options {
   std::string scene = "runway";
+  std::vector<std::string> groups;
   testing::GlidePath path;
   int frames = 180;
   double fps = 60;
@@ -109,11 +113,40 @@ struct Options {
 
 constexpr double kRippleTarget = 0.01;
 
-// The scene by --scene: this benchmark's runway, an engine built-in, or a file.
-absl::StatusOr<Scene> LoadBenchScene(const std::string& name) {
-  if (name == "runway") return BuildScene(testing::MakeRunwayLightsScene());
+// Of a scene, the lights of `groups` alone: no polygons (the runway's lights lie on flat ground,
+// which hides none of them), so that each light's windows render fast.
+absl::StatusOr<v1::Scene> LightsOfGroups(v1::Scene scene, const std::vector<std::string>& groups) {
+  auto wanted = [&](const v1::LightPoint& l) {
+    return l.object().empty() && std::find(groups.begin(), groups.end(), l.group()) != groups.end();
+  };
+  v1::Scene out;
+  out.set_name(scene.name());
+  *out.mutable_sky() = scene.sky();
+  *out.mutable_fog() = scene.fog();
+  *out.mutable_light_settings() = scene.light_settings();
+  for (const v1::LightPoint& l : scene.lights())
+    if (wanted(l)) *out.add_lights() = l;
+  for (const v1::LightRow& r : scene.light_rows())
+    if (wanted(r.light())) *out.add_light_rows() = r;
+  if (out.lights_size() + out.light_rows_size() == 0)
+    return absl::InvalidArgumentError("--groups: no light of the scene is in these groups");
+  return out;
+}
+
+// The scene by --scene: this benchmark's runway, an engine built-in, or a file; --groups keeps
+// a built-in scene's lights of those groups alone.
+absl::StatusOr<Scene> LoadBenchScene(const std::string& name,
+                                     const std::vector<std::string>& groups) {
+  if (name == "runway" && groups.empty()) return BuildScene(testing::MakeRunwayLightsScene());
   auto builtin = FindBuiltinScene(name);
-  if (builtin.ok()) return BuildScene(builtin->scene);
+  if (builtin.ok() && groups.empty()) return BuildScene(builtin->scene);
+  if (builtin.ok() || name == "runway") {
+    auto lights = LightsOfGroups(
+        name == "runway" ? testing::MakeRunwayLightsScene() : builtin->scene, groups);
+    if (!lights.ok()) return lights.status();
+    return BuildScene(*lights);
+  }
+  if (!groups.empty()) return absl::InvalidArgumentError("--groups: only for a built-in scene");
   if (NamesCountedBuiltinScene(name)) return builtin.status();
   if (!std::filesystem::exists(name))
     return absl::NotFoundError(absl::StrCat("--scene ", name,
@@ -499,6 +532,9 @@ absl::Status ParseOptions(int argc, char** argv, Options& o, bool& help) {
     std::vector<double> list;
     if (flag == "--scene") {
       o.scene = value;
+    } else if (flag == "--groups") {
+      o.groups = absl::StrSplit(value, ',', absl::SkipEmpty());
+      if (o.groups.empty()) return bad("wants group names, comma separated");
     } else if (flag == "--aim") {
       if (!ParseDoubles(value, list) || list.size() != 3) return bad("wants X,Y,Z");
       o.path.aim = {list[0], list[1], list[2]};
@@ -581,7 +617,7 @@ int Run(int argc, char** argv) {
     std::fprintf(stderr, "light_blink_bench: %s\n", std::string(s.message()).c_str());
     return 1;
   };
-  auto scene = LoadBenchScene(o.scene);
+  auto scene = LoadBenchScene(o.scene, o.groups);
   if (!scene.ok()) return fail(scene.status());
   if (std::none_of(scene->lights.lights.begin(), scene->lights.lights.end(), SteadyWorldLight))
     return fail(absl::InvalidArgumentError(

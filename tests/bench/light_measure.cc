@@ -116,7 +116,8 @@ absl::StatusOr<ApertureLightSample> ApertureLightProbe::Measure(const PointLight
   RenderSettings settings = settings_;
   settings.region = {std::max(0, window.x0), std::max(0, window.y0),
                      std::min(settings.width, window.x1), std::min(settings.height, window.y1)};
-  if (settings.region.pixels() <= 0) return ApertureLightSample{};
+  if (settings.region.x1 <= settings.region.x0 || settings.region.y1 <= settings.region.y0)
+    return ApertureLightSample{};  // wholly outside the frame
   auto with = RenderFrame(lit_, camera, settings);
   if (!with.ok()) return with.status();
   auto without = RenderFrame(dark_, camera, settings);
