@@ -3,15 +3,21 @@
 # same lights as osgSim-based image generators do, on a slow approach to a lit runway, then a light
 # passing behind a wall's edge (tests/bench/light_blink_bench.cc says what each table measures).
 # About 20 s with the defaults on 2 cores (about 30 s with all three filters).
+# `load`: what the night scene's lights cost, Aperture against llvmpipe drawing the same frame
+# (tests/bench/night_load_bench.cc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 usage() {
   cat <<'EOF'
 usage: scripts/bench-lights.sh [--help] [light_blink_bench flags...]
+       scripts/bench-lights.sh load [--help] [night_load_bench flags...]
 
-Builds build/tests/light_blink_bench (installing Debian's libosmesa6-dev first when it is
-missing: a benchmark dependency, not a product one) and runs it once with LP_NUM_THREADS=2:
+Builds build/tests/light_blink_bench or night_load_bench (installing Debian's libosmesa6-dev first
+when it is missing: a benchmark dependency, not a product one) and runs it once with
+LP_NUM_THREADS=2.
+
+Without a mode, do light points blink?
 
   blink  a 3 degree approach at 70 m/s, 60 frames/s, towards the runway scene (266 edge, centre
          line, threshold, end and approach lights): per light, the ripple (max - min) / mean of
@@ -37,6 +43,27 @@ Environment (defaults in brackets):
 Any further flags go to the benchmark after these (build/tests/light_blink_bench --help lists
 them: --aim, --heading, --start_m to fly towards another scene's runway, --peer_min_sizes, ...).
 
+load: the night scene's load (--scene night, about 21,800 lights in view) on 2 threads
+
+  The night frame from its camera with its light points, without them, and the same polygons by
+  day (night-by-day), each size in interleaved rounds after a warm-up: Aperture (--threads 2,
+  box2; its frame is projection + raster, the light pass part of the raster) and llvmpipe drawing
+  the same frame as a GL image generator does (the scene's polygons as textured triangles,
+  trilinear mip-maps, 4x MSAA and 1x, the lights as osgSim's points sized every frame). A table
+  per size of medians: with lights, without, by day, the lights' cost (with - without) / without
+  and night / day. Aperture's targets: the lights' cost at most 15 %, night at most 1.5x day
+  (exit status 0 when met at every size, 3 when not). The warm-up round's frames go to OUT
+  (Aperture's as EXR and PNG, llvmpipe's as PNG) to look at. Several minutes with the defaults
+  on 2 cores: run it on a quiet machine.
+
+  SIZES        frame sizes, WxH[,WxH]                               [1280x720,1920x1080]
+  ROUNDS       timed rounds after the warm-up                       [5]
+  MSAA         llvmpipe's sample counts, of 4 and 1                 [4,1]
+  OUT          the warm-up round's frames (empty: none)             [out/night-load]
+
+Any further flags go to night_load_bench after these (build/tests/night_load_bench --help lists
+them: --aa, --peer_min_size, --peer_texture_side, --peer_near, --encode).
+
   scripts/bench-lights.sh                                   # the defaults
   AA=box2,box1,tent2 scripts/bench-lights.sh                # every filter
   SIZES=640x360 FRAMES=60 EDGE_FRAMES=40 scripts/bench-lights.sh   # a quick look
@@ -44,8 +71,16 @@ them: --aim, --heading, --start_m to fly towards another scene's runway, --peer_
   SCENE=night EDGE_FRAMES=0 scripts/bench-lights.sh --aim 0,0,-100 --start_m 2150 \
     --groups approach,runway-threshold,runway-edge,runway-centre,touchdown-zone,runway-end
                                        # the night scene's runway and approach lights (36L, 36C)
+  scripts/bench-lights.sh load                              # the night scene's load
+  SIZES=1280x720 ROUNDS=1 scripts/bench-lights.sh load      # a quick look at the load
 EOF
 }
+
+mode=blink
+if [ "${1:-}" = "load" ]; then
+  mode=load
+  shift
+fi
 
 for arg in "$@"; do
   if [ "$arg" = "--help" ] || [ "$arg" = "-h" ]; then
@@ -66,6 +101,12 @@ if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE="${APERTURE_BUILD_TYPE:-Release}" >/dev/null
 else
   cmake build >/dev/null   # picks up OSMesa if it was just installed
+fi
+if [ "$mode" = "load" ]; then
+  cmake --build build -j "$(nproc)" --target night_load_bench >/dev/null
+  LP_NUM_THREADS=2 exec build/tests/night_load_bench --threads 2 \
+    --sizes "${SIZES:-1280x720,1920x1080}" --rounds "${ROUNDS:-5}" --msaa "${MSAA:-4,1}" \
+    --out "${OUT-out/night-load}" "$@"
 fi
 cmake --build build -j "$(nproc)" --target light_blink_bench >/dev/null
 args=(--scene "${SCENE:-runway}" --sizes "${SIZES:-1280x720}" --frames "${FRAMES:-180}"

@@ -179,7 +179,7 @@ void LightPointPeer::DrawQuad(const Vec3 corners[4], float grey) {
   glEnd();
 }
 
-void LightPointPeer::DrawPoints(const std::vector<PeerPoint>& points) {
+void DrawOsgSimPoints(const std::vector<PeerPoint>& points) {
   // LightPointDrawable's state for additive light points.
   glEnable(GL_POINT_SMOOTH);
   glHint(GL_POINT_SMOOTH_HINT, GL_NICEST);
@@ -188,17 +188,30 @@ void LightPointPeer::DrawPoints(const std::vector<PeerPoint>& points) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_FALSE);
-  std::map<int, std::vector<const PeerPoint*>> by_size;
-  for (const PeerPoint& p : points) by_size[p.point.size].push_back(&p);
-  for (const auto& [size, group] : by_size) {
-    glPointSize(static_cast<float>(size));
-    glBegin(GL_POINTS);
-    for (const PeerPoint* p : group) {
-      glColor4f(p->r, p->g, p->b, static_cast<float>(p->point.alpha));
-      glVertex3d(p->offset.x, p->offset.y, p->offset.z);
-    }
-    glEnd();
+  glDisable(GL_TEXTURE_2D);
+  glDisable(GL_ALPHA_TEST);
+  // Each size's points as one array of positions and one of colours.
+  struct Arrays {
+    std::vector<double> xyz;
+    std::vector<float> rgba;
+  };
+  std::map<int, Arrays> by_size;
+  for (const PeerPoint& p : points) {
+    Arrays& a = by_size[p.point.size];
+    a.xyz.insert(a.xyz.end(), {p.offset.x, p.offset.y, p.offset.z});
+    a.rgba.insert(a.rgba.end(), {p.r, p.g, p.b, static_cast<float>(p.point.alpha)});
   }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);  // client arrays
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  for (const auto& [size, a] : by_size) {
+    glPointSize(static_cast<float>(size));
+    glVertexPointer(3, GL_DOUBLE, 0, a.xyz.data());
+    glColorPointer(4, GL_FLOAT, 0, a.rgba.data());
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(a.xyz.size() / 3));
+  }
+  glDisableClientState(GL_COLOR_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
   glDepthMask(GL_TRUE);
 }
 

@@ -49,6 +49,12 @@ struct PeerPoint {
   SizedPoint point;
 };
 
+// Draws `points` into the bound framebuffer with LightPointDrawable's state for additive light
+// points (above), from vertex arrays, one glDrawArrays per point size, as osgSim does; the
+// modelview must hold the camera's orientation alone (the offsets are from its position).
+// Turns texturing and the alpha test off; leaves blending and point smoothing on, depth writes on.
+void DrawOsgSimPoints(const std::vector<PeerPoint>& points);
+
 class LightPointPeer {
  public:
   ~LightPointPeer();
@@ -66,8 +72,8 @@ class LightPointPeer {
   void Begin(bool msaa, const PixelRect& window = {});
   // An opaque quad (depth written), world vertices counter-clockwise or not.
   void DrawQuad(const Vec3 corners[4], float grey);
-  // The points with osgSim's state, grouped by size.
-  void DrawPoints(const std::vector<PeerPoint>& points);
+  // The points with osgSim's state, grouped by size (DrawOsgSimPoints).
+  void DrawPoints(const std::vector<PeerPoint>& points) { DrawOsgSimPoints(points); }
   // Resolves the 4x buffer over `window` (all of the frame when empty) and waits for llvmpipe to
   // finish.
   void End(const PixelRect& window = {});
