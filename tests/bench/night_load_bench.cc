@@ -109,7 +109,7 @@ double NightOverDay(const Row& row) { return Median(row.ms[kWithLights]) / Media
 // Aperture's figures of one size beside its rows: the light pass, the encode.
 struct ApertureDetail {
   std::vector<double> lights_ms, setup_ms, raster_ms, wall_ms, encode_ms;
-  size_t lights_drawn = 0, lights_occluded = 0, visible_polygons = 0;
+  size_t lights_drawn = 0, lights_hidden = 0, lights_partly_hidden = 0, visible_polygons = 0;
   int concurrency = 0;
 };
 
@@ -194,7 +194,8 @@ absl::Status RunSize(const Options& o, const Scene& night, const Scene& day, con
           ap.raster_ms.push_back(s.raster_ms);
           ap.wall_ms.push_back(wall);
           ap.lights_drawn = s.lights_drawn;
-          ap.lights_occluded = s.lights_occluded;
+          ap.lights_hidden = s.lights_hidden;
+          ap.lights_partly_hidden = s.lights_partly_hidden;
           ap.visible_polygons = s.visible_polygons;
           ap.concurrency = s.concurrency;
         }
@@ -252,12 +253,13 @@ absl::Status RunSize(const Options& o, const Scene& night, const Scene& day, con
   PrintTable(width, height, rows, o.rounds);
   std::printf(
       "\nAperture: the light pass %.2f ms of the raster's %.1f (%.1f %% of the frame without "
-      "lights); %zu footprints drawn (%zu partly hidden), %zu polygons visible, %d threads; "
+      "lights); %zu footprints drawn (%zu hidden, %zu partly hidden), %zu polygons visible, %d "
+      "threads; "
       "projection %.1f ms; RenderFrame's wall time %.1f ms",
       Median(ap.lights_ms), Median(ap.raster_ms),
       100 * Median(ap.lights_ms) / Median(rows[0].ms[kWithoutLights]), ap.lights_drawn,
-      ap.lights_occluded, ap.visible_polygons, ap.concurrency, Median(ap.setup_ms),
-      Median(ap.wall_ms));
+      ap.lights_hidden, ap.lights_partly_hidden, ap.visible_polygons, ap.concurrency,
+      Median(ap.setup_ms), Median(ap.wall_ms));
   if (!ap.encode_ms.empty())
     std::printf(
         "; the night frame's EXR encoding (half, zip, %d threads) %.1f ms, not in the frame",
