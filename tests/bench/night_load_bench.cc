@@ -47,7 +47,7 @@ namespace {
 
 constexpr char kUsage[] = R"(usage: night_load_bench [flags]
 
-The night scene's frame (--scene night, ~21,800 lights in view) with its light points, without
+The night scene's frame (--scene night, ~25,500 lights in view) with its light points, without
 them, and the same polygons by day (night-by-day), Aperture against Mesa llvmpipe drawing the same
 frame as a GL image generator does (textured triangles, trilinear, 4x MSAA and 1x, the lights as
 osgSim's points), in interleaved rounds; medians, the lights' cost and night / day per renderer.
