@@ -88,16 +88,25 @@ class LightProjector {
         to_camera_(camera.Orientation().Transposed()),
         sx_((geometry.frustum.right - geometry.frustum.left) / geometry.width),
         sy_((geometry.frustum.top - geometry.frustum.bottom) / geometry.height),
-        placements_(scene.objects.size()) {}
+        placements_(scene.objects.size()) {
+    // Where the objects carrying lights stand this frame, once each, before the lights are
+    // projected on several threads.
+    std::vector<bool> done(scene.objects.size(), false);
+    for (const PointLight& light : scene.lights.lights)
+      if (light.object >= 0 && !done[light.object]) {
+        done[light.object] = true;
+        placements_[light.object] = Place(scene.objects[light.object]);
+      }
+  }
 
   // The footprints of light `index` (its own, and its halo in fog), appended to `out`.
-  void Project(size_t index, std::vector<Footprint>& out) {
+  void Project(size_t index, std::vector<Footprint>& out) const {
     const PointLight& light = scene_.lights.lights[index];
     Vec3 world = light.position;
     const Mat3* rotation = nullptr;
     if (light.object >= 0) {
-      const Placement* placed = PlacementOf(light.object);
-      if (placed == nullptr) return;  // its object is hidden
+      const std::optional<Placement>& placed = placements_[light.object];
+      if (!placed) return;  // its object is hidden
       world = placed->linear * light.position + placed->translation;
       rotation = &placed->rotation;
     }
@@ -147,22 +156,14 @@ class LightProjector {
     Mat3 linear, rotation;
     Vec3 translation;
   };
-  // Where named object `index` stands this frame; null while it is hidden.
-  const Placement* PlacementOf(int index) {
-    std::optional<std::optional<Placement>>& slot = placements_[index];
-    if (!slot) {
-      const SceneObject& object = scene_.objects[index];
-      slot.emplace();
-      if (object.visible) {
-        auto placed = PlacementFromProto(object.transform, object.name);
-        if (placed.ok()) {
-          const v1::Transform& t = object.transform;
-          *slot = Placement{placed->linear, YawPitchRoll(t.yaw_deg(), t.pitch_deg(), t.roll_deg()),
-                            placed->translation};
-        }
-      }
-    }
-    return *slot ? &**slot : nullptr;
+  // Where `object` stands this frame; none while it is hidden.
+  static std::optional<Placement> Place(const SceneObject& object) {
+    if (!object.visible) return std::nullopt;
+    auto placed = PlacementFromProto(object.transform, object.name);
+    if (!placed.ok()) return std::nullopt;
+    const v1::Transform& t = object.transform;
+    return Placement{placed->linear, YawPitchRoll(t.yaw_deg(), t.pitch_deg(), t.roll_deg()),
+                     placed->translation};
   }
 
   const Scene& scene_;
@@ -171,7 +172,7 @@ class LightProjector {
   const RenderSettings& settings_;
   Mat3 to_camera_;
   double sx_, sy_;
-  std::vector<std::optional<std::optional<Placement>>> placements_;
+  std::vector<std::optional<Placement>> placements_;
 };
 
 // The polygons of the frame by tile, for the lights whose cells the raster pass did not record
@@ -390,9 +391,20 @@ constexpr size_t kBatchWeights = size_t{1} << 21;
 std::vector<LightFootprint> ProjectLightPoints(const Scene& scene, const Camera& camera,
                                                const FrameGeometry& geometry,
                                                const RenderSettings& settings) {
+  const LightProjector projector(scene, camera, geometry, settings);
+  // In chunks on the workers, joined in the lights' order.
+  constexpr size_t kChunk = 4096;
+  const size_t lights = scene.lights.lights.size();
+  std::vector<std::vector<LightFootprint>> chunks((lights + kChunk - 1) / kChunk);
+  tbb::parallel_for(size_t{0}, chunks.size(), [&](size_t c) {
+    for (size_t i = c * kChunk; i < std::min(lights, (c + 1) * kChunk); ++i)
+      projector.Project(i, chunks[c]);
+  });
   std::vector<LightFootprint> footprints;
-  LightProjector projector(scene, camera, geometry, settings);
-  for (size_t i = 0; i < scene.lights.lights.size(); ++i) projector.Project(i, footprints);
+  size_t total = 0;
+  for (const auto& chunk : chunks) total += chunk.size();
+  footprints.reserve(total);
+  for (const auto& chunk : chunks) footprints.insert(footprints.end(), chunk.begin(), chunk.end());
   return footprints;
 }
 
