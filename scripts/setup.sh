@@ -7,7 +7,8 @@ scripts/install-deps.sh
 scripts/build.sh
 mkdir -p out
 # The default scene, the real airport: Schiphol's runways, taxiways and aprons from OpenStreetMap
-# as a packed vector texture (seed 001), hangars, cut-out trees and a glass tower cab (texture
+# as a packed vector texture (seed 001), its runways' Annex 14 markings (generated packed textures)
+# seen 2 NM out on the approach, hangars, cut-out trees and a glass tower cab (texture
 # alpha); the same airport at night (runway, approach and taxiway lights, a town's streets, 16
 # aircraft with their own lights: light points); then the benchmarks' synthetic airfield.
 build/engine/aperture-render -o out/airport.exr

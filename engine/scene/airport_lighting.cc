@@ -546,6 +546,10 @@ void PointAlong(const std::vector<Vec3>& line, double s, Vec3* at, Vec3* directi
 
 }  // namespace
 
+absl::Status ValidateRunwayDescription(const RunwayDescription& runway) {
+  return ValidateRunway(runway);
+}
+
 absl::Status AddRunwayLights(const RunwayDescription& runway, v1::Scene* scene) {
   if (absl::Status valid = ValidateRunway(runway); !valid.ok()) return valid;
   const RunwayFrame frame(runway);

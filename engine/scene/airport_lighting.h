@@ -62,6 +62,10 @@ struct RunwayDescription {
   double intensity_scale = 1;
 };
 
+// OK, or InvalidArgument naming the field of the first bad datum (AddRunwayLights' checks; the
+// runway markings make the same).
+absl::Status ValidateRunwayDescription(const RunwayDescription& runway);
+
 // Appends the runway's lights to `scene`: edge, threshold, end, centre line and touchdown zone
 // lights, the approach lighting system with its sequenced flashers, and the PAPI, as the
 // category calls for them (docs/SCENE.md, "Airport lighting"). Bad data (a zero, negative or

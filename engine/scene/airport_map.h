@@ -20,6 +20,9 @@ std::span<const uint8_t> AirportMapApv();
 inline constexpr double kAirportMapMetres = 9160;  // one side of the map
 inline constexpr double kPolderbaanSouthX = 1089.5, kPolderbaanSouthY = 3990;
 inline constexpr double kPolderbaanNorthX = 1278.8, kPolderbaanNorthY = 594;
+// The parallel runway 36C (3,300 m x 45 m, the Zwanenburgbaan): its south end's and north end's
+// centres.
+inline constexpr double k36CSouthX = 2828, k36CSouthY = 6655, k36CNorthX = 2987, k36CNorthY = 3708;
 
 // Where the built-in airport puts the map's texel (x, y) (column, row from the top) on the ground
 // (y = 0): the Polderbaan's south end at (0, 0, 200), the runway running along -z, +x east of it

@@ -4,8 +4,11 @@
 #include <string>
 
 #include "scene/airport_map.h"
+#include "scene/airport_runways.h"
+#include "scene/approach_camera.h"
 #include "scene/demo_geometry.h"
 #include "scene/demo_scene.h"
+#include "scene/runway_markings.h"
 #include "texture/procedural.h"
 
 namespace aperture {
@@ -116,6 +119,10 @@ v1::Scene BuildAirportScene() {
   map_ground->set_material_id("map");
   AddMapGround(map_ground, scene.materials(0).texture_transform(), s, c);
 
+  // The runways' Annex 14 markings over the map's runways (scene/runway_markings.h).
+  for (const RunwayDescription& runway : {Polderbaan36L(), Zwanenburgbaan36C()})
+    if (!AddRunwayMarkings(runway, &scene).ok()) return {};  // known-good data: the tests catch it
+
   // West of the runway, on the map's grass: four hangars and the control tower, whose glass cab
   // shows the sky and the ground through it.
   v1::Mesh* hangars = scene.add_meshes();
@@ -149,6 +156,11 @@ v1::Scene BuildAirportScene() {
 }
 
 }  // namespace
+
+Camera AirportCamera() {
+  return ApproachCamera(Polderbaan36L(), kAirportCameraDistanceM, kAirportCameraPitchDeg,
+                        kAirportCameraFovDeg);
+}
 
 v1::Scene MakeAirportScene() {
   static const v1::Scene* const airport = new v1::Scene(BuildAirportScene());

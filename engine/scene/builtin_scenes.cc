@@ -32,7 +32,7 @@ bool NamesCountedBuiltinScene(const std::string& name) {
 
 absl::StatusOr<BuiltinScene> FindBuiltinScene(const std::string& name) {
   if (name == "demo") return BuiltinScene{MakeDemoScene(), DemoCamera()};
-  if (name == "airport") return BuiltinScene{MakeAirportScene(), DemoCamera()};
+  if (name == "airport") return BuiltinScene{MakeAirportScene(), AirportCamera()};
   if (name == "night") return BuiltinScene{MakeNightScene(), NightCamera()};
   if (name == "night-by-day") return BuiltinScene{MakeNightSceneByDay(), NightCamera()};
   // The benchmark scenes are laid out around a camera at the origin looking along -z.

@@ -6,7 +6,9 @@
 #include "scene/aircraft_lights.h"
 #include "scene/airport_lighting.h"
 #include "scene/airport_map.h"
+#include "scene/airport_runways.h"
 #include "scene/airport_scene.h"
+#include "scene/approach_camera.h"
 #include "scene/demo_geometry.h"
 #include "scene/demo_scene.h"
 #include "scene/night_town.h"
@@ -89,10 +91,6 @@ std::vector<MapTaxiway> NightTaxiways() {
       {"V", {{2600, 4740}, {2640, 4790}, {2880, 4796}, {2904, 4796}}, {2}},
   };
 }
-
-// The parallel runway 36C (3,300 m x 45 m) as the map shows it: its south end's and north end's
-// centres.
-constexpr double k36CSouthX = 2828, k36CSouthY = 6655, k36CNorthX = 2987, k36CNorthY = 3708;
 
 // A named aircraft: the demo's twin-jet mesh, where and how it stands.
 struct NightAircraft {
@@ -196,24 +194,10 @@ v1::Scene BuildNightScene() {
   scene.set_name("airport-night");
   SetNight(scene);
 
-  // The runways' lights: 36L as the airport places it (3,800 m x 60 m from z = 200 along -z),
-  // 36C from the map.
-  RunwayDescription polderbaan;
-  polderbaan.designator = "36L";
-  polderbaan.threshold = {0, 0, 200};
-  polderbaan.heading_deg = 0;
-  polderbaan.length_m = 3800;
-  polderbaan.width_m = 60;
-  polderbaan.category = RunwayCategory::kPrecisionCatIII;
+  // The runways' lights (scene/airport_runways.h).
+  RunwayDescription polderbaan = Polderbaan36L();
   polderbaan.intensity_scale = kNightStep;
-  RunwayDescription zwanenburgbaan;
-  zwanenburgbaan.designator = "36C";
-  zwanenburgbaan.threshold = AirportMapToWorld(k36CSouthX, k36CSouthY);
-  zwanenburgbaan.heading_deg = MapYaw(k36CSouthX, k36CSouthY, k36CNorthX, k36CNorthY);
-  zwanenburgbaan.length_m =
-      Length(AirportMapToWorld(k36CNorthX, k36CNorthY) - zwanenburgbaan.threshold);
-  zwanenburgbaan.width_m = 45;
-  zwanenburgbaan.category = RunwayCategory::kPrecisionCatI;
+  RunwayDescription zwanenburgbaan = Zwanenburgbaan36C();
   zwanenburgbaan.intensity_scale = kNightStep;
   // The built-in data is known good: a failure here is a programming error the tests catch.
   for (const RunwayDescription& runway : {polderbaan, zwanenburgbaan})
@@ -298,14 +282,8 @@ v1::Scene MakeNightSceneByDay() {
 }
 
 Camera NightCamera() {
-  Camera camera;
-  constexpr double kFromThresholdM = 1852;  // 1 NM
-  // On the path through the PAPI's 300 m point, 3 degrees up.
-  camera.position = {0, (kFromThresholdM + 300) * std::tan(Radians(3)), 200 + kFromThresholdM};
-  camera.pitch_deg = -4;
-  camera.vertical_fov_deg = 30;
-  camera.near = 1;
-  return camera;
+  // 1 NM out on 36L's 3 degree path (through the PAPI's 300 m point).
+  return ApproachCamera(Polderbaan36L(), 1852, -4, 30);
 }
 
 std::vector<std::string> NightSceneAircraft() {

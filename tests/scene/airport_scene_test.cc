@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "render/frame_renderer.h"
+#include "scene/airport_runways.h"
 #include "scene/builtin_scenes.h"
 #include "scene/demo_scene.h"
+#include "scene/runway_markings.h"
 #include "scene/scene_builder.h"
 
 namespace aperture {
@@ -94,6 +97,50 @@ TEST(AirportScene, RendersTheTreesCutOutAgainstTheSky) {
     }
   EXPECT_GT(leaves, 50);
   EXPECT_GT(sky, 50);
+}
+
+TEST(AirportScene, TheDefaultViewIsTwoMilesOutAndShowsTheMarkings) {
+  auto builtin = FindBuiltinScene("airport");
+  ASSERT_TRUE(builtin.ok()) << builtin.status();
+  const Camera& camera = builtin->camera;
+  // 2 NM (3,704 m) before 36L's threshold at z = 200, on the 3 degree path through 300 m past it.
+  EXPECT_NEAR(camera.position.x, 0, 1e-9);
+  EXPECT_NEAR(camera.position.z, 200 + 3704, 1e-9);
+  EXPECT_NEAR(camera.position.y, (3704 + 300) * std::tan(3 * kPi / 180), 1e-9);
+  EXPECT_EQ(camera.yaw_deg, 0);
+  // Both runways carry their markings.
+  int runways = 0;
+  for (const v1::Mesh& mesh : builtin->scene.meshes())
+    runways += mesh.id() == "runway-36L" || mesh.id() == "runway-36C";
+  EXPECT_EQ(runways, 2);
+
+  auto scene = BuildScene(builtin->scene);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  RenderSettings settings;
+  settings.width = 960;
+  settings.height = 540;
+  settings.threads = 2;
+  auto frame = RenderFrame(*scene, camera, settings);
+  ASSERT_TRUE(frame.ok()) << frame.status();
+  // The pixel where a world point on the ground lands.
+  const FrustumTangents t = ResolveFrustum(camera, settings.width, settings.height);
+  const Mat3 to_camera = camera.Orientation().Transposed();
+  auto luminance_at = [&](double x, double z) {
+    const Vec3 c = to_camera * (Vec3{x, 0, z} - camera.position);
+    const int px = static_cast<int>((c.x / -c.z - t.left) / (t.right - t.left) * settings.width);
+    const int py = static_cast<int>((t.top - c.y / -c.z) / (t.top - t.bottom) * settings.height);
+    EXPECT_TRUE(px >= 0 && px < settings.width && py >= 0 && py < settings.height);
+    const Rgba p = frame->image.at(std::clamp(px, 0, settings.width - 1),
+                                   std::clamp(py, 0, settings.height - 1));
+    return 0.2126f * p.r + 0.7152f * p.g + 0.0722f * p.b;
+  };
+  // The aiming point's stripes (400 to 445 m in, 9 to 18 m off the centre line) show brighter
+  // than the bare asphalt beside them and than the runway between the markings further on.
+  for (double side : {-1.0, 1.0}) {
+    const float paint = luminance_at(side * 13.5, 200 - 422.5);
+    EXPECT_GT(paint, luminance_at(side * 24, 200 - 422.5) + 0.05f) << side;
+    EXPECT_GT(paint, luminance_at(side * 13.5, 200 - 1300) + 0.05f) << side;
+  }
 }
 
 }  // namespace
