@@ -53,7 +53,10 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
   Stopwatch timer;
   const FrameGeometry geometry =
       ProjectScene(scene, camera, settings.width, settings.height, shape.margin + 1.0);
-  const PolygonShader shader(scene, geometry, settings.shading);
+  const absl::StatusOr<PolygonShader> made_shader =
+      PolygonShader::Create(scene, geometry, settings.shading, stop);
+  if (!made_shader.ok()) return made_shader.status();
+  const PolygonShader& shader = *made_shader;
   frame.stats.setup_ms = timer.Milliseconds();
   frame.stats.visible_polygons = geometry.polygons.size();
 

@@ -6,26 +6,42 @@
 #include <algorithm>
 #include <cmath>
 
+#include "absl/strings/str_cat.h"
 #include "render/footprint_kernels.h"
 #include "scene/shading.h"
 
 namespace aperture {
 
-PolygonShader::PolygonShader(const Scene& scene, const FrameGeometry& geometry,
-                             const ShadingOptions& options)
-    : scene_(scene),
-      geo_(geometry),
-      aperture_(options.texture_aperture),
-      row_footprints_(BestRowFootprints()) {
+absl::StatusOr<PolygonShader> PolygonShader::Create(const Scene& scene,
+                                                    const FrameGeometry& geometry,
+                                                    const ShadingOptions& options,
+                                                    const std::function<bool()>& stop) {
+  std::vector<MaterialState> materials;
+  materials.reserve(scene.materials.size());
   for (const Material& m : scene.materials) {
     MaterialState state{m.base_color, nullptr, &m, false};
     if (m.texture >= 0) {
-      state.unpremultiply = scene.textures[m.texture]->has_alpha;
+      const SceneTexture& texture = *scene.textures[m.texture];
+      state.unpremultiply = texture.has_alpha;
       const FilterMode mode = options.override_filter ? options.filter : m.filter;
-      state.sampler = &scene.textures[m.texture]->Sampler(mode);
+      auto sampler = texture.Sampler(mode, stop);
+      if (!sampler.ok())
+        return absl::Status(sampler.status().code(),
+                            absl::StrCat("materials ('", m.id, "'): ", sampler.status().message()));
+      state.sampler = *sampler;
     }
-    materials_.push_back(state);
+    materials.push_back(state);
   }
+  return PolygonShader(scene, geometry, options, std::move(materials));
+}
+
+PolygonShader::PolygonShader(const Scene& scene, const FrameGeometry& geometry,
+                             const ShadingOptions& options, std::vector<MaterialState> materials)
+    : scene_(scene),
+      geo_(geometry),
+      aperture_(options.texture_aperture),
+      row_footprints_(BestRowFootprints()),
+      materials_(std::move(materials)) {
   min_inv_depth_.resize(geometry.polygons.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, geometry.polygons.size(), 4096),
                     [&](const tbb::blocked_range<size_t>& range) {

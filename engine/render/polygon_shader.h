@@ -3,8 +3,10 @@
 // ambient, distance fog.
 #pragma once
 
+#include <functional>
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "raster/projection.h"
 #include "render/footprint_kernels.h"
 #include "scene/scene.h"
@@ -20,7 +22,12 @@ struct ShadingOptions {
 
 class PolygonShader {
  public:
-  PolygonShader(const Scene& scene, const FrameGeometry& geometry, const ShadingOptions& options);
+  // The shader of a frame: each material's texture filter (its own, or options.filter over all)
+  // is built here if it was not yet (`stop` can stop a table's build part-way). An error naming
+  // the material, the texture and the filter when a filter cannot be built.
+  static absl::StatusOr<PolygonShader> Create(const Scene& scene, const FrameGeometry& geometry,
+                                              const ShadingOptions& options,
+                                              const std::function<bool()>& stop = nullptr);
 
   // Colour of polygon `index` at screen point (x, y) (a pixel centre), which may lie outside the
   // polygon: then its plane is extrapolated, as seed 002 takes each colour constant over the
@@ -58,6 +65,8 @@ class PolygonShader {
     const Material* material;
     bool unpremultiply;  // the texture's colours are premultiplied by its alpha
   };
+  PolygonShader(const Scene& scene, const FrameGeometry& geometry, const ShadingOptions& options,
+                std::vector<MaterialState> materials);
   // The material's colour and alpha over a filtered texel.
   static Rgba Surface(const MaterialState& mat, Rgba texel) {
     if (mat.unpremultiply) {

@@ -186,30 +186,12 @@ class Frame {
     }
     Rgba colour = mat.base_color;
     if (mat.texture >= 0) {
-      Rgba texture{1, 1, 1, 1};
-      if (const TextureIntegral* sat = tables_[mat.texture].get(); sat != nullptr) {
-        // seed 003: the quad abcd, its fragments and their integrals (eq. 3-4), from the
-        // summed-area table or the packed texture's runs.
-        texture = integrator->Color(quad, *sat, stats);
-        if (sat->channels() < 4) texture.a = 1;
-      } else {
-        // No integral (not expected: every texture has one): the texture's own sampler over
-        // the quad's parallelogram.
-        const SceneTexture& tex = *scene_.textures[mat.texture];
-        const FilterMode mode =
-            settings_.shading.override_filter ? settings_.shading.filter : mat.filter;
-        const auto& q = quad;
-        const double u = 0.25 * (q[0].x + q[1].x + q[2].x + q[3].x);
-        const double v = 0.25 * (q[0].z + q[1].z + q[2].z + q[3].z);
-        TextureFootprint f;
-        f.u = u - std::floor(u);
-        f.v = v - std::floor(v);
-        f.dudx = static_cast<float>(0.5 * (q[1].x - q[0].x + q[2].x - q[3].x));
-        f.dvdx = static_cast<float>(0.5 * (q[1].z - q[0].z + q[2].z - q[3].z));
-        f.dudy = static_cast<float>(0.5 * (q[3].x - q[0].x + q[2].x - q[1].x));
-        f.dvdy = static_cast<float>(0.5 * (q[3].z - q[0].z + q[2].z - q[1].z));
-        texture = tex.Sampler(mode).Sample(f);
-      }
+      // seed 003: the quad abcd, its fragments and their integrals (eq. 3-4), from the
+      // summed-area table or the packed texture's runs (TracedScene::Build made one for every
+      // texture a material uses).
+      const TextureIntegral& integral = *tables_[mat.texture];
+      Rgba texture = integrator->Color(quad, integral, stats);
+      if (integral.channels() < 4) texture.a = 1;
       if (scene_.textures[mat.texture]->has_alpha) {  // premultiplied texels (SceneTexture)
         const float k = texture.a > 0 ? 1.0f / texture.a : 0.0f;
         texture.r *= k, texture.g *= k, texture.b *= k;
@@ -411,6 +393,9 @@ absl::StatusOr<std::unique_ptr<TracedScene>> TracedScene::Build(
           std::make_unique<PackedIntegral>(p->area(), static_cast<int>(p->texture().width()),
                                            static_cast<int>(p->texture().height()));
     }
+    if (used[i] && ts->integrals_[i] == nullptr)
+      return absl::InternalError(absl::StrCat("texture '", scene.textures[i]->id,
+                                              "' has neither texels nor packed runs to integrate"));
   }
   return ts;
 }

@@ -2,11 +2,13 @@
 // the proto `Scene` by scene_builder and validated there. Immutable once built.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
+#include "absl/status/statusor.h"
 #include "aperture/v1/scene.pb.h"
 #include "base/image.h"
 #include "scene/light_points.h"
@@ -33,7 +35,11 @@ struct SceneTexture {
   // by coverage, without dark fringes; shading divides the filtered colour by the filtered alpha.
   bool has_alpha = false;
 
-  const TextureSampler& Sampler(FilterMode mode) const;
+  // The sampler of `mode`: the packed texture's, the mip-map's, or a footprint filter (aniso, oiio,
+  // reference) built on its first use, which `stop` can stop part-way. An error naming the
+  // texture and the filter when that filter cannot be built.
+  absl::StatusOr<const TextureSampler*> Sampler(FilterMode mode,
+                                                const std::function<bool()>& stop = nullptr) const;
 };
 
 // v1::AlphaMode: what a material's alpha (base_color.a times the texture's alpha) does.

@@ -177,9 +177,8 @@ class Builder {
       if (!texture.footprint) continue;  // packed textures have no table
       if (auto s = texture.footprint->PrepareAniso(options_.stop); !s.ok()) {
         if (absl::IsCancelled(s)) return StoppedError();
-        return absl::Status(
-            s.code(), absl::StrCat("materials ('", m.id, "'): aniso table of texture '", texture.id,
-                                   "': ", s.message()));
+        return absl::Status(s.code(), absl::StrCat("materials ('", m.id, "'): texture '",
+                                                   texture.id, "': ", s.message()));
       }
     }
     return absl::OkStatus();

@@ -117,21 +117,26 @@ std::optional<FilterMode> FilterModeFromProto(int filter) {
   }
 }
 
-const TextureSampler& SceneTexture::Sampler(FilterMode mode) const {
-  if (packed) return mode == FilterMode::kNearest ? *packed_nearest : *packed_area;
+absl::StatusOr<const TextureSampler*> SceneTexture::Sampler(
+    FilterMode mode, const std::function<bool()>& stop) const {
+  if (packed) return mode == FilterMode::kNearest ? packed_nearest.get() : packed_area.get();
   switch (mode) {
     case FilterMode::kNearest:
-      return *nearest;
+      return nearest.get();
     case FilterMode::kBilinear:
-      return *bilinear;
+      return bilinear.get();
     case FilterMode::kTrilinear:
-      break;
+      return trilinear.get();
     case FilterMode::kAniso:
     case FilterMode::kOiio:
     case FilterMode::kReference:
-      return footprint->Get(mode, *trilinear);
+      break;
   }
-  return *trilinear;
+  auto sampler = footprint->Get(mode, stop);
+  if (!sampler.ok())
+    return absl::Status(sampler.status().code(),
+                        absl::StrCat("texture '", id, "': ", sampler.status().message()));
+  return *sampler;
 }
 
 std::shared_ptr<const SceneTexture> MakePackedSceneTexture(std::string id,

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
+#include "absl/strings/str_cat.h"
 #include "base/stopwatch.h"
 #include "texture/aniso_sampler.h"
 #include "texture/oiio_sampler.h"
@@ -63,39 +64,45 @@ absl::Status FootprintSamplers::PrepareAniso(const std::function<bool()>& stop) 
       return stopped;
     }
     if (!aniso_status_.ok())
-      spdlog::error("aniso filter unavailable, using trilinear: {}", aniso_status_.ToString());
+      aniso_status_ = absl::Status(
+          aniso_status_.code(), absl::StrCat("the aniso filter (seed 000 table) cannot be built: ",
+                                             aniso_status_.message()));
   }
   aniso_done_.store(true, std::memory_order_release);
   return aniso_status_;
 }
 
-const TextureSampler& FootprintSamplers::Get(FilterMode mode,
-                                             const TextureSampler& fallback) const {
+absl::StatusOr<const TextureSampler*> FootprintSamplers::Get(
+    FilterMode mode, const std::function<bool()>& stop) const {
   switch (mode) {
     case FilterMode::kAniso:
-      (void)PrepareAniso();  // logged once when it fails
-      return aniso_ ? *aniso_ : fallback;
+      if (auto s = PrepareAniso(stop); !s.ok()) return s;
+      return aniso_.get();
     case FilterMode::kOiio:
       std::call_once(oiio_once_, [&] {
         auto sampler = OiioSampler::Create(base_);
         if (sampler.ok()) {
           oiio_ = std::move(*sampler);
         } else {
-          spdlog::error("oiio filter unavailable, using trilinear: {}",
-                        sampler.status().ToString());
+          oiio_status_ = absl::Status(
+              sampler.status().code(),
+              absl::StrCat("the oiio filter (OpenImageIO's TextureSystem) cannot be built: ",
+                           sampler.status().message()));
         }
       });
-      return oiio_ ? *oiio_ : fallback;
+      if (!oiio_status_.ok()) return oiio_status_;
+      return oiio_.get();
     case FilterMode::kReference:
       std::call_once(reference_once_,
                      [&] { reference_ = std::make_unique<ReferenceSampler>(base_); });
-      return *reference_;
+      return reference_.get();
     case FilterMode::kNearest:
     case FilterMode::kBilinear:
     case FilterMode::kTrilinear:
       break;
   }
-  return fallback;
+  return absl::InvalidArgumentError(absl::StrCat(
+      "the ", FilterModeName(mode), " filter is the mip-map's, not a footprint filter"));
 }
 
 }  // namespace aperture

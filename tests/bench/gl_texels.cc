@@ -82,7 +82,7 @@ absl::StatusOr<GlTexels> GlTexelsOf(const SceneTexture& texture, int max_side) {
 }
 
 Rgba MeanColour(const SceneTexture& texture) {
-  const TextureSampler& sampler = texture.Sampler(FilterMode::kNearest);
+  const TextureSampler& sampler = **texture.Sampler(FilterMode::kNearest);  // never fails
   constexpr int kGrid = 64;
   Rgba sum;
   for (int j = 0; j < kGrid; ++j)

@@ -240,7 +240,12 @@ int Run(int argc, char** argv) {
                                    FilterMode::kTrilinear, FilterMode::kAniso, FilterMode::kOiio};
       double best_raster = -INFINITY;
       for (int m = 0; m < 5; ++m) {
-        const Image img = RenderGroundImage(view, texture->Sampler(modes[m]));
+        auto sampler = texture->Sampler(modes[m]);
+        if (!sampler.ok()) {
+          std::fprintf(stderr, "%s\n", sampler.status().ToString().c_str());
+          return 2;
+        }
+        const Image img = RenderGroundImage(view, **sampler);
         psnr[m] = Psnr(img, ref, first);
         best_raster = std::max(best_raster, psnr[m]);
         (void)WriteExrFile(img, {}, absl::StrCat(stem, "_", FilterModeName(modes[m]), ".exr"));

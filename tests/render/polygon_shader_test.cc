@@ -9,6 +9,7 @@
 
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
+#include "texture/prefiltered_table.h"
 
 namespace aperture {
 namespace {
@@ -30,7 +31,9 @@ TEST(PolygonShader, BatchedShadingEqualsOnePointAtATime) {
     ShadingOptions options;
     options.override_filter = true;
     options.filter = mode;
-    const PolygonShader shader(*scene, geometry, options);
+    const absl::StatusOr<PolygonShader> made = PolygonShader::Create(*scene, geometry, options);
+    ASSERT_TRUE(made.ok()) << made.status();
+    const PolygonShader& shader = *made;
     int compared = 0;
     for (int index = 0; index < static_cast<int>(geometry.polygons.size()); index += 7) {
       // A row of 150 pixel centres (more than one batch, not a multiple of it).
@@ -49,6 +52,32 @@ TEST(PolygonShader, BatchedShadingEqualsOnePointAtATime) {
     }
     EXPECT_GT(compared, 1000);
   }
+}
+
+// A filter that cannot be built is an error naming the material, the texture and the filter, not
+// another filter drawn in its place. The table's size limit makes the aniso filter fail here:
+// no texture of a scene file is that large, but a table that cannot be built or read from the
+// store fails the same way.
+TEST(PolygonShader, AFilterThatCannotBeBuiltIsAnErrorNamingIt) {
+  auto scene = BuildScene(MakeDemoScene());
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  const int too_wide = (1 << kTableMaxLog2Size) * 2;
+  for (auto& texture : scene->textures)
+    texture = MakeSceneTexture("too-wide", Image(too_wide, 1, Rgba{0.5f, 0.5f, 0.5f, 1}), nullptr);
+  const FrameGeometry geometry = ProjectScene(*scene, DemoCamera(), 64, 36, 2.0);
+  ShadingOptions options;
+  options.override_filter = true;
+  options.filter = FilterMode::kAniso;
+  const absl::StatusOr<PolygonShader> made = PolygonShader::Create(*scene, geometry, options);
+  ASSERT_FALSE(made.ok());
+  EXPECT_EQ(made.status().code(), absl::StatusCode::kInvalidArgument);
+  const std::string message(made.status().message());
+  EXPECT_NE(message.find("materials ('"), std::string::npos) << message;
+  EXPECT_NE(message.find("texture 'too-wide'"), std::string::npos) << message;
+  EXPECT_NE(message.find("aniso filter"), std::string::npos) << message;
+  // The mip-map's filters need no table: the same scene shades with trilinear.
+  options.filter = FilterMode::kTrilinear;
+  EXPECT_TRUE(PolygonShader::Create(*scene, geometry, options).ok());
 }
 
 }  // namespace

@@ -180,7 +180,7 @@ Rgba MapAt(const Scene& scene, double x, double z) {
     f.u = Dot(p.mapping.su, at) + p.mapping.u0;
     f.v = Dot(p.mapping.sv, at) + p.mapping.v0;
     f.u -= std::floor(f.u), f.v -= std::floor(f.v);
-    return scene.textures[m.texture]->Sampler(FilterMode::kNearest).Sample(f);
+    return (*scene.textures[m.texture]->Sampler(FilterMode::kNearest))->Sample(f);
   }
   ADD_FAILURE() << "no map polygon";
   return {};

@@ -52,19 +52,19 @@ TEST_F(PackedSceneTexture, NearestAndAreaSamplingWithoutUnpacking) {
   ASSERT_NE(texture.packed, nullptr);
   // Nearest at the centre of texel (12, 3): square (1, 0), white.
   TextureFootprint f{12.5 / 64, 3.5 / 64, 0, 0, 0, 0};
-  EXPECT_FLOAT_EQ(texture.Sampler(FilterMode::kNearest).Sample(f).r, 1.0f);
+  EXPECT_FLOAT_EQ((*texture.Sampler(FilterMode::kNearest))->Sample(f).r, 1.0f);
   // Any other mode integrates the footprint exactly: one whole period is half white.
   f = {0.25, 0.5, 1.0f, 0, 0, 1.0f};
-  EXPECT_NEAR(texture.Sampler(FilterMode::kTrilinear).Sample(f).g, 0.5f, 1e-6);
+  EXPECT_NEAR((*texture.Sampler(FilterMode::kTrilinear))->Sample(f).g, 0.5f, 1e-6);
   // A 4 x 1 texel footprint straddling the black/white edge at x = 8: half white.
   f = {8.0 / 64, 3.5 / 64, 4.0f / 64, 0, 0, 1.0f / 64};
-  EXPECT_NEAR(texture.Sampler(FilterMode::kAniso).Sample(f).b, 0.5f, 1e-6);
+  EXPECT_NEAR((*texture.Sampler(FilterMode::kAniso))->Sample(f).b, 0.5f, 1e-6);
 }
 
 TEST_F(PackedSceneTexture, BatchedNearestEqualsOneTexelAtATime) {
   auto scene = Load("checker.apv");
   ASSERT_TRUE(scene.ok()) << scene.status();
-  const TextureSampler& nearest = scene->textures[0]->Sampler(FilterMode::kNearest);
+  const TextureSampler& nearest = **scene->textures[0]->Sampler(FilterMode::kNearest);
   // 1000 points (several batches of 256) over a few periods, negative coordinates included.
   std::vector<TextureFootprint> in;
   for (int i = 0; i < 1000; ++i)
