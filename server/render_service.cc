@@ -13,6 +13,7 @@
 #include "log_text.h"
 #include "region_plan_request.h"
 #include "render/frame_renderer.h"
+#include "rpc_calls.h"
 #include "scene_id.h"
 #include "scene_request.h"
 #include "status_mapping.h"
@@ -53,7 +54,6 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
                              SceneStore& scenes, AdmissionControl& admission,
                              tbb::task_arena& arena, const AuthTokens* auth)
     : limits_(limits),
-      auth_(auth),
       textures_(textures),
       scenes_(scenes),
       admission_(admission),
@@ -62,122 +62,93 @@ RenderService::RenderService(const ServiceLimits& limits, TextureStore& textures
       uploads_in_flight_("uploads in flight (--max-upload-inflight-mb)",
                          limits.max_upload_inflight_bytes),
       upload_watchdog_(limits.upload_idle),
-      refusals_([](const std::string& line) { spdlog::info("{}", line); }),
-      auth_refusals_([](const std::string& line) { spdlog::warn("{}", line); }) {
-  refusals_.StartFlushing();
-  auth_refusals_.StartFlushing();
-}
-
-void RenderService::LogAnswer(const absl::Status& status, absl::string_view thing,
-                              std::string line) {
-  if (auto kind = RefusalKind(status); kind && absl::IsResourceExhausted(status)) {
-    // A client that retries at once must not get a line per attempt. (A frame that worked and
-    // then passed its memory budget is logged as every frame is.)
-    refusals_.Refused(*kind, thing, std::move(line));
-    return;
-  }
-  spdlog::info("{}", line);
-}
-
-absl::Status RenderService::Authorize(const grpc::ServerContext& context, const char* rpc) {
-  if (auth_ == nullptr) return absl::OkStatus();
-  absl::Status status = auth_->Check(context);
-  if (!status.ok())
-    auth_refusals_.Refused("unauthenticated", "call",
-                           fmt::format("rpc={} peer={} status=UNAUTHENTICATED error='{}'", rpc,
-                                       context.peer(), LogText(status.message())));
-  return status;
-}
+      calls_(auth) {}
 
 grpc::Status RenderService::HasTexture(grpc::ServerContext* context,
                                        const v1::HasTextureRequest* request,
                                        v1::HasTextureResponse* response) {
-  if (absl::Status auth = Authorize(*context, "HasTexture"); !auth.ok()) return ToGrpcStatus(auth);
-  if (!IsSha256Hex(request->sha256()))
-    return ToGrpcStatus(absl::InvalidArgumentError("sha256 must be 64 lowercase hex digits"));
-  response->set_stored(textures_.Has(request->sha256()));
-  return grpc::Status::OK;
+  return calls_.Quiet(context, "HasTexture", [&]() -> absl::Status {
+    if (!IsSha256Hex(request->sha256()))
+      return absl::InvalidArgumentError("sha256 must be 64 lowercase hex digits");
+    response->set_stored(textures_.Has(request->sha256()));
+    return absl::OkStatus();
+  });
 }
 
 grpc::Status RenderService::UploadTexture(grpc::ServerContext* context,
                                           grpc::ServerReader<v1::UploadTextureRequest>* reader,
                                           v1::UploadTextureResponse* response) {
-  if (absl::Status auth = Authorize(*context, "UploadTexture"); !auth.ok())
-    return ToGrpcStatus(auth);
-  const uint64_t id = next_request_id_++;
-  const auto start = Clock::now();
-  auto finish = [&](const absl::Status& status, const std::string& sha256, bool skipped) {
-    LogAnswer(status, "upload",
-              fmt::format("req={} rpc=UploadTexture peer={} sha256={} bytes={} skipped={} "
-                          "ms={:.2f} status={}{}",
-                          id, context->peer(), LogText(Short(sha256)), response->size(), skipped,
-                          MillisecondsSince(start), absl::StatusCodeToString(status.code()),
-                          ErrorText(status)));
-    return ToGrpcStatus(status);
-  };
+  return calls_.Logged(context, "UploadTexture", "upload", [&](RpcCall& call) {
+    std::string sha256;
+    bool skipped = false;
+    const absl::Status status = Upload(context, reader, response, sha256, skipped);
+    call.fields = fmt::format("sha256={} bytes={} skipped={} ms={:.2f}", LogText(Short(sha256)),
+                              response->size(), skipped, call.Milliseconds());
+    return status;
+  });
+}
+
+absl::Status RenderService::Upload(grpc::ServerContext* context,
+                                   grpc::ServerReader<v1::UploadTextureRequest>* reader,
+                                   v1::UploadTextureResponse* response, std::string& sha256,
+                                   bool& skipped) {
   v1::UploadTextureRequest message;
-  if (!reader->Read(&message))
-    return finish(absl::InvalidArgumentError("upload stream has no message"), "", false);
-  const std::string sha256 = message.sha256();
+  if (!reader->Read(&message)) return absl::InvalidArgumentError("upload stream has no message");
+  sha256 = message.sha256();
   if (!IsSha256Hex(sha256))
-    return finish(absl::InvalidArgumentError("sha256 (first message) must be 64 lowercase hex "
-                                             "digits"),
-                  sha256, false);
+    return absl::InvalidArgumentError("sha256 (first message) must be 64 lowercase hex digits");
   if (message.total_size() > limits_.max_texture_bytes)
-    return finish(absl::InvalidArgumentError(absl::StrCat(
-                      "total_size ", message.total_size(), " exceeds the server's limit of ",
-                      limits_.max_texture_bytes, " bytes (--max-texture-mb)")),
-                  sha256, false);
+    return absl::InvalidArgumentError(
+        absl::StrCat("total_size ", message.total_size(), " exceeds the server's limit of ",
+                     limits_.max_texture_bytes, " bytes (--max-texture-mb)"));
   response->set_sha256(sha256);
   if (textures_.Has(sha256)) {
     response->set_already_stored(true);
     response->set_size(message.total_size());
-    return finish(absl::OkStatus(), sha256, true);
+    skipped = true;
+    return absl::OkStatus();
   }
   const uint64_t total = message.total_size();
   // The announced bytes are reserved before they are allocated, and held while they stream.
   auto reservation = uploads_in_flight_.Reserve(total);
-  if (!reservation.ok()) return finish(reservation.status(), sha256, false);
+  if (!reservation.ok()) return reservation.status();
   std::unique_ptr<IdleWatchdog::Watch> watch = upload_watchdog_.Start(context);
   std::string content;
   content.reserve(total);
   do {
     watch->Touch();
     if (message.chunk().size() > kMaxChunkBytes)
-      return finish(absl::InvalidArgumentError(
-                        absl::StrCat("chunk of ", message.chunk().size(), " bytes exceeds 1 MiB")),
-                    sha256, false);
+      return absl::InvalidArgumentError(
+          absl::StrCat("chunk of ", message.chunk().size(), " bytes exceeds 1 MiB"));
     if (content.size() + message.chunk().size() > total)
-      return finish(
-          absl::InvalidArgumentError(absl::StrCat("chunk: more bytes than total_size ", total)),
-          sha256, false);
+      return absl::InvalidArgumentError(absl::StrCat("chunk: more bytes than total_size ", total));
     content += message.chunk();
   } while (reader->Read(&message));
   const bool idle = watch->Expired();
   watch.reset();  // what follows (checks, the store) is the server's time, not the client's
   if (idle)
-    return finish(absl::DeadlineExceededError(absl::StrCat(
-                      "upload idle for ", upload_watchdog_.idle_limit().count() / 1000.0,
-                      " s after ", content.size(), " of ", total,
-                      " bytes; cancelled and its bytes freed (--upload-idle-s)")),
-                  sha256, false);
+    return absl::DeadlineExceededError(absl::StrCat(
+        "upload idle for ", upload_watchdog_.idle_limit().count() / 1000.0, " s after ",
+        content.size(), " of ", total, " bytes; cancelled and its bytes freed (--upload-idle-s)"));
   if (content.size() != total || content.empty())
-    return finish(absl::InvalidArgumentError(absl::StrCat("total_size: announced ", total,
-                                                          " bytes, received ", content.size())),
-                  sha256, false);
+    return absl::InvalidArgumentError(
+        absl::StrCat("total_size: announced ", total, " bytes, received ", content.size()));
   response->set_size(content.size());
-  return finish(textures_.Put(sha256, std::move(content)), sha256, false);
+  return textures_.Put(sha256, std::move(content));
 }
 
 grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
                                       const v1::LoadSceneRequest* request,
                                       v1::LoadSceneResponse* response) {
-  if (absl::Status auth = Authorize(*context, "LoadScene"); !auth.ok()) return ToGrpcStatus(auth);
-  const uint64_t id = next_request_id_++;
-  const auto start = Clock::now();
+  return calls_.Logged(context, "LoadScene", "scene load",
+                       [&](RpcCall& call) { return Load(context, *request, response, call); });
+}
+
+absl::Status RenderService::Load(grpc::ServerContext* context, const v1::LoadSceneRequest& request,
+                                 v1::LoadSceneResponse* response, RpcCall& call) {
   // A request loaded before (a built-in scene by name, a farm job's scene per frame) is answered
   // from the scene store: the same request bytes are the same scene.
-  const std::string scene_id = SceneRequestId(*request);
+  const std::string scene_id = SceneRequestId(request);
   StopCheck stop(context);  // the call's deadline and cancellation, asked while building
   absl::StatusOr<LoadedScene> loaded;
   LoadedScene cached{scene_id, nullptr, std::nullopt};
@@ -199,7 +170,7 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
   };
   if (!reused)
     loaded = BuildSceneFromRequest(
-        *request, textures_, limits_.scene, [&] { return stop(); }, admit);
+        request, textures_, limits_.scene, [&] { return stop(); }, admit);
   if (absl::IsCancelled(loaded.status()) && stop.DeadlinePassed())
     loaded = absl::DeadlineExceededError(
         "the call's deadline passed while the scene was built; nothing was kept");
@@ -209,7 +180,7 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
     response->set_scene_id(loaded->id);
     response->set_polygons(static_cast<uint32_t>(loaded->scene->polygons.size()));
     response->set_textures(static_cast<uint32_t>(loaded->scene->textures.size()));
-    response->set_build_ms(MillisecondsSince(start));
+    response->set_build_ms(call.Milliseconds());
     if (loaded->default_camera) *response->mutable_default_camera() = *loaded->default_camera;
     for (const SceneObject& object : loaded->scene->objects) {
       v1::NamedObject& named = *response->add_objects();
@@ -218,16 +189,13 @@ grpc::Status RenderService::LoadScene(grpc::ServerContext* context,
       named.set_hidden(!object.visible);
     }
   }
-  LogAnswer(
-      loaded.status(), "scene load",
-      fmt::format("req={} rpc=LoadScene peer={} scene={}{} name='{}' ms={:.2f} status={}{}", id,
-                  context->peer(), loaded.ok() ? Short(loaded->id) : "-",
+  call.fields =
+      fmt::format("scene={}{} name='{}' ms={:.2f}", loaded.ok() ? Short(loaded->id) : "-",
                   reused ? " (loaded before)" : "",
-                  LogText(request->builtin_scene().empty() ? request->scene().name()
-                                                           : "builtin:" + request->builtin_scene()),
-                  MillisecondsSince(start), absl::StatusCodeToString(loaded.status().code()),
-                  ErrorText(loaded.status())));
-  return ToGrpcStatus(loaded.status());
+                  LogText(request.builtin_scene().empty() ? request.scene().name()
+                                                          : "builtin:" + request.builtin_scene()),
+                  call.Milliseconds());
+  return loaded.status();
 }
 
 absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* context,
@@ -346,32 +314,33 @@ absl::Status RenderService::RenderOne(grpc::ServerContext* context,
 grpc::Status RenderService::RenderFrame(grpc::ServerContext* context,
                                         const v1::RenderFrameRequest* request,
                                         v1::RenderFrameResponse* response) {
-  if (absl::Status auth = Authorize(*context, "RenderFrame"); !auth.ok()) return ToGrpcStatus(auth);
-  const uint64_t id = next_request_id_++;
-  const auto start = Clock::now();
-  absl::Status status = RenderOne(context, *request, response);
-  (status.ok() ? frames_rendered_ : frames_failed_)++;
-  const v1::FrameTimings& t = response->timings();
-  LogAnswer(status, "frame",
-            fmt::format("req={} rpc=RenderFrame peer={} scene={} size={}x{} mode={} "
-                        "queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} encode_ms={:.2f} "
-                        "total_ms={:.2f} bytes={} status={}{}",
-                        id, context->peer(), LogText(Short(request->scene_id())),
-                        request->options().width(), request->options().height(),
-                        ModeName(request->options()), t.queue_ms(), t.setup_ms(), t.raster_ms(),
-                        t.encode_ms(), MillisecondsSince(start), response->exr().size(),
-                        absl::StatusCodeToString(status.code()), ErrorText(status)));
-  if (!status.ok()) response->Clear();
-  return ToGrpcStatus(status);
+  return calls_.Logged(context, "RenderFrame", "frame", [&](RpcCall& call) {
+    const absl::Status status = RenderOne(context, *request, response);
+    (status.ok() ? frames_rendered_ : frames_failed_)++;
+    const v1::FrameTimings& t = response->timings();
+    call.fields = fmt::format(
+        "scene={} size={}x{} mode={} queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} "
+        "encode_ms={:.2f} total_ms={:.2f} bytes={}",
+        LogText(Short(request->scene_id())), request->options().width(),
+        request->options().height(), ModeName(request->options()), t.queue_ms(), t.setup_ms(),
+        t.raster_ms(), t.encode_ms(), call.Milliseconds(), response->exr().size());
+    if (!status.ok()) response->Clear();
+    return status;
+  });
 }
 
 grpc::Status RenderService::RenderStream(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream) {
-  if (absl::Status auth = Authorize(*context, "RenderStream"); !auth.ok())
-    return ToGrpcStatus(auth);
-  const uint64_t id = next_request_id_++;
-  const auto stream_start = Clock::now();
+  return calls_.Logged(context, "RenderStream", "stream",
+                       [&](RpcCall& call) { return Stream(context, stream, call); });
+}
+
+absl::Status RenderService::Stream(
+    grpc::ServerContext* context,
+    grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream,
+    RpcCall& call) {
+  const uint64_t id = call.id;
   // The stream's scene state: updates apply from their frame on, for this stream only. It holds
   // the stream's scene from its first request on, so the scene store does not drop it.
   LiveScene live(scenes_);
@@ -395,58 +364,56 @@ grpc::Status RenderService::RenderStream(
       return;
     }
     (answer.status.ok() ? frames_rendered_ : frames_failed_)++;
-    LogAnswer(answer.status, "frame",
-              fmt::format(
-                  "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} "
-                  "update_ms={:.3f} queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} "
-                  "encode_ms={:.2f} total_ms={:.2f} bytes={} status={}{}",
-                  id, answer.frame_index, LogText(Short(request.scene_id)), request.width,
-                  request.height, request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster",
-                  t.update_ms(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
-                  MillisecondsSince(answer.received), response.exr().size(),
-                  absl::StatusCodeToString(answer.status.code()), ErrorText(answer.status)));
+    calls_.Log(answer.status, "frame",
+               fmt::format(
+                   "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} "
+                   "update_ms={:.3f} queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} "
+                   "encode_ms={:.2f} total_ms={:.2f} bytes={} status={}{}",
+                   id, answer.frame_index, LogText(Short(request.scene_id)), request.width,
+                   request.height, request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster",
+                   t.update_ms(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
+                   MillisecondsSince(answer.received), response.exr().size(),
+                   absl::StatusCodeToString(answer.status.code()), ErrorText(answer.status)));
   };
   const LiveStreamCounts counts = LiveStream(context, stream, check, render, answered).Run();
   // What the stream's threads allocated (requests, answers, frames) glibc keeps in its arenas
   // after they are freed, as the trim threshold is raised to keep frame buffers warm: given back
   // here, the server's RSS returns to within a few MB of where it was (about 1 ms).
   malloc_trim(0);
-  const bool cancelled = context->IsCancelled();
-  spdlog::info(
-      "req={} rpc=RenderStream peer={} frames={} rendered={} skipped={} failed={} ms={:.2f} "
-      "status={}",
-      id, context->peer(), counts.frames, counts.rendered, counts.skipped, counts.failed,
-      MillisecondsSince(stream_start), cancelled ? "CANCELLED" : "OK");
-  return cancelled ? grpc::Status::CANCELLED : grpc::Status::OK;
+  call.fields = fmt::format("frames={} rendered={} skipped={} failed={} ms={:.2f}", counts.frames,
+                            counts.rendered, counts.skipped, counts.failed, call.Milliseconds());
+  return context->IsCancelled() ? absl::CancelledError() : absl::OkStatus();
 }
 
 grpc::Status RenderService::PlanRegions(grpc::ServerContext* context,
                                         const v1::PlanRegionsRequest* request,
                                         v1::PlanRegionsResponse* response) {
-  if (absl::Status auth = Authorize(*context, "PlanRegions"); !auth.ok()) return ToGrpcStatus(auth);
-  const uint64_t id = next_request_id_++;
-  const auto start = Clock::now();
-  absl::Status status = CheckSceneId(request->scene_id());
-  if (status.ok()) {
-    std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
-    status = scene ? PlanRegionsForRequest(*scene, *request, limits_.max_pixels, response)
-                   : absl::NotFoundError(absl::StrCat("scene_id '", request->scene_id(),
-                                                      "' is not loaded (LoadScene first)"));
-  }
-  spdlog::info(
-      "req={} rpc=PlanRegions peer={} scene={} size={}x{} regions={} ms={:.2f} status={}{}", id,
-      context->peer(), LogText(Short(request->scene_id())), request->options().width(),
-      request->options().height(), request->regions(), MillisecondsSince(start),
-      absl::StatusCodeToString(status.code()), ErrorText(status));
-  if (!status.ok()) response->Clear();
-  return ToGrpcStatus(status);
+  return calls_.Logged(context, "PlanRegions", "plan", [&](RpcCall& call) {
+    absl::Status status = CheckSceneId(request->scene_id());
+    if (status.ok()) {
+      std::shared_ptr<const Scene> scene = scenes_.Find(request->scene_id());
+      status = scene ? PlanRegionsForRequest(*scene, *request, limits_.max_pixels, response)
+                     : absl::NotFoundError(absl::StrCat("scene_id '", request->scene_id(),
+                                                        "' is not loaded (LoadScene first)"));
+    }
+    call.fields = fmt::format("scene={} size={}x{} regions={} ms={:.2f}",
+                              LogText(Short(request->scene_id())), request->options().width(),
+                              request->options().height(), request->regions(), call.Milliseconds());
+    if (!status.ok()) response->Clear();
+    return status;
+  });
 }
 
 grpc::Status RenderService::GetServerInfo(grpc::ServerContext* context,
                                           const v1::GetServerInfoRequest*,
                                           v1::GetServerInfoResponse* response) {
-  if (absl::Status auth = Authorize(*context, "GetServerInfo"); !auth.ok())
-    return ToGrpcStatus(auth);
+  return calls_.Quiet(context, "GetServerInfo", [&] {
+    ServerInfo(response);
+    return absl::OkStatus();
+  });
+}
+
+void RenderService::ServerInfo(v1::GetServerInfoResponse* response) const {
   response->set_version(APERTURE_VERSION);  // CMake's project version
   response->set_threads(static_cast<uint32_t>(limits_.threads));
   response->set_max_queue(static_cast<uint32_t>(limits_.max_queue));
@@ -479,7 +446,6 @@ grpc::Status RenderService::GetServerInfo(grpc::ServerContext* context,
     info.set_entries_built(counters.built);
     info.set_entries_rejected(counters.rejected);
   }
-  return grpc::Status::OK;
 }
 
 }  // namespace aperture

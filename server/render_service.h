@@ -1,6 +1,6 @@
-// The aperture.v1.Render service: validates each request, hands it to the engine, maps the
-// engine's absl::Status to a gRPC status, and logs one line per request; refused requests
-// (RESOURCE_EXHAUSTED, UNAUTHENTICATED) at most a line a second per kind of refusal, with counts.
+// The aperture.v1.Render service: validates each request, hands it to the engine and answers with
+// the engine's status. What every call does around that (the token check, the request id, the
+// log line, refusals at most a line a second per kind) is rpc_calls.h's.
 #pragma once
 
 #include <tbb/task_arena.h>
@@ -17,6 +17,7 @@
 #include "live_scene.h"
 #include "live_stream.h"
 #include "refusal_log.h"
+#include "rpc_calls.h"
 #include "scene/scene_builder.h"
 #include "scene_store.h"
 #include "texture_store.h"
@@ -75,28 +76,31 @@ class RenderService final : public v1::Render::Service {
   absl::Status RenderOne(grpc::ServerContext* context, const v1::RenderFrameRequest& request,
                          v1::RenderFrameResponse* response);
 
-  // OK, or UNAUTHENTICATED (logged with the peer, never the token) when tokens are required.
-  absl::Status Authorize(const grpc::ServerContext& context, const char* rpc);
-  // A request's log line: a refusal (RESOURCE_EXHAUSTED) of a `thing` ("frame") goes to the
-  // refusal log, counted by its kind; anything else is written at once.
-  void LogAnswer(const absl::Status& status, absl::string_view thing, std::string line);
+  // The calls' own work, each filling its response and the fields of its log line.
+  absl::Status Upload(grpc::ServerContext* context,
+                      grpc::ServerReader<v1::UploadTextureRequest>* reader,
+                      v1::UploadTextureResponse* response, std::string& sha256, bool& skipped);
+  absl::Status Load(grpc::ServerContext* context, const v1::LoadSceneRequest& request,
+                    v1::LoadSceneResponse* response, RpcCall& call);
+  absl::Status Stream(
+      grpc::ServerContext* context,
+      grpc::ServerReaderWriter<v1::RenderFrameResponse, v1::RenderFrameRequest>* stream,
+      RpcCall& call);
+  void ServerInfo(v1::GetServerInfoResponse* response) const;
 
   const ServiceLimits limits_;
-  const AuthTokens* const auth_;
   TextureStore& textures_;
   SceneStore& scenes_;
   AdmissionControl& admission_;
   tbb::task_arena& arena_;
   const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-  std::atomic<uint64_t> next_request_id_{1};
   std::atomic<uint64_t> frames_rendered_{0}, frames_failed_{0}, frames_skipped_{0};
   // Raytraced scenes' BVH and tables (about 100 MB per 1024² raster texture): the last few.
   static constexpr size_t kTracedScenes = 4;
   TracedSceneCache traced_;
   ByteBudget uploads_in_flight_;
   IdleWatchdog upload_watchdog_;
-  RefusalLog refusals_;       // RESOURCE_EXHAUSTED, at info level
-  RefusalLog auth_refusals_;  // UNAUTHENTICATED, at warn level
+  RpcCalls calls_;
 };
 
 }  // namespace aperture
