@@ -11,7 +11,7 @@
 #     scripts/bench-peers.sh                       # ... on the photos of ../shared/data/raster too
 #   FILTER_YAWS=0,15,30,45,60,90 FILTER_PITCH=3,5,12,20,60 POSITIONS=4 PLANES= TRIS= \
 #     scripts/bench-peers.sh                       # ... every pitch, four camera positions pooled
-#                                                  # (references cached with bench-filter's, CACHE)
+#                                                  # (references cached with aperture-bench filter's, CACHE)
 #   FLICKER_FRAMES=120 PLANES= TRIS= scripts/bench-peers.sh              # flicker with llvmpipe (issue 22)
 #   MEMORY=100000,1000000 PLANES= TRIS= scripts/bench-peers.sh          # peak memory of a frame
 #

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""PSNR of each image row against a reference, drawn like bench-filter's _rows.png.
+"""PSNR of each image row against a reference, drawn like aperture-bench filter's _rows.png.
 
-Scores images of one view (for example the EXRs that `aperture-tex bench-filter` writes, from
+Scores images of one view (for example the EXRs that `aperture-bench filter` writes, from
 two builds) against one reference, row by row: the PSNR of the mean squared error over the row's
 R, G and B, capped at 60 dB. Draws an 800 x 300 PNG, one line per image in the colour given,
 rows from --first-row (left) to the bottom (right), grid every 10 dB from 0 to 60. Prints each

@@ -1,4 +1,4 @@
-// The measurements behind `aperture-tex bench-packed` (seed 001, section 2.6, table 4): stored
+// The measurements behind `aperture-bench packed` (seed 001, section 2.6, table 4): stored
 // sizes and mean time per random texel access of the raw bitmap, the paper's binary search, the
 // indexed search (run_index.h), one texel at a time and in batches, and the incomplete quadtree
 // (one at a time and in lockstep batches), all on the same random points.

@@ -27,7 +27,7 @@ struct GrazingPlaneView {
   // under it): 0 looks along the texture's v axis (issue 22's yaw sweep).
   double yaw_deg = 0;
   // The texture coordinates (repeats) of the ground under the camera: moving the camera over the
-  // plane (bench-flicker's fly-over) moves them.
+  // plane (aperture-bench flicker's fly-over) moves them.
   double origin_u = 0, origin_v = 0;
 };
 
@@ -56,14 +56,14 @@ double NanosecondsPerSample(const GrazingPlaneView& view, const TextureSampler& 
 Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, double density,
                             int max_per_side, int min_per_side = 2);
 // Moves the camera `world_units` forward along its heading (the turned view axis, on the ground):
-// the view's texture origin moves with it (bench-flicker's fly-over).
+// the view's texture origin moves with it (aperture-bench flicker's fly-over).
 void MoveForward(GrazingPlaneView* view, double world_units);
 // The view with the camera moved over the plane to position k (k = 0: the view itself). For
 // textures of 1024 texels the first 2^m positions meet the checkerboard's 128-texel cells at
 // 2^m evenly spread phases along U and along V alike, lie in different cells of the repeat, and
 // spread their phases within a texel (the .cc says how). Looking along a texture axis, every
 // pixel row meets the texels and the checkerboard's edges at one phase, so one position scores
-// one phase: bench-filter --positions pools several.
+// one phase: aperture-bench filter --positions pools several.
 GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k);
 // The spread of one view's PSNR across yaws (issue 22's bar on aniso): the highest minus the
 // lowest, and the yaw of the lowest (the first where two tie). Empty or unequal spans: spread 0,
@@ -80,7 +80,7 @@ double Psnr(const Image& a, const Image& b, int first_row);
 double PooledPsnr(std::span<const double> psnrs);
 // Mean over rows [first_row, height) and RGB of |a - a_prev|, or with a reference sequence
 // (r, r_prev not null) of |(a - a_prev) - (r - r_prev)|: the change between two frames a filter
-// makes beyond the reference's (bench-flicker's excess flicker).
+// makes beyond the reference's (aperture-bench flicker's excess flicker).
 double MeanAbsoluteChange(const Image& a, const Image& a_prev, const Image* r, const Image* r_prev,
                           int first_row);
 // PSNR of each row (RGB, peak 1); rows before `first_row` are NaN.

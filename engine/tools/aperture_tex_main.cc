@@ -1,4 +1,4 @@
-// aperture-tex: texture tools (prefiltered tables, packed vector textures, benchmarks).
+// aperture-tex: texture tools (prefiltered tables, packed vector textures, the shared store).
 #include <spdlog/cfg/env.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -15,7 +15,6 @@ namespace {
 
 std::vector<TexCommand> AllCommands() {
   std::vector<TexCommand> all = PrefilteredTableCommands();
-  for (const TexCommand& c : FilterFlickerCommands()) all.push_back(c);
   for (const TexCommand& c : PackedTextureCommands()) all.push_back(c);
   for (const TexCommand& c : StoreCommands()) all.push_back(c);
   return all;

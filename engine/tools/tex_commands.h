@@ -1,4 +1,5 @@
-// Subcommands of `aperture-tex`. Each texture family registers its own in its own file.
+// Subcommands of `aperture-tex`. Each texture family registers its own in its own file. The
+// benchmarks are aperture-bench's (tests/bench/), not installed.
 #pragma once
 
 #include <vector>
@@ -11,11 +12,9 @@ struct TexCommand {
   int (*run)(int argc, char** argv);  // argv[0] is the subcommand name; returns the exit code
 };
 
-// Prefiltered anisotropic tables (seed 000): prefilter, info, bench-filter.
+// Prefiltered anisotropic tables (seed 000): prefilter, info.
 std::vector<TexCommand> PrefilteredTableCommands();
-// The filters' temporal stability benchmark: bench-flicker.
-std::vector<TexCommand> FilterFlickerCommands();
-// Packed vector textures (seed 001): pack, unpack, info, bench-packed.
+// Packed vector textures (seed 001): pack, unpack, info.
 std::vector<TexCommand> PackedTextureCommands();
 // The machine's shared texture store: bake, store.
 std::vector<TexCommand> StoreCommands();

@@ -1,5 +1,4 @@
-// aperture-tex subcommands for packed vector textures (seed 001): pack, unpack, info,
-// bench-packed.
+// aperture-tex subcommands for packed vector textures (seed 001): pack, unpack, info.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -8,7 +7,6 @@
 #include <vector>
 
 #include "absl/status/status.h"
-#include "testing/access_benchmark.h"
 #include "texture/packed/apv_file.h"
 #include "texture/packed/packed_texture.h"
 #include "texture/packed/palette.h"
@@ -149,86 +147,6 @@ int RunInfo(int argc, char** argv) {
   return 0;
 }
 
-constexpr char kBenchUsage[] = "bench-packed FILE... [--accesses N] [--rounds R] [--seed S]";
-
-int RunBench(int argc, char** argv) {
-  if (WantsHelp(argc, argv, kBenchUsage,
-                "For each palette image: bytes as raw 1-byte texels, PNG, .apv (Hilbert, Morton)\n"
-                "and incomplete quadtree; mean ns per random texel access for the raw bitmap,\n"
-                "binary search, indexed search and quadtree on the same random points\n"
-                "(default 10,000,000 accesses per method and round, 3 rounds, the fastest round\n"
-                "of each method reported; this thread's CPU time)."))
-    return 0;
-  std::vector<std::string> files;
-  size_t accesses = 10'000'000;
-  uint64_t seed = 1, rounds = 3;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--accesses" || a == "--seed" || a == "--rounds") {
-      if (i + 1 >= argc) return UsageError("bench-packed", kBenchUsage, a + " needs a value");
-      char* end = nullptr;
-      const unsigned long long value = std::strtoull(argv[++i], &end, 10);
-      if (end == argv[i] || *end != '\0')
-        return UsageError("bench-packed", kBenchUsage, a + " needs a whole number");
-      (a == "--seed" ? seed : a == "--rounds" ? rounds : accesses) = value;
-    } else if (!a.empty() && a[0] == '-') {
-      return UsageError("bench-packed", kBenchUsage, "unknown option " + a);
-    } else {
-      files.push_back(a);
-    }
-  }
-  if (files.empty() || accesses == 0 || rounds == 0 || rounds > 100)
-    return UsageError("bench-packed", kBenchUsage,
-                      "needs at least one file, accesses > 0 and rounds 1..100");
-  for (const std::string& file : files) {
-    auto r = BenchPackedFile(file, accesses, seed, static_cast<int>(rounds));
-    if (!r.ok()) return Fail("bench-packed", r.status());
-    std::printf("%s: %u x %u, %zu colours\n", file.c_str(), r->width, r->height, r->palette_size);
-    std::printf(
-        "  bytes  raw %llu | PNG %llu | .apv Hilbert %llu (%zu runs) | .apv Morton %llu "
-        "(%zu runs) | quadtree %llu (%zu nodes, %zu leaves)\n",
-        (unsigned long long)r->raw_bytes, (unsigned long long)r->png_bytes,
-        (unsigned long long)r->apv_hilbert_bytes, r->runs_hilbert,
-        (unsigned long long)r->apv_morton_bytes, r->runs_morton,
-        (unsigned long long)r->quadtree_bytes, r->quadtree_nodes, r->quadtree_leaves);
-    std::printf("  memory Hilbert runs %llu + index %llu bytes; pack %.3f s\n",
-                (unsigned long long)r->memory_hilbert_bytes, (unsigned long long)r->index_bytes,
-                r->pack_seconds);
-    std::printf("  quadtree / .apv Hilbert = %.2fx\n",
-                double(r->quadtree_bytes) / double(r->apv_hilbert_bytes));
-    // The quadtree's figure is its faster reader (one texel at a time or in lockstep batches).
-    auto ns_of = [&](const std::string& method) {
-      for (const AccessTiming& t : r->timings)
-        if (t.method == method) return t.ns_per_access;
-      return 0.0;
-    };
-    const double quadtree_ns = std::min(ns_of("quadtree"), ns_of("quadtree batch"));
-    const double raw_ns = ns_of("raw bitmap");
-    std::printf(
-        "  random access, %zu points per method and round, fastest of %d rounds\n"
-        "  (ns per access | fastest quadtree time / this | this / raw bitmap time):\n",
-        r->accesses, static_cast<int>(rounds));
-    for (const AccessTiming& t : r->timings)
-      std::printf("    %-26s %8.1f ns   %5.2fx   %5.2fx\n", t.method.c_str(), t.ns_per_access,
-                  quadtree_ns / t.ns_per_access, t.ns_per_access / raw_ns);
-    const double indexed_ns = ns_of("indexed search, Hilbert");
-    const double batch_ns = ns_of("indexed batch, Hilbert");
-    std::printf(
-        "  issue 4 bars: .apv %.2fx smaller than the quadtree (>= 3) | indexed %.2fx faster than "
-        "the quadtree in batches, %.2fx one at a time (>= 6) | indexed %.2fx the raw bitmap's "
-        "time (<= 2)\n",
-        double(r->quadtree_bytes) / double(r->apv_hilbert_bytes), quadtree_ns / batch_ns,
-        quadtree_ns / indexed_ns, indexed_ns / raw_ns);
-    std::printf(
-        "  area integral, %zu rectangles of 1..16 x 1..16 texels, fractional edges:\n"
-        "    packed (Hilbert) %.1f ns | weighted sum over the raw bitmap %.1f ns | "
-        "max relative difference %.1e\n",
-        r->area_queries, r->area_ns_packed, r->area_ns_bitmap, r->area_max_relative_difference);
-    std::fflush(stdout);
-  }
-  return 0;
-}
-
 }  // namespace
 
 std::vector<TexCommand> PackedTextureCommands() {
@@ -236,7 +154,6 @@ std::vector<TexCommand> PackedTextureCommands() {
       {"pack", "pack a palette image into a packed vector texture (.apv)", RunPack},
       {"unpack", "unpack an .apv file into an image", RunUnpack},
       {"info", "describe a texture file (.apv)", RunInfo},
-      {"bench-packed", "sizes and random-access times: raw, PNG, .apv, quadtree", RunBench},
   };
 }
 

@@ -6,13 +6,15 @@
 //   plane-T  DESIGN.md's grazing plane pitched down T degrees, 1024^2 checkerboard of 8 x 8
 //            cells repeated every 4 m: llvmpipe trilinear against Aperture trilinear and aniso.
 //
-//   filter   with --filter_yaws: bench-filter's plane at each --filter_pitch (default 5) turned
+//   filter   with --filter_yaws: aperture-bench filter's plane at each --filter_pitch (default 5)
+//   turned
 //            by each yaw, from --positions camera positions (default 1), on each of
-//            --filter_textures (the checkerboard, or images by name in --data, as bench-filter
-//            loads them), llvmpipe trilinear and anisotropic 16 against Aperture's filters and
-//            OpenImageIO (its defaults, and anisotropic 16 with bilinear texels), PSNR against
+//            --filter_textures (the checkerboard, or images by name in --data, as aperture-bench
+//            filter loads them), llvmpipe trilinear and anisotropic 16 against Aperture's filters
+//            and OpenImageIO (its defaults, and anisotropic 16 with bilinear texels), PSNR against
 //            the box.
-//   flicker  with --flicker_frames N: bench-flicker's turning fly-over with llvmpipe in the run
+//   flicker  with --flicker_frames N: aperture-bench flicker's turning fly-over with llvmpipe in
+//   the run
 //            (the first of --filter_textures).
 //   memory   with --memory N,N,...: the peak resident memory of a tris-N frame, llvmpipe 4x MSAA
 //            and Aperture box2, each in a child process of its own holding its input as it
@@ -47,6 +49,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "bench/bench_inputs.h"
 #include "large_buffers.h"
 #include "raster/projection.h"
 #include "render/frame_renderer.h"
@@ -59,7 +62,6 @@
 #include "texture/mip_pyramid.h"
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table_builder.h"
-#include "tools/tex_bench_args.h"
 
 namespace aperture {
 namespace {
@@ -191,9 +193,10 @@ struct Options {
   int psnr_pixels = 3000;
   std::vector<double> filter_yaws;  // empty: no filter-quality table
   std::vector<double> filter_pitches = {5};
-  int positions = 1;                                 // bench-filter's --positions
-  std::string cache_dir = "out/bench-filter/cache";  // bench-filter's default reference cache
-  int flicker_frames = 0;                            // 0: no flicker table
+  int positions = 1;  // aperture-bench filter's --positions
+  std::string cache_dir =
+      "out/bench-filter/cache";  // aperture-bench filter's default reference cache
+  int flicker_frames = 0;        // 0: no flicker table
   std::string filter_textures = "checker";
   std::string data_dir = "../shared/data/raster";
   std::vector<int> memory;  // tris-N counts for the memory table
@@ -503,10 +506,10 @@ void RunPlane(Peer& peer, double pitch_deg, const Options& o) {
   std::fflush(stdout);
 }
 
-// A texture of the filter benchmarks (bench-filter's: the checkerboard, 1024^2 of 8 x 8 cells, or
-// a photo) as llvmpipe's texture with its mip-maps and as Aperture's and OpenImageIO's samplers;
-// and the grazing plane drawn through llvmpipe exactly as a GrazingPlaneView sees it (u = x / 4,
-// v = z / 4 turned by the yaw, plus the view's texture origin).
+// A texture of the filter benchmarks (aperture-bench filter's: the checkerboard, 1024^2 of 8 x 8
+// cells, or a photo) as llvmpipe's texture with its mip-maps and as Aperture's and OpenImageIO's
+// samplers; and the grazing plane drawn through llvmpipe exactly as a GrazingPlaneView sees it (u =
+// x / 4, v = z / 4 turned by the yaw, plus the view's texture origin).
 class FilterPeers {
  public:
   FilterPeers(Peer& peer, const BenchTexture& texture)
@@ -603,14 +606,15 @@ class FilterPeers {
   std::vector<double> edges_;
 };
 
-// bench-filter's plane (1024 x 768, a = 1) at each of --filter_pitch from each of --filter_yaws:
-// llvmpipe's trilinear and anisotropic 16 against Aperture's trilinear and aniso and OpenImageIO
-// (defaults, and anisotropic 16 bilinear), every image scored against the same supersampled
-// pixel box (at least 16 x 16 strata a pixel, 4 per texel of extent per side: bench-filter's
-// `--ref-min 16 --ref-density 4`, whose reference cache this shares) over the rows bench-filter
-// measures (issue 22, part 1). With --positions P each view is scored from bench-filter's P
-// camera positions and the squared errors pooled. llvmpipe has no aperture to widen, so this is
-// the pixel box (a = 1) only; bench-filter scores OpenImageIO at a = 2.
+// aperture-bench filter's plane (1024 x 768, a = 1) at each of --filter_pitch from each of
+// --filter_yaws: llvmpipe's trilinear and anisotropic 16 against Aperture's trilinear and aniso and
+// OpenImageIO (defaults, and anisotropic 16 bilinear), every image scored against the same
+// supersampled pixel box (at least 16 x 16 strata a pixel, 4 per texel of extent per side:
+// aperture-bench filter's
+// `--ref-min 16 --ref-density 4`, whose reference cache this shares) over the rows aperture-bench
+// filter measures (issue 22, part 1). With --positions P each view is scored from aperture-bench
+// filter's P camera positions and the squared errors pooled. llvmpipe has no aperture to widen, so
+// this is the pixel box (a = 1) only; aperture-bench filter scores OpenImageIO at a = 2.
 void RunFilterQuality(FilterPeers& f, const BenchTexture& texture, const Options& o) {
   constexpr int kFilters = 6;
   const char* kNames[kFilters] = {"llvmpipe trilinear", "llvmpipe aniso 16",
@@ -672,7 +676,7 @@ void RunFilterQuality(FilterPeers& f, const BenchTexture& texture, const Options
   }
 }
 
-// aperture-tex bench-flicker's fly-over (320 x 240, pitch 3, turning 30 degrees over
+// aperture-bench flicker's fly-over (320 x 240, pitch 3, turning 30 degrees over
 // --flicker_frames frames, 0.05 world units a frame, a = 1, the first texture) with llvmpipe in
 // the same run (issue 22, part 5): each filter's mean frame-to-frame change against the
 // reference's, and the excess flicker, the mean of |its change - the reference's|.

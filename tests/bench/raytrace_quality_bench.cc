@@ -5,7 +5,7 @@
 //
 // The raytrace images come from the real mode (TracedScene: Embree corner rays on a 40 km ground
 // polygon, fragments, summed-area tables); the raster filters from their samplers on the plane's
-// analytic footprints, as `aperture-tex bench-filter` measures them.
+// analytic footprints, as `aperture-bench filter` measures them.
 //
 // A second table covers the curved primitives the raster mode cannot draw (testing/curved_scenes:
 // a checkerboard sphere, a lit capped cylinder), at each of --curved-sizes: raytrace against the

@@ -1,7 +1,8 @@
 #!/bin/bash
-# The installation as a user meets it (issue 25, part 6).
+# The installation as a user meets it.
 #   check_install.sh find_package BUILD_DIR SOURCE_DIR: `cmake --install` into a temporary prefix;
-#     the programs run from there and find the prefix's cost model; a separate CMake project finds
+#     the programs run from there and find the prefix's cost model; the runtime component alone
+#     installs the four programs and no benchmark; a separate CMake project finds
 #     the package, links Aperture::engine, renders the demo and writes an EXR that OpenImageIO
 #     reads back.
 #   check_install.sh cpack_deb BUILD_DIR SOURCE_DIR: `cpack -G DEB` makes a package with
@@ -42,6 +43,13 @@ find_package)
     [ -e "$prefix/$f" ] || fail "$f not installed"
   done
   [ ! -e "$prefix/include/aperture/testing" ] || fail "test-only headers installed"
+  # The runtime component is the four programs and nothing of the lab: no benchmark command.
+  cmake --install "$build" --component runtime --prefix "$tmp/runtime" > "$tmp/runtime.log"
+  programs=$(ls "$tmp/runtime/bin" | tr '\n' ' ')
+  [ "$programs" = "aperture aperture-render aperture-server aperture-tex " ] ||
+    fail "the runtime component installs: $programs"
+  out=$("$tmp/runtime/bin/aperture-tex" --help)
+  ! grep -q "bench" <<< "$out" || fail "the installed aperture-tex has benchmark commands: $out"
   # The cost model is found under the prefix the program runs from, not the build folder.
   mkdir -p "$prefix/share/aperture"
   echo "0.001 0.05 0.15" > "$prefix/share/aperture/cost_model.txt"

@@ -1,6 +1,6 @@
 // The grazing-plane benchmark's geometry: analytic footprints against finite differences of the
 // projection, the measured rows, the reference on a constant texture, the pooled PSNR of several
-// measurements and the camera positions that bench-filter --positions pools.
+// measurements and the camera positions that aperture-bench filter --positions pools.
 #include "testing/grazing_plane.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// aperture-tex bench-filter run end to end as a user runs it, on a cheap view (pitch 60, coarse
-// references): every mode's PSNR and timing printed, the peers of issue 22 among them, the
+// aperture-bench filter run end to end as a user runs it, on a cheap view (pitch 60, coarse
+// references): every mode's PSNR and timing printed, OpenImageIO's two peers among them, the
 // spread across the yaws, the references cached per position and the row plots written.
 #include <gtest/gtest.h>
 
@@ -34,11 +34,11 @@ std::vector<std::string> RowCells(const std::string& output, const std::string& 
 TEST(BenchFilter, ScoresEveryModeAndBothOpenImageIoPeersFromEachYawAndCachesTheReferences) {
   const std::filesystem::path out = std::filesystem::path(::testing::TempDir()) / "bench_filter";
   std::filesystem::remove_all(out);
-  const ProcessResult r = RunProcess(
-      std::string(APERTURE_TEX_BIN) +
-      " bench-filter --textures checker --angles 60 --yaws 0,90 --apertures 1 --positions 2"
-      " --ref-min 2 --ref-density 1 --ref-max 8 --timing-rows 64 --out " +
-      out.string());
+  const ProcessResult r =
+      RunProcess(std::string(APERTURE_BENCH_BIN) +
+                 " filter --textures checker --angles 60 --yaws 0,90 --apertures 1 --positions 2"
+                 " --ref-min 2 --ref-density 1 --ref-max 8 --timing-rows 64 --out " +
+                 out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::vector<std::string> header = RowCells(r.output, "| texture | theta |");
   ASSERT_EQ(header.size(), 16u) << r.output;

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""The engine's layers run one way (issue 25): a folder of engine/ includes only its own folder
+"""The engine's layers run one way: a folder of engine/ includes only its own folder
 and the folders above it in LAYERS, never a later one. Reads every `#include "x/..."` in
 engine/<folder>/ (subfolders included) and exits 1 naming each back-edge, 0 when there is none.
-Also fails on an engine folder missing from LAYERS, on engine/ including server/, client/ or
-tests/, and on any gRPC header in engine/ (DESIGN.md: the engine is a plain library).
+Also fails on an engine folder missing from LAYERS, on an edge in FORBIDDEN_EDGES (the installed
+tools including the lab's testing/), on engine/ including server/, client/ or tests/, and on any
+gRPC header in engine/ (DESIGN.md: the engine is a plain library).
 
     check_layering.py [--root REPO]     (default: the repository this script is in)
 
@@ -30,13 +31,20 @@ LAYERS = [
     ("render", "the renderers: render/renderer.h (settings, frame, stop test), the raster "
                "renderer (frame_renderer) and the ray tracer (trace_renderer), shading"),
     ("io", "OpenEXR and PNG output, the frame's header, the proto's encoding options"),
-    ("testing", "what only tests, benchmarks and aperture-tex use: dense references, benchmark "
-                "scenes, the scheduling replay, the packed access benchmark (aperture_testing)"),
-    ("tools", "command-line tools and what only they use (calibration): may include everything"),
+    ("testing", "what only tests and benchmarks use: dense references, benchmark scenes, the "
+                "scheduling replay, the packed access benchmark (aperture_testing)"),
+    ("tools", "the installed command-line tools and what only they use (calibration, arguments): "
+              "may include everything but testing/"),
 ]
 
 # Back-edges allowed anyway, (folder, included folder) -> why. Empty: none is needed.
 ALLOWED_BACK_EDGES = {}
+
+# Forward edges refused anyway, (folder, included folder) -> why.
+FORBIDDEN_EDGES = {
+    ("tools", "testing"): "the installed programs ship no lab code (the benchmarks are "
+                          "aperture-bench's, tests/bench/)",
+}
 
 # Top-level folders of the repository that engine/ must never include.
 FORBIDDEN_TOP_LEVEL = ("server", "client", "tests")
@@ -82,6 +90,10 @@ def check(root):
                             continue  # its own folder, or not an engine folder (absl/, aperture/)
                         if folder not in rank or target not in rank:
                             continue  # reported above
+                        if (folder, target) in FORBIDDEN_EDGES:
+                            errors.append(f"{shown}:{number}: {folder}/ includes {target}/ "
+                                          f"({match.group(1)}): "
+                                          f"{FORBIDDEN_EDGES[(folder, target)]}")
                         if rank[target] > rank[folder] and (
                                 (folder, target) not in ALLOWED_BACK_EDGES):
                             errors.append(

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Shows that check_layering.py can fail: copies engine/ to a temporary folder, checks that the
 copy passes, plants a back-edge (base/ including render/, the first layer including a later
-one) and asserts that the check then exits 1 naming it; likewise a gRPC header and a folder
-missing from the table. Python 3 standard library only.
+one) and asserts that the check then exits 1 naming it; likewise a gRPC header, a folder
+missing from the table and an installed tool including the lab's testing/. Python 3 standard library only.
 """
 
 import os
@@ -58,8 +58,17 @@ def main():
         expect(code == 1, "a gRPC include and an unlisted folder should fail the check", out)
         expect("includes gRPC" in out and "engine/newstage/" in out,
                "the failure should name the gRPC include and the unlisted folder", out)
-    print("check_layering.py passes on engine/ and fails on a planted back-edge, a gRPC include "
-          "and an unlisted folder")
+
+        shutil.rmtree(os.path.join(copy, "engine"))
+        shutil.copytree(os.path.join(REPO, "engine"), os.path.join(copy, "engine"),
+                        ignore=shutil.ignore_patterns("data"))
+        plant(copy, "tools/aperture_tex_main.cc", '#include "testing/grazing_plane.h"')
+        code, out = run(copy)
+        expect(code == 1, "an installed tool including testing/ should fail the check", out)
+        expect("engine/tools/aperture_tex_main.cc" in out and "tools/ includes testing/" in out,
+               "the failure should name the tool and the lab folder", out)
+    print("check_layering.py passes on engine/ and fails on a planted back-edge, a gRPC include, "
+          "an unlisted folder and a tool including testing/")
     return 0
 
 

@@ -44,8 +44,23 @@ TEST(Help, TheTextureToolHasItsOwnHelpAndTheVersion) {
   EXPECT_EQ(v.output, std::string("aperture-tex ") + APERTURE_VERSION + "\n");
 }
 
+// The benchmarks are the lab's aperture-bench, not commands of the installed aperture-tex.
+TEST(Help, TheBenchmarksAreApertureBenchsNotTheTextureTools) {
+  const ProcessResult tex = RunProcess(std::string(APERTURE_TEX_BIN) + " --help");
+  EXPECT_EQ(tex.output.find("bench"), std::string::npos) << tex.output;
+  const ProcessResult moved = RunProcess(std::string(APERTURE_TEX_BIN) + " bench-filter");
+  EXPECT_EQ(moved.exit_code, 2) << moved.output;
+  const ProcessResult bench = RunProcess(std::string(APERTURE_BENCH_BIN) + " --help");
+  EXPECT_EQ(bench.exit_code, 0) << bench.output;
+  for (const char* command : {"filter", "flicker", "packed"})
+    EXPECT_NE(bench.output.find(std::string("  ") + command + " "), std::string::npos)
+        << command << ": " << bench.output;
+  const ProcessResult v = RunProcess(std::string(APERTURE_BENCH_BIN) + " --version");
+  EXPECT_EQ(v.output, std::string("aperture-bench ") + APERTURE_VERSION + "\n");
+}
+
 TEST(Help, TheFilterBenchmarkListsPositionsAndRefusesABadCountNamingIt) {
-  const std::string bench = std::string(APERTURE_TEX_BIN) + " bench-filter";
+  const std::string bench = std::string(APERTURE_BENCH_BIN) + " filter";
   const ProcessResult help = RunProcess(bench + " --help");
   EXPECT_EQ(help.exit_code, 0) << help.output;
   EXPECT_NE(help.output.find("--positions P"), std::string::npos) << help.output;

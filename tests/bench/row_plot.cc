@@ -1,4 +1,4 @@
-#include "tools/row_plot.h"
+#include "bench/row_plot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// A plot of per-row figures as an image (bench-filter's per-row PSNR, issue 22): one polyline per
+// A plot of per-row figures as an image (aperture-bench filter's per-row PSNR): one polyline per
 // series over the rows, grid lines every 10 units, no text (the caller says which colour is which).
 #pragma once
 

@@ -1,4 +1,4 @@
-// aperture-tex bench-flicker (issue 22, part 5): how much each filter shimmers. A slow fly-over
+// aperture-bench flicker: how much each filter shimmers. A slow fly-over
 // of the grazing plane (DESIGN.md's benchmark plane), turning as it goes; per frame, the mean
 // absolute change from the previous frame, compared with the same figure of the converged
 // reference sequence. What a filter changes beyond what the reference changes is flicker: aliasing
@@ -16,15 +16,16 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "base/stopwatch.h"
+#include "bench/bench_commands.h"
+#include "bench/bench_inputs.h"
 #include "testing/grazing_plane.h"
 #include "texture/aniso_sampler.h"
 #include "texture/mip_pyramid.h"
 #include "texture/oiio_sampler.h"
 #include "texture/prefiltered_table_builder.h"
-#include "tools/tex_bench_args.h"
-#include "tools/tex_commands.h"
+#include "tools/tex_args.h"
 
-namespace aperture {
+namespace aperture::bench {
 namespace {
 
 struct Track {
@@ -34,16 +35,16 @@ struct Track {
   double psnr = 0, change = 0, excess = 0;
 };
 
-int RunBenchFlicker(int argc, char** argv) {
+int RunFlicker(int argc, char** argv) {
   auto args =
       ParseArgs(argc, argv,
                 {"--texture", "--data", "--frames", "--pitch", "--turn", "--speed", "--size",
                  "--aperture", "--ref-min", "--ref-density", "--ref-max", "--out", "--threads"});
-  if (!args.ok()) return Fail("bench-flicker", std::string(args.status().message()));
+  if (!args.ok()) return Fail("flicker", std::string(args.status().message()));
   if (args->help || !args->positional.empty()) {
     std::fprintf(
         args->help ? stdout : stderr,
-        "usage: aperture-tex bench-flicker [--texture checker|NAME] [--data DIR] [--frames 120]\n"
+        "usage: aperture-bench flicker [--texture checker|NAME] [--data DIR] [--frames 120]\n"
         "         [--pitch 3] [--turn 30] [--speed 0.05] [--size 320x240] [--aperture 1]\n"
         "         [--ref-min 8] [--ref-density 4] [--ref-max 64] [--out DIR] [--threads N]\n"
         "A slow fly-over of the grazing plane at --pitch degrees, turning --turn degrees over\n"
@@ -73,7 +74,7 @@ int RunBenchFlicker(int argc, char** argv) {
       x == std::string::npos || !absl::SimpleAtoi(size.substr(0, x), &width) ||
       !absl::SimpleAtoi(size.substr(x + 1), &height) || width < 2 || height < 2 || width > 4096 ||
       height > 4096)
-    return Fail("bench-flicker",
+    return Fail("flicker",
                 "--frames >= 2, --pitch in (0, 90), --aperture in (0, 16], --size WxH (2..4096), "
                 "--ref-min >= 1, --ref-max >= 2, --ref-density > 0, --threads >= 0");
   std::unique_ptr<tbb::global_control> limit;
@@ -82,26 +83,25 @@ int RunBenchFlicker(int argc, char** argv) {
                                                   threads);
   auto textures = LoadBenchTextures(args->Get("--texture", "checker"),
                                     args->Get("--data", "../shared/data/raster"));
-  if (!textures.ok()) return Fail("bench-flicker", std::string(textures.status().message()));
+  if (!textures.ok()) return Fail("flicker", std::string(textures.status().message()));
   const BenchTexture& tex = textures->front();
   auto block = BuildPrefilteredTable(tex.image);
-  if (!block.ok()) return Fail("bench-flicker", std::string(block.status().message()));
+  if (!block.ok()) return Fail("flicker", std::string(block.status().message()));
   auto table = block->View();
-  if (!table.ok()) return Fail("bench-flicker", std::string(table.status().message()));
+  if (!table.ok()) return Fail("flicker", std::string(table.status().message()));
   MipPyramid pyramid(tex.image);
   TrilinearSampler trilinear(pyramid);
   AnisoSampler aniso(*table);
   auto oiio = OiioSampler::Create(tex.image);
-  if (!oiio.ok()) return Fail("bench-flicker", std::string(oiio.status().message()));
+  if (!oiio.ok()) return Fail("flicker", std::string(oiio.status().message()));
   auto oiio16 = OiioSampler::Create(tex.image, "", kOiioAniso16Bilinear);
-  if (!oiio16.ok()) return Fail("bench-flicker", std::string(oiio16.status().message()));
+  if (!oiio16.ok()) return Fail("flicker", std::string(oiio16.status().message()));
 
   const std::string out_dir = args->Get("--out", "out/bench-flicker");
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   std::ofstream csv(out_dir + "/flicker.csv");
-  if (ec || !csv)
-    return Fail("bench-flicker", absl::StrCat("cannot write ", out_dir, "/flicker.csv"));
+  if (ec || !csv) return Fail("flicker", absl::StrCat("cannot write ", out_dir, "/flicker.csv"));
   csv << "frame,yaw,mode,psnr,change,reference_change,excess\n";
 
   Track tracks[] = {{"reference", nullptr, {}},
@@ -166,11 +166,11 @@ int RunBenchFlicker(int argc, char** argv) {
 
 }  // namespace
 
-std::vector<TexCommand> FilterFlickerCommands() {
-  return {{"bench-flicker",
+std::vector<BenchCommand> FlickerCommands() {
+  return {{"flicker",
            "temporal stability: a slow turning fly-over, each filter's frame-to-frame change "
            "against the reference's",
-           RunBenchFlicker}};
+           RunFlicker}};
 }
 
-}  // namespace aperture
+}  // namespace aperture::bench

@@ -1,9 +1,8 @@
-// What the aperture-tex subcommands share: their `--name value` arguments, number lists, and the
-// textures the filter benchmarks load (the checkerboard or photos).
+// What the benchmark commands share (aperture-bench, peer_bench): number lists, the textures the
+// filter benchmarks load (the checkerboard or photos) and their cached supersampled references.
 #pragma once
 
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -12,26 +11,10 @@
 
 namespace aperture {
 
-// Prints "aperture-tex COMMAND: MESSAGE" on stderr; returns 2 (a usage error).
+namespace bench {
+// Prints "aperture-bench COMMAND: MESSAGE" on stderr; returns 2 (a usage error).
 int Fail(const char* command, const std::string& message);
-
-// `--name value` options after positional arguments.
-struct Args {
-  std::vector<std::string> positional;
-  std::vector<std::pair<std::string, std::string>> options;
-  bool help = false;
-
-  // The last value given for `name` (a later option overrides an earlier one, as in most
-  // command lines), else `fallback`.
-  std::string Get(const std::string& name, const std::string& fallback) const {
-    for (auto it = options.rbegin(); it != options.rend(); ++it)
-      if (it->first == name) return it->second;
-    return fallback;
-  }
-};
-
-// An error names an unknown option or one without a value.
-absl::StatusOr<Args> ParseArgs(int argc, char** argv, const std::vector<std::string>& known);
+}  // namespace bench
 
 // "5,20,60": finite numbers; `what` names the option in the error.
 absl::StatusOr<std::vector<double>> ParseNumbers(const std::string& text, const char* what);
@@ -48,7 +31,8 @@ absl::StatusOr<std::vector<BenchTexture>> LoadBenchTextures(const std::string& l
 
 // The supersampled reference of a grazing-plane view (RenderGroundReference), loaded from
 // `cache_dir` when an earlier run wrote it there (its file name holds every parameter), else
-// computed and written there; *cached tells which. bench-filter and peer_bench share the cache.
+// computed and written there; *cached tells which. aperture-bench filter and peer_bench share
+// the cache.
 absl::StatusOr<Image> CachedReference(const GrazingPlaneView& view, const BenchTexture& texture,
                                       double density, int max_per_side, int min_per_side,
                                       const std::string& cache_dir, bool* cached);
