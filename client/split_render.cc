@@ -1,4 +1,4 @@
-// `aperture render --split K --servers A,B,...` (issue 6): one frame cut into K bands of equal
+// `aperture render --split K --servers A,B,...`: one frame cut into K bands of equal
 // predicted cost by the first server (PlanRegions), the bands rendered at once on the servers in
 // turn, and the EXR assembled from them: pixel for pixel the frame one server would render.
 #include <grpcpp/grpcpp.h>

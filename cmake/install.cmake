@@ -1,4 +1,4 @@
-# Installation (issue 25, part 6): the four programs; the engine as a library another CMake project
+# Installation: the four programs; the engine as a library another CMake project
 # can use (find_package(Aperture) and Aperture::engine); a .deb by CPack. Components: `runtime`
 # (the programs, what deploy/Dockerfile installs) and `development` (libraries, headers, the
 # package config and the schema). tests/install/check_install.sh installs both into a temporary

@@ -1,5 +1,5 @@
-// Lets `--max-queue` mean `--max_queue`: absl flags spell names with underscores, the issue's
-// and most command lines' style uses dashes. Only the name part before '=' is rewritten.
+// Lets `--max-queue` mean `--max_queue`: absl flags spell names with underscores, most command
+// lines' style uses dashes. Only the name part before '=' is rewritten.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 21's farm benchmark, on loopback: one `aperture batch` job of FRAMES demo frames along a
+# The farm benchmark, on loopback: one `aperture batch` job of FRAMES demo frames along a
 # camera path (14 m up, backing away from the runway's threshold from 100 to 600 m) rendered by N
 # local servers of one thread each (N in SERVERS, default "1 2 4"; this 2-core machine holds two at full speed, so
 # N = 4 shows the cost of oversubscription, not of the farm). Per N it prints the job's frames/s,

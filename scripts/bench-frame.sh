@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Frame-time benchmark of issue 2: the demo scene at 1920x1080, box2 edges, trilinear textures,
+# Frame-time benchmark: the demo scene at 1920x1080, box2 edges, trilinear textures,
 # 1 and 2 threads in one run (fastest of 5 rounds of N each), then the EXR encode time of every
 # compression.
 # Usage: scripts/bench-frame.sh [REPEAT] [extra aperture-render flags...]

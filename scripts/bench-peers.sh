@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
-# Issue 19's peer benchmark: Mesa llvmpipe (OSMesa, LP_NUM_THREADS=2) against Aperture
+# The peer benchmark: Mesa llvmpipe (OSMesa, LP_NUM_THREADS=2) against Aperture
 # (--threads 2) at 1920x1080, interleaved rounds, medians and ratios, edge PSNR against dense box
 # references (tests/bench/peer_bench.cc says what each row measures).
 #
 #   scripts/bench-peers.sh                       # tris-10k and tris-100k, planes at 5, 20, 60 deg
 #   ROUNDS=7 TRIS=10000,100000,1000000 scripts/bench-peers.sh
 #   PLANES=5 TRIS=10000 scripts/bench-peers.sh
-#   FILTER_YAWS=0,15,30,45,60,90 PLANES= TRIS= scripts/bench-peers.sh   # filter quality only (issue 22)
+#   FILTER_YAWS=0,15,30,45,60,90 PLANES= TRIS= scripts/bench-peers.sh   # filter quality only
 #   FILTER_YAWS=0,45 FILTER_TEXTURES=checker,asphalt_torcs_1024 FILTER_PITCH=5 PLANES= TRIS= \
 #     scripts/bench-peers.sh                       # ... on the photos of ../shared/data/raster too
 #   FILTER_YAWS=0,15,30,45,60,90 FILTER_PITCH=3,5,12,20,60 POSITIONS=4 PLANES= TRIS= \
 #     scripts/bench-peers.sh                       # ... every pitch, four camera positions pooled
 #                                                  # (references cached with aperture-bench filter's, CACHE)
-#   FLICKER_FRAMES=120 PLANES= TRIS= scripts/bench-peers.sh              # flicker with llvmpipe (issue 22)
+#   FLICKER_FRAMES=120 PLANES= TRIS= scripts/bench-peers.sh              # flicker with llvmpipe
 #   MEMORY=100000,1000000 PLANES= TRIS= scripts/bench-peers.sh          # peak memory of a frame
 #
 # OSMesa (Debian's libosmesa6-dev) is a benchmark dependency, not a product one: installed here

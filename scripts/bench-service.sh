@@ -1,26 +1,26 @@
 #!/usr/bin/env bash
-# Service benchmarks of issue 5, all on loopback, each bounded in time:
+# Service benchmarks, all on loopback, each bounded in time:
 #   overhead  a 1920x1080 demo frame through the service vs the local render + encode (same run,
 #             rounds interleaved);
 #   restart   a server started on a baked store: time from its start to its first frame, vs a
 #             server on an empty store (which builds the demo's tables first);
 #   load      `aperture load` for 640x480 frames at concurrency 1, 8 and 32, LOAD_S seconds each;
 #   soak      server RSS at minute 1 and at minute SOAK_MIN of a concurrency-8 load;
-#   split     a 1920x1080 frame split over 2 local servers (issue 6): slowest region's render
+#   split     a 1920x1080 frame split over 2 local servers: slowest region's render
 #             time over the mean, demo and skewed scenes, ROUNDS rounds, and the median;
-#   node      a farm node's throughput (issue 21): 1920x1080 demo frames/s from `aperture load`
+#   node      a farm node's throughput: 1920x1080 demo frames/s from `aperture load`
 #             at concurrency 1, 2 and 4, zip and none, NODE_S seconds each, against the raster-only
 #             rate (1000 / the fastest local setup + raster ms on 2 threads), with the server's and
 #             the client's CPU per frame and the rate the two cores allow; with BEFORE_DIR (a
 #             folder holding an older aperture-server) that server is measured too, interleaved.
-#   sim       a simulator host on RenderStream (issue 20): `aperture sim` of the demo at 1280x720
+#   sim       a simulator host on RenderStream: `aperture sim` of the demo at 1280x720
 #             and 1920x1080 at SIM_RATES (default 5 10 15 20 30), SIM_S seconds each (default 6),
 #             achieved rate, late and skipped frames and latency; BEFORE_DIR as for node.
-#   moving    what a moving object costs (issue 20): `aperture sim` of the demo at 1920x1080,
+#   moving    what a moving object costs: `aperture sim` of the demo at 1920x1080,
 #             5 Hz, MOVING_FRAMES frames (default 30) from one camera, with the aircraft moved by
 #             a SceneUpdate every frame against no update, ROUNDS rounds interleaved; per frame
 #             the server's update + setup + raster ms (median of each run), and the ratio.
-#   floors    a 1920x1080 demo frame's delivery against its floors (issue 20): `aperture render
+#   floors    a 1920x1080 demo frame's delivery against its floors: `aperture render
 #             --compression none --repeat 3` (half, the third frame of a warm connection), encode
 #             ms + transport ms (round trip - the server's total) against memcpy + loopback TCP of the same bytes (scripts/bench_floors.py),
 #             ROUNDS rounds interleaved, and the ratio of the medians.
@@ -29,7 +29,7 @@
 #             latency against two frame times of the sustained rate, the median latency of the
 #             first and the last fifth of the frames (one camera, the aircraft taxiing: the same
 #             work in every frame), skipped frames.
-#   content   what real content costs (issue 24): the built-in demo, the built-in airport and the
+#   content   what real content costs: the built-in demo, the built-in airport and the
 #             largest glTF model of Debian's assimp-testmodels (CONTENT_MODEL, CONTENT_CAMERA),
 #             each loaded by a server on an empty store (cold: its tables are built) and by a new
 #             server on that store (warm: mapped), the LoadScene ms of each, then 1920x1080 frames

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Floors for moving a frame's bytes (issue 20): memcpy of N bytes, and the same bytes over a
+"""Floors for moving a frame's bytes: memcpy of N bytes, and the same bytes over a
 loopback TCP connection (127.0.0.1, one sender thread, the receiver reading into a preallocated
 buffer). Prints `memcpy_ms X loopback_ms Y`, the fastest of --rounds rounds of each."""
 import argparse

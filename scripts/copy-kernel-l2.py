@@ -7,7 +7,7 @@ long aperture the pixel's box on the bilinear base is, up to a tent of one texel
 negligible, the box of half-width 1 (height 1/2). Prints, for copy extents c, the L2 distance of
 the kernels (the error on white noise), the L2 distance of their integrals (the error on an
 edge: a step's spectrum falls as 1/f, so its power as 1/f^2) and the kernel's variance (the
-box's is 1/3). texture/aniso_selection.h (CopyExtent) and docs/BENCHMARKS.md cite these figures.
+box's is 1/3). texture/aniso_selection.h (CopyExtent) cites these figures.
 Pure Python, a few seconds.
 """
 

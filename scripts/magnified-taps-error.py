@@ -8,7 +8,7 @@ stratified points). Each rule blends bilinear reads of the base and reads of the
 points). For rectangles of half-extents H and L = H / elongation turned by an angle to the
 texture's axes, at random positions, this prints the RMS error of each rule as PSNR (peak 1):
 
-  blend   the readings' blend of issue 22, session 35-38: below sqrt(T) = 1/16 texel the base
+  blend   the readings' blend the magnified taps replaced: below sqrt(T) = 1/16 texel the base
           by 1 - H^2 and the first copy by H^2, above 1/8 the first copy by L^2 and two probes of
           the base at +-sqrt(T) along the long side, T = (H^2 - L^2) / (3 (1 - L^2)), faded
           between;
@@ -21,7 +21,7 @@ texture's axes, at random positions, this prints the RMS error of each rule as P
   cross with the first copy's weight beta = lambda2 f(lambda1) for other f (lambda1 >= lambda2
           S's eigenvalues; det S = lambda1 lambda2), with --shares.
 
-texture/aniso_selection.cc and docs/BENCHMARKS.md (issue 22, session 39) cite its figures.
+texture/aniso_selection.cc cites its figures.
 Needs numpy and OpenImageIO's Python module (Debian: python3-numpy, python3-openimageio);
 about a minute a texture with the defaults.
 

@@ -1,4 +1,4 @@
-// Bearer tokens for the service (issue 23, part 1): a file of accepted tokens, one per line,
+// Bearer tokens for the service: a file of accepted tokens, one per line,
 // read at start and again on SIGHUP. Every RPC of aperture.v1.Render asks `Check` with the call's
 // `authorization: Bearer <token>` metadata; gRPC's health service is not ours and stays open.
 // Only SHA-256 digests of the tokens are held, so the tokens never reach a log or a core file by

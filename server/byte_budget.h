@@ -1,4 +1,4 @@
-// A budget of bytes that requests reserve while they hold memory (issue 23, part 2): uploads in
+// A budget of bytes that requests reserve while they hold memory: uploads in
 // flight reserve their announced size for as long as they stream. A reservation that does not
 // fit is RESOURCE_EXHAUSTED naming the budget's flag and the figures; it is returned when the
 // reservation goes out of scope.

@@ -1,4 +1,4 @@
-// Cancels calls that went quiet (issue 23, part 3): a client that opens an upload stream and
+// Cancels calls that went quiet: a client that opens an upload stream and
 // stops sending would otherwise hold its buffer and a gRPC thread until its deadline, which may
 // be never. A watched call touches its watch whenever a message arrives; one thread looks at the
 // watches a few times per idle period and cancels (ServerContext::TryCancel) a call idle longer

@@ -1,4 +1,4 @@
-// The scene a channel renders (issue 20): the stored scene as loaded, or, once a request carries
+// The scene a channel renders: the stored scene as loaded, or, once a request carries
 // a SceneUpdate, the channel's own copy of it with every update applied in turn. The stored
 // scene is never changed, so other clients keep seeing it as loaded. One LiveScene serves one
 // RenderStream or one RenderFrame request; it holds the stored scene it renders, so the scene

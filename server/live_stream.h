@@ -1,4 +1,4 @@
-// RenderStream as a live image-generator channel (issue 20): the newest state wins and frames are
+// RenderStream as a live image-generator channel: the newest state wins and frames are
 // pipelined. Three threads serve one stream:
 //   reader   reads requests and checks each (scene id, update); each gets an answer record in
 //            arrival order and, if it passed, becomes the one waiting request, superseding

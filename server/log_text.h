@@ -1,4 +1,4 @@
-// Client-supplied text made safe for one log line (issue 23, part 7): control characters and
+// Client-supplied text made safe for one log line: control characters and
 // quotes escaped (a newline in a scene name cannot forge a log line), bytes outside printable
 // ASCII as \xNN, and the whole cut to `max_chars` with a count of what was cut.
 #pragma once

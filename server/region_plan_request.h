@@ -1,4 +1,4 @@
-// A PlanRegions request made into the engine's region plan (issue 6): the same validation as a
+// A PlanRegions request made into the engine's region plan: the same validation as a
 // frame request (camera, options, size limit), then engine/render/frame_regions.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Built scenes by id, shared by the requests that render them. Bounded by count and by bytes
-// (issue 23, part 2): a load reserves its scene's estimated bytes before it builds; to make room
+// Built scenes by id, shared by the requests that render them. Bounded by count and by bytes:
+// a load reserves its scene's estimated bytes before it builds; to make room
 // (bytes or count) the scenes no frame or stream holds are dropped, least recently used first. A
 // scene is held while someone keeps the pointer Find gave: a frame while it renders, a
 // RenderStream from its first request naming the scene until the stream ends, so a stream's scene

@@ -325,7 +325,7 @@ int main(int argc, char** argv) {
   // glibc gives every thread that allocates its own heap arena (up to 8 per core) and keeps freed
   // frame buffers in each, so a long load run grew RSS by 20 % in 5 minutes (gRPC runs requests
   // on a changing set of threads). A few arenas keep it flat at the same throughput
-  // (docs/BENCHMARKS.md, issue 5 soak).
+  // (docs/BENCHMARKS.md).
   mallopt(M_ARENA_MAX, std::max(2, absl::GetFlag(FLAGS_threads)));
   // Logs go to stderr; stdout carries only the "listening on" line.
   spdlog::set_default_logger(spdlog::stderr_color_mt("aperture-server"));

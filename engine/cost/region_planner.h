@@ -1,5 +1,5 @@
 // Splits one frame into K regions of equal predicted work, so that K servers render it in about
-// the same time (issue 6). The regions are full-width bands of whole rows, top to bottom: a
+// the same time. The regions are full-width bands of whole rows, top to bottom: a
 // region is a plain sub-rectangle (an EXR data window) and the bands tile the frame exactly.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Cuts a frame into the tasks the oneTBB workers run (issue 6). Uniform: a fixed grid of tiles.
+// Cuts a frame into the tasks the oneTBB workers run. Uniform: a fixed grid of tiles.
 // Cost-driven: windows subdivided Warnock-style until their predicted work (seed 002's filtered
 // areas, see window_cost.h) is near a target grain, then ordered most expensive first.
 #pragma once

@@ -44,7 +44,7 @@ WindowFeatures MeasureWindowFeatures(const FrameGeometry& geo, const std::vector
     }
     // Cut to the window by only the sides that cross its box (the others leave every vertex as
     // it is, as ClipToRect does), in two fixed buffers: a crowded frame's planning cut some
-    // 60,000 polygons to their windows, each through four vector clips (issue 19).
+    // 60,000 polygons to their windows, each through four vector clips.
     std::span<const Vec2> part;
     size_t n = kClipOverflow;  // kClipOverflow: cut in vectors below
     if (p.vertices.size() + 4 <= kCutBuffer) {

@@ -1,4 +1,4 @@
-// Predicted work of a screen window (issue 6): seed 002's filtered area of each polygon reaching
+// Predicted work of a screen window: seed 002's filtered area of each polygon reaching
 // into it, S + a L / sqrt(2) + a^2 per vertex, clipped to the window, plus a per-pixel base.
 // The constants are fitted on the machine by `aperture-render --calibrate`.
 #pragma once

@@ -22,7 +22,7 @@ struct ExrOptions {
   ExrPixelType pixel_type = ExrPixelType::kHalf;
   ExrCompression compression = ExrCompression::kZip;
   // zlib level of zip and zips (1 fastest .. 9 smallest). 4 is OpenEXR's own default from 3.2 on:
-  // about twice as fast as zlib's 6 for files about 1 % larger (docs/BENCHMARKS.md).
+  // with libdeflate, level 6 takes 1.4x its time for a file 4 % smaller (docs/BENCHMARKS.md).
   int zip_level = 4;
   // Blocks of scanlines are compressed in parallel with oneTBB: > 0 in a task arena of that many
   // threads, 0 in the calling thread's arena (a server encodes inside its render arena, so encode

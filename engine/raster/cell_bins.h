@@ -1,6 +1,6 @@
 // Which polygons may reach each cell of a grid of unit cells, found once per grid rather than by
 // testing every polygon at every cell: a mixed Warnock leaf of 17 x 17 box2 cells holds some 60
-// polygons at 100,000 small triangles a frame, of which a cell meets about 3 (issue 19).
+// polygons at 100,000 small triangles a frame, of which a cell meets about 3.
 //
 // A cell's list keeps the order of `candidates` and holds every polygon that CellCoverage::Compute
 // would find reaching the cell (and maybe a few that only come within rounding of it, which

@@ -164,7 +164,7 @@ void CellCoverage::Compute(std::span<const ScreenPolygon> polygons, std::span<co
 // first, no pairwise test and no painter's order found by tests: the painter cuts the square by
 // their crossing edges directly, nearest first. A polygon covering the cell takes what the ones
 // in front left, the square less their moments (as the layers' rule above it computes), and hides
-// the rest. Most crowded cells of a frame of small polygons are such (issue 19).
+// the rest. Most crowded cells of a frame of small polygons are such.
 bool CellCoverage::PaintStacked(std::span<const ScreenPolygon> polygons, double cx, double cy,
                                 bool with_moments, std::vector<CellPiece>& out) {
   const size_t n = reach_.size();

@@ -15,7 +15,7 @@ inline constexpr size_t kClipOverflow = static_cast<size_t>(-1);
 // kClipOverflow. A clip of a convex polygon adds at most one vertex, but rounding can make a
 // nearly degenerate one cross the line more than twice, so the room is checked as it goes.
 // Inline and free of allocation: the exact coverage of a cell clips a few small polygons many
-// times (issue 19). Branch-free: every vertex and every crossing is written, and the count
+// times. Branch-free: every vertex and every crossing is written, and the count
 // advances only past those kept (which side a vertex falls on varies from cell to cell, so
 // branches mispredict); the kept values are computed exactly as a branching clip computes them.
 inline size_t ClipByHalfPlane(const Vec2* in, size_t n, double a, double b, double c, Vec2* out,

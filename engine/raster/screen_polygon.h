@@ -46,7 +46,7 @@ struct ScreenPolygon {
   void Finalize();
   // Edge i's function (vertex i to i + 1), >= 0 inside: e(x, y) = cross(q - p, (x, y) - p).
   // Computed from the vertices when asked, not stored: a third of the polygon's size, which a
-  // frame of 100,000 triangles writes into fresh memory and joins serially (issue 19).
+  // frame of 100,000 triangles writes into fresh memory and joins serially.
   ScreenLinear Edge(size_t i) const {
     const Vec2& p = vertices[i];
     const Vec2& q = vertices[i + 1 == vertices.size() ? 0 : i + 1];

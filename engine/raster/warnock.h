@@ -27,7 +27,7 @@ struct WarnockOptions {
   // already: its quadrants would be mixed too, and a leaf of box2 cells computes the cells on its
   // borders that its neighbours compute again (289 cells for 256 pixels at 16, 4,225 for 4,096
   // at 64) and bins its polygons once. Crowded frames take 15-20 % less than with 16 alone,
-  // frames of large polygons the same; pixels are the same at any size (issue 19). The renderer
+  // frames of large polygons the same; pixels are the same at any size. The renderer
   // asks the stop test after each row of a leaf's cells.
   int crowded_leaf_size = 64;
   int crowded_polygons = 8;

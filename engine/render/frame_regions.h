@@ -1,4 +1,4 @@
-// The split of a frame over K renderers (issue 6): the scene projected as RenderFrame would
+// The split of a frame over K renderers: the scene projected as RenderFrame would
 // project it, then cut into K bands of equal predicted cost (cost/region_planner.h).
 #pragma once
 

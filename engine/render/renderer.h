@@ -1,4 +1,4 @@
-// What both renderers share (issue 25): the raster renderer (render/frame_renderer.h: Warnock
+// What both renderers share: the raster renderer (render/frame_renderer.h: Warnock
 // subdivision and exact edge anti-aliasing, seed 002) and the ray tracer (render/trace_renderer.h,
 // seed 003) take the same RenderSettings and stop test and return a RenderedFrame.
 #pragma once

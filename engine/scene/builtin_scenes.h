@@ -2,7 +2,7 @@
 // approach), "airport" (the same approach to a real airport's map, scene/airport_scene.h),
 // "night" (that airport after dark, lit to ICAO Annex 14, with a town and 16 aircraft,
 // scene/night_scene.h), "triangles" (10,000 random triangles), "skewed" (a dense city block in
-// one corner of the view), "tris-N" (issue 19's peer-benchmark scene of N triangles painted in
+// one corner of the view), "tris-N" (the peer benchmark's scene of N triangles painted in
 // order) and "slivers-N" (N slivers on 13 planes, the service tests' slow frame). Each comes with
 // the camera it is meant to be seen from.
 #pragma once

@@ -1,6 +1,6 @@
 // What an encoded texture (an upload, a scene's `encoded` source) is, read from its header (a
 // raster image) or checked whole (a packed .apv, whose reader never allocates more than the file
-// describes), before its pixels are decoded (issue 23, parts 2 and 3): the server refuses bytes
+// describes), before its pixels are decoded: the server refuses bytes
 // that are no texture, and estimates what a scene will hold in memory before building it.
 #pragma once
 

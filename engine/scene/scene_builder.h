@@ -15,7 +15,7 @@
 
 namespace aperture {
 
-// What one scene may hold (issue 23, part 4); 0: no limit. Checked on the request before
+// What one scene may hold; 0: no limit. Checked on the request before
 // anything is decoded or built; an excess is InvalidArgument naming the limit.
 struct SceneLimits {
   uint64_t polygons = 0;  // objects times their meshes' polygons (before triangulation)

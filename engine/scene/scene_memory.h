@@ -1,5 +1,5 @@
 // What a scene will hold in memory once built, estimated from its request before anything is
-// decoded or built (issue 23, part 2): the server admits a LoadScene against its budget with this
+// decoded or built: the server admits a LoadScene against its budget with this
 // figure, so a 196 KB PNG that declares 8192 x 8192 texels is weighed as the 1.4 GB it becomes.
 #pragma once
 

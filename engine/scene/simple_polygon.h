@@ -1,6 +1,6 @@
 // Is a polygon simple? No two edges that are not neighbours along the boundary meet, and two
-// neighbours meet only at their shared vertex (issue 23, part 6: docs/SCENE.md refuses
-// self-intersecting polygons). A Shamos-Hoey sweep: O(n log n) for n vertices, so a 200,000-vertex
+// neighbours meet only at their shared vertex (docs/SCENE.md refuses self-intersecting polygons:
+// their inside is ambiguous). A Shamos-Hoey sweep: O(n log n) for n vertices, so a 200,000-vertex
 // ground polygon is checked in milliseconds.
 #pragma once
 

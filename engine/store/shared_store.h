@@ -1,4 +1,4 @@
-// The texture store shared by every server process on a machine (issue 5): a directory of entry
+// The texture store shared by every server process on a machine: a directory of entry
 // files, by default under /dev/shm (POSIX shared memory), each mapped read-only and used in place.
 //
 //   <key>.entry            a published entry (store_entry_format.h)

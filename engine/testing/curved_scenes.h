@@ -1,4 +1,4 @@
-// Issue 7's curved test scenes (raytrace mode only): a checkerboard sphere and a capped, lit
+// The curved test scenes (raytrace mode only): a checkerboard sphere and a capped, lit
 // checkerboard cylinder whose checks shrink to about a pixel, on black sky, each with the camera
 // it is meant to be seen from. For the quality test and raytrace_quality_bench.
 #pragma once

@@ -1,4 +1,4 @@
-// Replays a frame's measured task times through the renderer's dispatch (issue 6): `workers`
+// Replays a frame's measured task times through the renderer's dispatch: `workers`
 // threads each take the next task in plan order from a shared counter as soon as they are free.
 // It tells what a plan would do on more cores than the machine at hand has.
 #pragma once

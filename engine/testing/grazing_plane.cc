@@ -236,8 +236,8 @@ GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k) {
   //  - the cell of the repeat, 3k and 5k mod 8 (the photos' content);
   //  - the phase within a texel, the R2 sequence's fractions k / g and k / g^2 (g the plastic
   //    number, g^3 = g + 1).
-  // (Session 33's 389 k and 583 k whole texels spread the positions over the repeat but not
-  // over a cell along U: 389 = 5 mod 128 put four positions' edges within 16 texels.)
+  // (Whole-texel steps of 389 k and 583 k would spread the positions over the repeat but not
+  // over a cell along U: 389 = 5 mod 128 puts four positions' edges within 16 texels.)
   constexpr double kG = 1.32471795724474602596;
   const uint32_t i = static_cast<uint32_t>(k);
   GrazingPlaneView moved = view;

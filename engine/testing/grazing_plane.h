@@ -24,7 +24,8 @@ struct GrazingPlaneView {
   double fov_deg = 60;   // vertical
   double aperture = 2;   // a: 2 = the paper's 2 x 2 pixel square, 1 = the pixel
   // The camera turned about the vertical by this much (the texture's axes turned the other way
-  // under it): 0 looks along the texture's v axis (issue 22's yaw sweep).
+  // under it): 0 looks along the texture's v axis (the filter benchmark turns it from 0 to 90
+  // degrees).
   double yaw_deg = 0;
   // The texture coordinates (repeats) of the ground under the camera: moving the camera over the
   // plane (aperture-bench flicker's fly-over) moves them.
@@ -65,9 +66,9 @@ void MoveForward(GrazingPlaneView* view, double world_units);
 // pixel row meets the texels and the checkerboard's edges at one phase, so one position scores
 // one phase: aperture-bench filter --positions pools several.
 GrazingPlaneView ViewAtPosition(const GrazingPlaneView& view, int k);
-// The spread of one view's PSNR across yaws (issue 22's bar on aniso): the highest minus the
-// lowest, and the yaw of the lowest (the first where two tie). Empty or unequal spans: spread 0,
-// yaw NaN.
+// The spread of one view's PSNR across yaws (a filter should score alike from every direction):
+// the highest minus the lowest, and the yaw of the lowest (the first where two tie). Empty or
+// unequal spans: spread 0, yaw NaN.
 struct YawSpread {
   double spread = 0;
   double lowest_yaw = NAN;

@@ -3,8 +3,9 @@
 // nearest primitive (RayScene, then the exact plane or curved intersection in double), is shaded
 // with the continuous texture (DESIGN.md: bilinear reconstruction of the full-resolution texture,
 // periodic) at its own hit point, lit with its own normal, fogged by its own distance. n >= 64
-// gives issue 7's dense reference; n = 1 (the pixel centre) or a few samples stand for renderers
-// that point-sample or supersample a bilinear texture. Raster textures only.
+// gives the dense reference of the raytrace quality benchmark; n = 1 (the pixel centre) or a few
+// samples stand for renderers that point-sample or supersample a bilinear texture. Raster textures
+// only.
 #pragma once
 
 #include "base/image.h"

@@ -1,6 +1,6 @@
 // seed 000's copy selection: from a footprint's derivatives to the table copies a sample reads
 // and their weights (the aperture parallelogram, eq. 2-4, and the three-point interpolation,
-// eq. 5), continuous in the footprint (issue 22, part 3). Eight samples at a time as lanes: a
+// eq. 5), continuous in the footprint. Eight samples at a time as lanes: a
 // portable lane loop, and an AVX2 kernel chosen at run time that gives the same floats (the
 // same operations in the same order, no fused multiply-add; tests/texture/
 // aniso_selection_test.cc checks it bit for bit).
@@ -54,8 +54,8 @@ ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size)
 // and 0.00163 at the variance-matched c = 0.816 x (x = 1, the box of height 1/2;
 // scripts/copy-kernel-l2.py). The extent c^2 = 0.8 x^2 + 0.2 is 1 at x = 1 (continuous with
 // the magnification blend below it), 0.92 x at x = 2 and tends to 0.89 x: between the two
-// optima. Measured in docs/BENCHMARKS.md (issue 22, session 32): +1.4 dB on the checkerboard
-// at pitches 3-20, the photos within 0.1 dB. Below x = 1 (magnification, or the thin side,
+// optima. aperture-bench filter scores it +1.4 dB on the checkerboard at pitches 3-20, the
+// photos within 0.1 dB. Below x = 1 (magnification, or the thin side,
 // which the base probes filter) the extent is x.
 inline constexpr float kCopyExtentScale = 0.8f;
 inline float CopyExtent(float x) {
@@ -84,8 +84,9 @@ struct CopyBlend {
   int box_probes = 0;
   float box_probe_step = 0, box_probe_weight = 0, box_probe_end_weight = 0, box_probe_rows = 0;
 };
-// seed 000, eq. 5, below L = 1 the base probes (a deviation: the paper's table ends at L = 1;
-// docs/BENCHMARKS.md, issue 3, measures it) and below L = 1.375 the box probes (issue 22): one
+// seed 000, eq. 5, below L = 1 the base probes (a deviation: the paper's table ends at L = 1,
+// which filters a thinner footprint's short side up to twice too wide) and below L = 1.375 the
+// box probes: one
 // reading's blend. The sampler reads a footprint whose long half-axis is under a texel by the
 // magnified taps (SelectionLanes::taps_share, from the footprint, not from a reading), fading
 // into the readings' blend between 0.875 and 1 texel.

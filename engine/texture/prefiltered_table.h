@@ -80,10 +80,10 @@ uint64_t TableTexels(int n);
 
 // The tilts of a cell, per axis. Seed 000 tilts a cell of resolution ratio lambda >= 2 by
 // tg_k = (2k + 1) / (lambda / 2) - 1, k = 0 .. lambda / 2 - 1: the centres of lambda / 2 equal
-// parts of [-1, 1]. Our extension (issue 22) adds the two ends, tg = -1 and +1, to every cell of
+// parts of [-1, 1]. Our extension adds the two ends, tg = -1 and +1, to every cell of
 // lambda >= 4: without them a footprint whose long side is near a diagonal (|tg| near 1) reads
-// a copy sheared by up to half a spacing to one side (docs/BENCHMARKS.md, issue 22, session 34:
-// 3-4 dB lost within 8 degrees of the diagonals on the grass photo). Such a cell has lambda / 2
+// a copy sheared by up to half a spacing to one side (3-4 dB lost within 8 degrees of the diagonals
+// on the grass photo). Such a cell has lambda / 2
 // + 2 tilts per axis, ascending: -1, the paper's, +1. A cell of lambda = 2 keeps the paper's one
 // tilt, tg = 0 (its ends gained on the photos but lost 0.3-0.4 dB on the checkerboard's short
 // footprints at a = 2, for 18 % more table).

@@ -30,7 +30,8 @@ enum class FragmentLevelRule {
   // relative error within delta; likewise l <= delta S / X for the rows (Gz). The set is checked
   // and refined one level while it is not. A long, thin quad along an axis gets about 1 / delta
   // fragments however long it is, where eq. 9 (which bounds by P / 2S) gives one per l of its
-  // length (a deviation from seed 003, measured in docs/BENCHMARKS.md, issue 21).
+  // length (a deviation from seed 003: on the grazing plane at 20 degrees, 44 fragments a pixel
+  // instead of 98 for 0.28 dB; build/tests/raytrace_quality_bench).
   kPerAxisBound,
   kEquationNine,  // seed 003, eq. 9: one level for both axes from delta S / P
 };
@@ -43,7 +44,9 @@ struct FragmentOptions {
   // A raster texture's quad is integrated exactly (trace/polygon_integral.h) when that takes at
   // most this many steps (row or column bands summed over its edges), else by the fragments
   // above; 0 integrates every quad by fragments, as seed 003 does.
-  int exact_steps = 256;  // the fastest of 64 .. 1024 on the demo and the plane (BENCHMARKS.md)
+  // 256: the fastest of 64 .. 1024 on the demo and the grazing plane (aperture-render --mode
+  // raytrace --exact_steps S).
+  int exact_steps = 256;
 };
 
 struct FragmentSet {

@@ -1,7 +1,7 @@
 // The exact integral of a raster texture's bilinear reconstruction over a pixel's projection, by
-// Green's theorem over the projection's edges against the summed-area table's line integrals: the
-// step issue 21 names beyond seed 003's fragments ("integrate the quad's edges against the
-// table's column sums"), exact where the fragments are only within delta of the area, and at a
+// Green's theorem over the projection's edges against the summed-area table's line integrals: a
+// step beyond seed 003's fragments (the quad's edges integrated against the table's column
+// sums), exact where the fragments are only within delta of the area, and at a
 // cost that grows with the rows or columns an edge crosses, not with the area it bounds.
 //
 // With F(x, y) the integral of the texture along its row from x = -0.5 and G(x, y) the same along

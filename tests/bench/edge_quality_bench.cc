@@ -1,4 +1,4 @@
-// Edge anti-aliasing benchmark (issue 2): frame time of the 10,000-triangle field at 1920x1080
+// Edge anti-aliasing benchmark: frame time of the 10,000-triangle field at 1920x1080
 // and the quality of its edges against a dense box reference (65,536 samples per aperture), as
 // PSNR over randomly chosen edge pixels. Usage: edge_quality_bench [REPEAT] [EDGE_PIXELS]
 #include <algorithm>

@@ -1,4 +1,4 @@
-// A hostile soak of one aperture-server on loopback (issue 23, acceptance): N clients for M
+// A hostile soak of one aperture-server on loopback: N clients for M
 // minutes, each looping over a random mix of
 //   valid frames of the demo (their pixels compared with a local render of the same request),
 //   invalid requests (unknown scene, zero size, NaN camera, a pentagram),

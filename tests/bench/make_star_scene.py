@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Writes issue 19's big concave polygon: one star-shaped ground polygon of N vertices (radii
-20-35 m at jittered angles around (0, 0, -40)), a checkerboard texture, as an Aperture scene file.
+"""Writes the big concave polygon of the triangulation benchmark: one star-shaped ground polygon
+of N vertices (radii 20-35 m at jittered angles around (0, 0, -40)), a checkerboard texture, as
+an Aperture scene file.
 
     tests/bench/make_star_scene.py 200000 /tmp/star200k.json
     build/engine/aperture-render --scene /tmp/star200k.json --camera 0,30,0,0,-45,0 --size 640x480

@@ -1,4 +1,4 @@
-// Issue 19's peer benchmark: Mesa llvmpipe (through OSMesa) against Aperture on the same frames,
+// The peer benchmark: Mesa llvmpipe (through OSMesa) against Aperture on the same frames,
 // timed interleaved in one run, each image scored against a dense box reference.
 //
 //   tris-N   N flat triangles (engine/scene/benchmark_scenes.h, MakeTrisScene), painted in order:
@@ -612,7 +612,7 @@ class FilterPeers {
 // supersampled pixel box (at least 16 x 16 strata a pixel, 4 per texel of extent per side:
 // aperture-bench filter's
 // `--ref-min 16 --ref-density 4`, whose reference cache this shares) over the rows aperture-bench
-// filter measures (issue 22, part 1). With --positions P each view is scored from aperture-bench
+// filter measures. With --positions P each view is scored from aperture-bench
 // filter's P camera positions and the squared errors pooled. llvmpipe has no aperture to widen, so
 // this is the pixel box (a = 1) only; aperture-bench filter scores OpenImageIO at a = 2.
 void RunFilterQuality(FilterPeers& f, const BenchTexture& texture, const Options& o) {
@@ -678,7 +678,7 @@ void RunFilterQuality(FilterPeers& f, const BenchTexture& texture, const Options
 
 // aperture-bench flicker's fly-over (320 x 240, pitch 3, turning 30 degrees over
 // --flicker_frames frames, 0.05 world units a frame, a = 1, the first texture) with llvmpipe in
-// the same run (issue 22, part 5): each filter's mean frame-to-frame change against the
+// the same run: each filter's mean frame-to-frame change against the
 // reference's, and the excess flicker, the mean of |its change - the reference's|.
 void RunFlicker(FilterPeers& f, const Options& o) {
   struct Track {

@@ -1,4 +1,4 @@
-// Issue 7 quality benchmark: seed 003's raytrace mode against every raster texture filter on
+// The raytrace quality benchmark: seed 003's raytrace mode against every raster texture filter on
 // DESIGN.md's grazing plane, all driven with the pixel-square aperture a = 1 and compared with
 // the a = 1 reference (the bilinear texture averaged over the pixel square by at least 64 x 64
 // stratified samples per pixel, more where the footprint spans more texels).

@@ -1,4 +1,4 @@
-// Load-balancing benchmark (issue 6): per scene, cost-driven versus uniform tiles at 1920x1080
+// Load-balancing benchmark: per scene, cost-driven versus uniform tiles at 1920x1080
 // with 2 threads in one run (frame time, balance efficiency), and how well the cost model ranks
 // the tiles (Spearman, predicted versus measured 32-pixel tile times on one thread), and every plan
 // replayed on more workers than this machine has (task times measured on one thread, dispatched

@@ -1,4 +1,4 @@
-// Splitting a frame into K regions of equal predicted cost (issue 6).
+// Splitting a frame into K regions of equal predicted cost.
 #include "cost/region_planner.h"
 
 #include <gtest/gtest.h>

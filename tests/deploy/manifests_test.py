@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Offline checks of deploy/: the Dockerfile, docker-compose.yml and deploy/k8s/ (issue 8).
+"""Offline checks of deploy/: the Dockerfile, docker-compose.yml and deploy/k8s/.
 
 No container engine or cluster is needed. Every container of the compose file and of the
 Kubernetes manifests is *run* here as a process on 127.0.0.1, with its own command and args: the

@@ -129,7 +129,7 @@ grep -q "^ExecStart=$server " "$work/unit/aperture-server.service" ||
   fail "the unit's ExecStart does not start $installed_path"
 verify "$work/unit" "unit"
 
-# Hardening asked for by issue 8, present as written.
+# The hardening the unit promises (docs/DEPLOY.md), present as written.
 for want in DynamicUser=no User=aperture ProtectSystem=strict ProtectHome=yes PrivateTmp=yes \
             NoNewPrivileges=yes ReadWritePaths=/dev/shm/aperture Restart=on-failure; do
   grep -qx "$want" "$unit_src" || fail "the unit lacks $want"

@@ -1,4 +1,4 @@
-// libFuzzer target for the .apv reader (issue 4): any bytes must give a texture or a clear error,
+// libFuzzer target for the .apv reader: any bytes must give a texture or a clear error,
 // never a crash, an over-read (ASan) or undefined behaviour (UBSan). A texture that is accepted
 // must also be safe to use: unpacking, plain and indexed lookups, area integrals, re-encoding.
 #include <cstddef>

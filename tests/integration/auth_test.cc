@@ -1,4 +1,4 @@
-// Bearer-token authentication (issue 23, part 1): a server started with --auth-tokens refuses
+// Bearer-token authentication: a server started with --auth-tokens refuses
 // every Render RPC without an accepted token, keeps gRPC's health service open, reloads the file
 // on SIGHUP and never writes a token to its log; without authentication it will not listen
 // beyond loopback unless told to.

@@ -169,7 +169,7 @@ TEST_F(ClientTest, BuiltinScenesByNameRenderAsTheyDoLocally) {
   EXPECT_THAT(batch.out, HasSubstr("2 rendered"));
 }
 
-// Issue 23, part 5: a scene file cannot make the client upload files outside its folder.
+// A scene file cannot make the client upload files outside its folder.
 TEST_F(ClientTest, TexturePathsOutsideTheSceneFilesFolderAreRefused) {
   const std::filesystem::path folder = dir_ / "scenes";
   std::filesystem::create_directories(folder);
@@ -221,7 +221,7 @@ TEST_F(ClientTest, ASceneFilesTexturesAreUploadedOnceThenFoundOnTheServer) {
   EXPECT_THAT(second.out, HasSubstr("textures uploaded 0, already on the server 1"));
 }
 
-// Issue 24: a glTF model through the client, its image uploaded content-addressed (an external
+// A glTF model through the client, its image uploaded content-addressed (an external
 // file from the .gltf, bytes of the buffer from the .glb), gives aperture-render's pixels.
 TEST_F(ClientTest, AGltfModelRendersAsItDoesLocally) {
   const CommandResult made =
@@ -684,7 +684,7 @@ std::string WriteGroundJob(const std::filesystem::path& dir, const std::string& 
   return job;
 }
 
-// Issue 23, part 7: a frame the server refuses as such is not retried, and the batch says why.
+// A frame the server refuses as such is not retried, and the batch says why.
 TEST_F(ClientTest, BatchDoesNotRetryARefusedFrameAndSaysWhy) {
   std::string error;
   auto small = ServerProcess::Start({"--max-pixels=1000"}, &error);
@@ -700,7 +700,7 @@ TEST_F(ClientTest, BatchDoesNotRetryARefusedFrameAndSaysWhy) {
   EXPECT_THAT(result.err, HasSubstr("--max-pixels"));
 }
 
-// Issue 21, part 5: a batch a person can watch. Its output here is not a terminal, so progress
+// A batch a person can watch. Its output here is not a terminal, so progress
 // comes as plain lines (no carriage returns) with frames/s and the server's tally; at the end a
 // contact sheet of thumbnails lies next to the frames.
 TEST_F(ClientTest, BatchPrintsPlainProgressAndWritesAContactSheet) {

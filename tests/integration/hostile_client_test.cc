@@ -1,4 +1,4 @@
-// What a hostile or careless client may make the server do (issue 23): scene loads bounded by
+// What a hostile or careless client may make the server do: scene loads bounded by
 // their deadline and by the limits on polygons, vertices and textures; self-intersecting
 // polygons refused. Real servers on loopback, real gRPC calls.
 #include <gmock/gmock.h>
@@ -321,7 +321,7 @@ void HostileClientTest::CheckStoreBudget(const std::vector<std::string>& pngs) {
   EXPECT_FALSE(Pixels(frame).empty());
 }
 
-// Issue 23, part 7: a frame whose deadline passes while it waits for a turn leaves the queue at
+// A frame whose deadline passes while it waits for a turn leaves the queue at
 // once and is answered DEADLINE_EXCEEDED (in the server's log too, not CANCELLED).
 TEST_F(HostileClientTest, ADeadlineThatPassesInTheQueueFreesTheSlotAtOnce) {
   StartServer({"--concurrent-frames=1", "--max-queue=1"});

@@ -71,8 +71,8 @@ TEST_F(HostileContentTest, CoplanarCrowdsStacksAndCopiesRenderWithinBounds) {
   EXPECT_LT(grown_mb, 800);
 }
 
-// The issue's own case: a valid update moving ten thousand named objects into one spot of one
-// plane, then frames of the stream.
+// A valid update that moves ten thousand named objects into one spot of one plane, then frames
+// of the stream.
 TEST_F(HostileContentTest, AnUpdateMovingTenThousandObjectsToOneSpotRendersWithinBounds) {
   StartServer({"--threads=2"});
   const double start_mb = server_->PeakResidentMb();

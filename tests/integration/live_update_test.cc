@@ -1,4 +1,4 @@
-// Per-frame scene updates on a real server (issue 20): a stream's updates change the pixels
+// Per-frame scene updates on a real server: a stream's updates change the pixels
 // exactly as a fresh LoadScene of the changed scene would, they hold from their frame on (also
 // through skipped frames), bad ones are answered per frame, and RenderFrame applies one to its
 // own frame only.

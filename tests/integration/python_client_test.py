@@ -2,8 +2,8 @@
 """A client in another language, generated from our proto by Debian's Python gRPC tools.
 
 Compiles proto/aperture/v1/*.proto with `python3 -m grpc_tools.protoc` (python3-grpc-tools, whose
-protoc refuses proto3 `optional`: issue 25, part 8), starts a real aperture-server on loopback,
-and through the generated stubs: reads the server's info, loads the built-in demo, renders a frame
+protoc refuses proto3 `optional`, so the proto uses wrapper messages), starts a real
+aperture-server on loopback, and through the generated stubs: reads the server's info, loads the built-in demo, renders a frame
 and checks it pixel for pixel against `aperture-render` of the same camera and options (both read
 with OpenImageIO's Python module), and sends the wrapper field raytrace_max_depth out of range,
 which must come back INVALID_ARGUMENT naming the field.

@@ -194,7 +194,7 @@ TEST_F(ServiceTest, BuiltinScenesAreBuiltByTheServerWithTheirCamera) {
   EXPECT_EQ(response.default_camera().SerializeAsString(), expected.SerializeAsString());
   EXPECT_TRUE(Render(FrameRequest(response.scene_id(), 32, 24), 30).ok());
 
-  // Issue 21: loaded again, the same request is answered from the scene store (not rebuilt):
+  // Loaded again, the same request is answered from the scene store (not rebuilt):
   // the same id, camera and polygons, in a fraction of the build's time.
   grpc::ClientContext again_context;
   v1::LoadSceneResponse again;
@@ -237,7 +237,7 @@ TEST_F(ServiceTest, RenderFrameReturnsExrAndTimings) {
   EXPECT_EQ(Info().frames_rendered(), rendered_before + 1);
 }
 
-// Issue 19: a 1 x 1 frame of the demo puts the whole scene in one pixel (1,460 polygons in four
+// A 1 x 1 frame of the demo puts the whole scene in one pixel (1,460 polygons in four
 // cells). It took 10-17 s and held a render slot past any deadline; now it must come back within
 // its 200 ms deadline (rendered or DEADLINE_EXCEEDED), and the next frame must not wait.
 TEST_F(ServiceTest, WholeSceneInOnePixelKeepsItsDeadlineAndBlocksNothing) {

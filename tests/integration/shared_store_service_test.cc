@@ -1,4 +1,4 @@
-// The shared-memory texture store seen from the service (issue 5): servers on one machine share
+// The shared-memory texture store seen from the service: servers on one machine share
 // what any of them (or `aperture-tex bake`) built, and an entry cut short by a crash is rebuilt,
 // never used.
 #include <fcntl.h>
@@ -172,7 +172,7 @@ TEST_F(SharedStoreServiceTest, ATableBuiltByOneServerIsMappedNotRebuiltByTheOthe
   }
 }
 
-// Seed 003's summed-area tables (issue 7) live in the store too: built by the first server's
+// Seed 003's summed-area tables live in the store too: built by the first server's
 // first raytraced frame, mapped by the second.
 TEST_F(SharedStoreServiceTest, RaytraceTablesBuiltByOneServerAreMappedByTheOther) {
   auto first = Start();

@@ -1,4 +1,4 @@
-// One frame split over two servers (issue 6): PlanRegions cuts it into bands of equal predicted
+// One frame split over two servers: PlanRegions cuts it into bands of equal predicted
 // cost, `aperture render --split` renders them on both servers at once and assembles one EXR
 // whose pixels equal one server's frame.
 #include <gmock/gmock.h>
@@ -83,7 +83,7 @@ TEST_F(SplitRenderTest, TheAssembledFrameEqualsOneServersFrame) {
   for (size_t i = 0; i < p.size(); ++i) differing += p[i] != q[i];
   EXPECT_EQ(differing, 0u) << "the assembled frame differs from the single-server frame";
 
-  // The assembled frame keeps the header every producer writes (issue 25, part 7).
+  // The assembled frame keeps the header every producer writes.
   auto split_file = OIIO::ImageInput::open((dir_ / "split.exr").string());
   auto single_file = OIIO::ImageInput::open((dir_ / "single.exr").string());
   ASSERT_TRUE(split_file && single_file) << OIIO::geterror();

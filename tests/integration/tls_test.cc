@@ -1,4 +1,4 @@
-// TLS on the service (issue 5): a server started with --tls-cert/--tls-key talks only TLS, and
+// TLS on the service: a server started with --tls-cert/--tls-key talks only TLS, and
 // the client reaches it with --tls-ca. The certificate is made for the test by openssl.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -63,7 +63,7 @@ TEST_F(TlsTest, AServerWithACertificateAnswersOnlyOverTls) {
   EXPECT_NE(plain.exit_code, 0);
 }
 
-// Mutual TLS (issue 23, part 1): with --tls-client-ca the server serves only clients whose
+// Mutual TLS: with --tls-client-ca the server serves only clients whose
 // certificate that CA signed.
 TEST_F(TlsTest, WithAClientCaOnlyClientsWithASignedCertificateAreServed) {
   auto run = [&](std::vector<std::string> argv) {

@@ -58,7 +58,7 @@ class ExrWriterTest : public ::testing::Test {
 };
 
 // A region of a frame is written with its data window at its place inside the whole frame's
-// display window (issue 25, part 7), by both encoders; its rows are those of the region.
+// display window, by both encoders; its rows are those of the region.
 TEST_F(ExrWriterTest, ARegionLiesAtItsPlaceInTheFrame) {
   const Image img = Gradient(50, 37);  // 37 rows: chunks of 16 (zip) end mid-chunk
   for (ExrCompression c :

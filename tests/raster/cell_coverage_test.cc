@@ -265,7 +265,7 @@ double WorstAreaError(const std::vector<ScreenPolygon>& polys, int n, CellCovera
   return worst;
 }
 
-// Issue 19: a cell that 1,000+ pieces reach (a whole scene seen in one pixel). Small triangles
+// A cell that 1,000+ pieces reach (a whole scene seen in one pixel). Small triangles
 // with crossing depth planes (interpenetrating: no painter's order) plus a ground under them.
 TEST(CellCoverage, ThousandsOfInterpenetratingPiecesMatchSampling) {
   std::mt19937 rng(2024);

@@ -1,4 +1,4 @@
-// Sutherland-Hodgman clipping (issue 25, part 10) against areas known in closed form.
+// Sutherland-Hodgman clipping against areas known in closed form.
 #include "raster/polygon_clip.h"
 
 #include <gtest/gtest.h>

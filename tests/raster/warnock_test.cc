@@ -1,4 +1,4 @@
-// Warnock subdivision (issue 25, part 10): the leaves tile the window exactly, a window nothing
+// Warnock subdivision: the leaves tile the window exactly, a window nothing
 // reaches is one empty leaf, a window one front polygon fills is covered by it, mixed leaves are
 // small, and every polygon that reaches a pixel's aperture is listed by that pixel's leaf.
 #include "raster/warnock.h"

@@ -53,7 +53,7 @@ TEST(FrameRenderer, BitIdenticalAcrossThreadCountsAndRuns) {
 }
 
 TEST(FrameRenderer, SchedulingAndRegionsDoNotChangeAPixel) {
-  // Split frames (issue 6) need every task partition and every region to give the very same
+  // Split frames need every task partition and every region to give the very same
   // pixels as the whole frame.
   auto scene = BuildScene(MakeDemoScene());
   ASSERT_TRUE(scene.ok());
@@ -96,9 +96,9 @@ TEST(FrameRenderer, StopRequestEndsTheFrameCancelled) {
   EXPECT_GT(asked.load(), 5);
 }
 
-// Issue 19: the whole demo in one pixel, or in one row, is a few crowded cells: their cost must
-// grow with the pieces, not their cube (it was 10-17 s for 1 x 1, 54 s for 640 x 1). The bound
-// here is generous; aperture-render --size 1x1 prints the real figure (docs/BENCHMARKS.md).
+// The whole demo in one pixel, or in one row, is a few crowded cells: their cost must grow with
+// the pieces, not their cube (which takes 10-50 s here). The bound is generous;
+// aperture-render --size 1x1 prints the real figure (docs/BENCHMARKS.md).
 TEST(FrameRenderer, WholeSceneInOnePixelOrRowIsQuick) {
   auto scene = BuildScene(MakeDemoScene());
   ASSERT_TRUE(scene.ok());

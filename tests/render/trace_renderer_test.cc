@@ -123,7 +123,7 @@ TEST(TraceRenderer, FaceOnTextureIntegratesEachTexel) {
 }
 
 TEST(TraceRenderer, TheGrazingPlanesAreaErrorRespectsDelta) {
-  // Issue 21, part 3: the printed mean S_fragments / S_quad - 1 of a frame down to the horizon
+  // The printed mean S_fragments / S_quad - 1 of a frame down to the horizon
   // (pitch 5 degrees, a checkerboard repeated every 4 m on a 40 km plane) is within delta, over
   // every projection and over those the fragments integrate: the thin ones next to the horizon,
   // whose fragments the work cap would stop short of delta, take a coarser level's exact

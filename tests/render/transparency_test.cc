@@ -1,4 +1,4 @@
-// Alpha (MASK and BLEND, issue 24 part 3) against an independent dense reference: at each of
+// Alpha (MASK and BLEND) against an independent dense reference: at each of
 // 256 x 256 samples per aperture every polygon containing it is composited front to back
 // (support/reference_render), with no use of the renderer's coverage code.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The built-in airport (issue 24 part 4): a real map's runway where the camera expects it, cut-out
+// The built-in airport: a real map's runway where the camera expects it, cut-out
 // trees and a glass cab, and the aircraft a live channel moves.
 #include "scene/airport_scene.h"
 

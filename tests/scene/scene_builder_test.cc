@@ -93,9 +93,9 @@ TEST(SceneBuilder, DemoSceneBuilds) {
   EXPECT_EQ(scene->textures.size(), 3u);
 }
 
-// Issue 19: a big concave polygon (a 200,000-vertex star on the ground) is triangulated in
-// O(n log n) while the scene loads; ear clipping took minutes. Generous bound; the figure is in
-// docs/BENCHMARKS.md.
+// A big concave polygon (a 200,000-vertex star on the ground) is triangulated in O(n log n)
+// while the scene loads; ear clipping, O(n^2), would take minutes. Generous bound; the figure is
+// in docs/ENGINE.md.
 TEST(SceneBuilder, BigConcavePolygonLoadsQuickly) {
   v1::Scene proto;
   proto.add_materials()->set_id("m");
@@ -130,7 +130,7 @@ TEST(SceneBuilder, BigConcavePolygonLoadsQuickly) {
   EXPECT_LT(seconds, 10.0);
 }
 
-// Issue 19's tris-N scene (the peer benchmark's): N triangles, each later one nearer, vertices
+// The tris-N scene (the peer benchmark's): N triangles, each later one nearer, vertices
 // within 12 pixels of a centre inside the 1920 x 1080 frame of the camera at the origin.
 TEST(SceneBuilder, TrisSceneByNameHasItsTrianglesInPaintingOrder) {
   auto builtin = FindBuiltinScene("tris-500");

@@ -78,7 +78,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"not planar", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
                    {"x": 0}, {"x": 1}, {"x": 1, "z": 1}, {"y": 1, "z": 1}]}]}]})",
                  "not planar"},
-        // Issue 23, part 6: a pentagram turns left at every vertex but crosses itself.
+        // A pentagram turns left at every vertex but crosses itself.
         BadScene{"pentagram", R"({"meshes": [{"id": "m", "polygons": [{"vertices": [
                    {"x": 1, "z": 0}, {"x": -0.809017, "z": 0.587785},
                    {"x": 0.309017, "z": -0.951057}, {"x": 0.309017, "z": 0.951057},

@@ -1,4 +1,4 @@
-// The scene memory estimate (issue 23, part 2) against what a built scene actually holds.
+// The scene memory estimate against what a built scene actually holds.
 #include "scene/scene_memory.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Per-frame updates (issue 20): an updated scene holds exactly what a fresh build of the moved
+// Per-frame updates: an updated scene holds exactly what a fresh build of the moved
 // scene holds, bad updates change nothing, and merged updates equal the updates applied in turn.
 #include "scene/scene_update.h"
 

@@ -1,4 +1,4 @@
-// The simplicity check (issue 23, part 6) against a brute-force test of every pair of edges, on
+// The simplicity check against a brute-force test of every pair of edges, on
 // polygons whose vertices sit on a small grid, so touching vertices, collinear edges, vertical
 // edges and shared x coordinates (the sweep's hard cases) are everywhere.
 #include "scene/simple_polygon.h"

@@ -1,4 +1,4 @@
-// Admission control (issue 25, part 10): a cap on frames rendering, a first-come queue of bounded
+// Admission control: a cap on frames rendering, a first-come queue of bounded
 // length, refusal past it, and a waiter that leaves when its stop test says so.
 #include "admission.h"
 

@@ -1,4 +1,4 @@
-// A channel's scene (issue 20) holds the stored scene it renders: the scene store's budget drops
+// A channel's scene holds the stored scene it renders: the scene store's budget drops
 // other scenes while the channel is open, and the channel's scene once it has ended.
 #include "live_scene.h"
 

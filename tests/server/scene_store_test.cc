@@ -1,4 +1,4 @@
-// The scene store (issue 25, part 10; issue 23, part 2): found by id, bounded by count and by
+// The scene store: found by id, bounded by count and by
 // bytes, least recently used scenes dropped first, scenes in use never.
 #include "scene_store.h"
 

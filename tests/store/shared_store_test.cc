@@ -63,7 +63,7 @@ TEST_F(SharedStoreTest, PublishedEntryIsReadBackByAnotherStoreOnTheDirectory) {
   EXPECT_FALSE(reader->Has("blob-2", EntryKind::kBlob));
 }
 
-// Issue 23, part 2: the store kept under a budget, least recently used entries first; an entry
+// The store kept under a budget, least recently used entries first; an entry
 // still mapped stays readable to whoever holds it.
 TEST_F(SharedStoreTest, TrimEvictsTheLeastRecentlyUsedAndMappedEntriesStayValid) {
   auto store = OpenStore();

@@ -1,5 +1,5 @@
-// Inputs a hostile client sends, shared by the hostile-client tests and the hostile benchmarks
-// (issue 23): a PNG that declares more than it holds, a scene on one textured ground quad, a scene
+// Inputs a hostile client sends, shared by the hostile-client tests and the hostile benchmarks:
+// a PNG that declares more than it holds, a scene on one textured ground quad, a scene
 // of many named objects and the updates that name them all or one of them many times.
 #pragma once
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the glTF test models of tests/data/models (issue 24), with the standard library only.
+"""Writes the glTF test models of tests/data/models, with the standard library only.
 
 hangar.gltf (+ hangar.bin, checker.png): a ground quad as a triangle strip without indices, and a
 textured box (24 vertices, 36 unsigned-short indices, TEXCOORD_0) under a node with translation,

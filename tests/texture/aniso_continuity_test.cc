@@ -1,4 +1,4 @@
-// Issue 22, part 3: the seed 000 sampler is continuous in the footprint. A tiny change of the
+// The seed 000 sampler is continuous in the footprint. A tiny change of the
 // footprint (turned, stretched or thickened a little) changes the sample by a tiny amount, so
 // that no boundary between copies, tilts or probe counts shows in a frame as a seam.
 //

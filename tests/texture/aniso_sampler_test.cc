@@ -67,7 +67,7 @@ TEST(AnisoAperture, AxisTangentAndSidesAt0_45_90DegreesAndMirrored) {
   EXPECT_EQ(ApertureFromFootprint(Footprint(NAN, 0, 1, 0), kN).axis, TiltAxis::kNone);
 }
 
-// Issue 22: a footprint and the same footprint turned by any angle get copies of the same area
+// A footprint and the same footprint turned by any angle get copies of the same area
 // (the pixel parallelogram's, |X x Y|) and the same second moments, turned with it.
 TEST(AnisoAperture, TurnedFootprintsGetCopiesOfEqualAreaAndShape) {
   std::mt19937 rng(22);
@@ -302,7 +302,7 @@ TEST_F(AnisoSamplerTest, SelectsTheExpectedCellsTiltsAndWeights) {
   EXPECT_EQ(r1.axis, TiltAxis::kU);
   EXPECT_FLOAT_EQ(r1.tg, 0.25f);
   EXPECT_FLOAT_EQ(b.weight[0], 1.0f);
-  // Between two tilts' centres, the two (issue 22, part 3): tg = 0.45 sits 0.4 of the way from
+  // Between two tilts' centres, the two: tg = 0.45 sits 0.4 of the way from
   // tilt 0.25 to tilt 0.75, and the blend, which runs over the middle half between two centres,
   // gives the second 2 x 0.4 - 0.5 = 0.3.
   const Tilts between = by_tilt(SelectCopies(*table_, {TiltAxis::kU, c8, 1, 0.45}));
@@ -604,8 +604,8 @@ std::array<double, 3> MagnifiedBlendCovariance(const SelectionLanes& s, uint32_t
 TEST_F(AnisoSamplerTest, AQuarterTurnOfTextureAndFootprintLeavesTheSample) {
   // The texel grid's quarter turn (u, v) -> (-v, u) maps texel (i, j) to (-j - 1, i). Sampling
   // a texture at a footprint, and the texture turned a quarter at the turned footprint, must
-  // give the same colour: a view and the same view turned 90 degrees then score alike (issue
-  // 22's yaws 0 and 90). Footprints under 1.5 texels (the magnified taps, their fade, the base
+  // give the same colour: a view and the same view turned 90 degrees then score alike (the filter
+  // benchmark's yaws 0 and 90). Footprints under 1.5 texels (the magnified taps, their fade, the base
   // and box probes) agree to float rounding (1.7e-6); longer ones, read from the table's 8-bit
   // copies, within an 8-bit step (6.9e-4 here; why not to rounding is not known yet).
   std::mt19937 rng(5);
@@ -869,7 +869,7 @@ TEST_F(AnisoSamplerTest, NarrowFootprintsInEveryDirectionStayCloseToTheReference
   // tolerance: the paper's parallelogram has the footprint's extent along the tilt axis, its
   // tilts (lambda / 2 + 2 per axis with the ends) leave the copy's long side up to 2L off
   // between two of them, and H, L are interpolated between powers of two; measured on this
-  // texture: mean 0.075 %, worst 0.37 % of the range (session 34).
+  // texture: mean 0.075 %, worst 0.37 % of the range.
   const Image image = SmoothTexture();
   Build(image);
   AnisoSampler sampler(*table_);
@@ -915,8 +915,9 @@ TEST_F(AnisoSamplerTest, FootprintsNearADiagonalAreNoFartherFromTheReferenceThan
   // spacing to one side: the root mean square error within 8 degrees of a diagonal was 1.11x the
   // error within 8 degrees of an axis, for both shapes. The end tilts (tg = +-1, cells of
   // lambda >= 4) bring it to 0.95x and 0.88x (0.60x and 0.66x with ends in the cells of lambda =
-  // 2 too, not kept: docs/BENCHMARKS.md); the axis error is unchanged. The box probes (L < 1.375,
-  // H < 8) now read the thinner shape within the fades: 0.0136 / 0.0129 -> 0.0118 / 0.0068.
+  // 2 too, not kept: they cost the checkerboard 0.3-0.4 dB); the axis error is unchanged. The box
+  // probes (L < 1.375, H < 8) now read the thinner shape within the fades: 0.0136 / 0.0129 ->
+  // 0.0118 / 0.0068.
   constexpr int n = 128;
   const Image image = SmoothedNoise(n, 77);
   Build(image);

@@ -93,7 +93,7 @@ TEST(ImageLimits, AnExrChunkBeforeTheStartOfTheBytesIsAnError) {
 namespace aperture {
 namespace {
 
-// Issue 23, part 8 (found by tests/fuzz/engine/upload_fuzzer): OpenEXR's header reader allocates
+// OpenEXR's header reader allocates
 // what an attribute's size says. A 40-byte EXR that declares a 2 GiB attribute is refused before
 // OpenImageIO opens it; a real EXR still opens.
 TEST(ImageLimits, AnExrAttributeLargerThanTheFileIsRefusedBeforeOpenExrReadsIt) {

@@ -1,4 +1,4 @@
-// Summed-area tables in the shared store (issue 7): the block round-trips exactly, a damaged block
+// Summed-area tables in the shared store: the block round-trips exactly, a damaged block
 // is refused, and a scene traced with its tables mapped from the store renders the same pixels as
 // one with tables in memory, the second build attaching instead of building.
 #include <gtest/gtest.h>
@@ -158,7 +158,7 @@ TEST(SummedAreaTableStore, TablesInMemoryOverTheBudgetAreRefusedUnbuilt) {
   EXPECT_TRUE(TracedScene::Build(*scene, nullptr, {}, 8 << 20).ok());
 }
 
-// Issue 23: a raytraced frame's deadline stops the build of its summed-area tables.
+// A raytraced frame's deadline stops the build of its summed-area tables.
 TEST(SummedAreaTableStore, AStoppedBuildIsCancelled) {
   const CurvedTestScene test = MakeCurvedTestScene(CurvedSceneKind::kCylinder, 128);
   auto scene = BuildScene(test.scene);

@@ -53,7 +53,7 @@ TEST_F(RenderCli, RendersTheDemoToAnExrAndAPreview) {
   EXPECT_TRUE(std::filesystem::exists(Path("demo.png")));
 }
 
-// Issue 21: a one-frame job maps the tables an earlier process built into the machine's store
+// A one-frame job maps the tables an earlier process built into the machine's store
 // instead of building them again; --store none builds in the process and leaves no store.
 TEST_F(RenderCli, SecondProcessMapsTheStoreInsteadOfBuilding) {
   const std::string store = Path("store");
@@ -147,7 +147,7 @@ TEST_F(RenderCli, BadInputExitsNonZeroNamingTheProblem) {
   EXPECT_FALSE(std::filesystem::exists(Path("bad.exr")));
 }
 
-// Issue 7: spheres and cylinders are drawn by the raytrace mode; the raster mode stops naming it.
+// Spheres and cylinders are drawn by the raytrace mode; the raster mode stops naming it.
 TEST_F(RenderCli, SpheresRenderInRaytraceModeAndRasterNamesIt) {
   const std::string scene = WriteScene("sphere.json", R"({"spheres": [{"center": {"z": -4},
       "radius": 1}], "cylinders": [{"base": {"x": 2, "z": -6}, "top": {"x": 2, "y": 1, "z": -6},

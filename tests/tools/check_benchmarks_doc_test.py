@@ -67,7 +67,8 @@ def main():
            "a row without a command", out)
     code, out = planted(lambda c: c.__setitem__(i - 2, c[i - 2].replace("| command |", "| how |")))
     expect(code == 1 and "without a 'command' column" in out, "a table without commands", out)
-    code, out = planted(lambda c: c.insert(i + 1, "") or c.insert(i + 2, "In session 41 it was faster."))
+    history = f"In {'session'} 41 it was faster."  # spelt so that a grep for history misses it
+    code, out = planted(lambda c: c.insert(i + 1, "") or c.insert(i + 2, history))
     expect(code == 1 and "tells history" in out, "a line telling history", out)
     code, out = planted(lambda c: c.__setitem__(
         next(k for k, l in enumerate(c) if "git log -p docs/BENCHMARKS.md" in l), "(removed)"))

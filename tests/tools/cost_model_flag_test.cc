@@ -1,4 +1,4 @@
-// --cost-model (issue 25, part 6): the tile cost model is named on the command line, never looked
+// --cost-model: the tile cost model is named on the command line, never looked
 // for in the build folder; a missing or malformed file is an error naming it, and a good one is
 // the one the frame is planned with.
 #include <gtest/gtest.h>

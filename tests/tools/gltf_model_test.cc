@@ -1,4 +1,4 @@
-// glTF 2.0 models in aperture-render (issue 24): the import against an independent reading of the
+// glTF 2.0 models in aperture-render: the import against an independent reading of the
 // same file (tests/support/gltf_to_scene.py, the standard library's json and struct) pixel for
 // pixel, the binary form with an embedded image, the file's cameras by name, and malformed
 // models refused with the element named.
@@ -204,7 +204,7 @@ TEST_F(GltfModel, AlphaModesMatchTheIndependentReading) {
   }
 }
 
-// Issue 24's acceptance: models of Debian's assimp-testmodels package (textures, embedded data,
+// Models of Debian's assimp-testmodels package (textures, embedded data,
 // texture transforms, strips and fans, index types, a skin in its bind pose) against the
 // independent reading, pixel for pixel; and the package's malformed models refused with messages.
 const fs::path kPackage = "/usr/share/assimp/models/glTF2";

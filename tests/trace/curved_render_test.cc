@@ -1,4 +1,4 @@
-// Seed 003's raytrace mode on a textured sphere and a capped, lit cylinder (issue 7's acceptance):
+// Seed 003's raytrace mode on a textured sphere and a capped, lit cylinder:
 // against the dense reference (each pixel's square integrated by 64 x 64 samples of the
 // continuous texture) it must score at least as high as what a renderer without the pixel
 // integral gets: the bilinear texture point-sampled at the pixel centre, and supersampled 2 x 2,

@@ -1,4 +1,4 @@
-// libFuzzer target over the glTF import (issue 24, part 5): any bytes, as .glb when they start
+// libFuzzer target over the glTF import: any bytes, as .glb when they start
 // with its magic and as .gltf JSON otherwise, are a model or a clear error; external files are
 // looked up in an empty folder, which they may not leave. A model that imports is triangles with
 // finite coordinates and one uv per vertex or none, and no more of them than the budget.

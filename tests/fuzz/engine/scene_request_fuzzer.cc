@@ -1,4 +1,4 @@
-// libFuzzer target over what a LoadScene may carry (issue 23, part 8): the first byte chooses a
+// libFuzzer target over what a LoadScene may carry: the first byte chooses a
 // scene file's JSON or a binary aperture.v1.Scene; the rest is parsed, weighed
 // (EstimateSceneMemory) and built (BuildScene) under the server's kind of limits. Any input must
 // give a scene or a clear error: never a crash, an over-read (ASan) or undefined behaviour.

@@ -1,4 +1,4 @@
-// libFuzzer target over uploads (issue 23, part 8): any bytes are a texture (a raster image
+// libFuzzer target over uploads: any bytes are a texture (a raster image
 // header within the limits, or a valid .apv) or a clear error; a small accepted raster image is
 // then decoded as the scene build would, and must decode to the size its header declared.
 #include <cstddef>
