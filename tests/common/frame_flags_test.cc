@@ -25,7 +25,7 @@ absl::StatusOr<FrameJob> JobFromFlags() {
 TEST(FrameFlags, EnumNamesComeFromTheProto) {
   EXPECT_THAT(EnumFlagNames(*v1::AntiAliasing_descriptor()), ElementsAre("box1", "box2", "tent2"));
   EXPECT_THAT(EnumFlagNames(*v1::ExrCompression_descriptor()),
-              ElementsAre("none", "rle", "zips", "zip", "piz", "dwaa"));
+              ElementsAre("none", "rle", "zips", "zip", "piz", "dwaa", "b44", "b44a", "dwab"));
   EXPECT_THAT(EnumFlagNames(*v1::RenderMode_descriptor()), ElementsAre("raster", "raytrace"));
   EXPECT_EQ(EnumFlagNames(*v1::TextureFilter_descriptor()).size(), 6u);
 }
