@@ -59,6 +59,22 @@ TEST(FrameFlags, EveryNameReachesTheEngineValueOfThatName) {
   }
 }
 
+// Without --compression the request leaves the codec to its default (zip), so that a command
+// may choose its own (aperture sim's for a remote server); a name given is always sent.
+TEST(FrameFlags, CompressionUnsetIsTheDefaultAndAGivenNameIsSent) {
+  absl::FlagSaver saver;
+  auto request = FrameRequestFromFlags(std::nullopt, {});
+  ASSERT_TRUE(request.ok());
+  EXPECT_EQ(request->options().compression(), v1::EXR_COMPRESSION_DEFAULT);
+  auto job = FrameJobFromRequest(*request);
+  ASSERT_TRUE(job.ok());
+  EXPECT_EQ(job->exr.compression, ExrCompression::kZip);
+  absl::SetFlag(&FLAGS_compression, "zip");
+  request = FrameRequestFromFlags(std::nullopt, {});
+  ASSERT_TRUE(request.ok());
+  EXPECT_EQ(request->options().compression(), v1::EXR_COMPRESSION_ZIP);
+}
+
 TEST(FrameFlags, HelpAndErrorsListEveryName) {
   absl::FlagSaver saver;
   for (const auto& [flag, descriptor] : {std::pair{"aa", v1::AntiAliasing_descriptor()},
