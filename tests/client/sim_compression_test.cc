@@ -23,8 +23,7 @@ TEST(SimCompression, LoopbackTargetsInEveryFormAreThisMachine) {
 TEST(SimCompression, RemoteServersGetB44aAndLoopbackKeepsZip) {
   EXPECT_EQ(SimDefaultCompression("127.0.0.1:50051", v1::PIXEL_TYPE_DEFAULT),
             v1::EXR_COMPRESSION_ZIP);
-  EXPECT_EQ(SimDefaultCompression("ig-1:50051", v1::PIXEL_TYPE_DEFAULT),
-            v1::EXR_COMPRESSION_B44A);
+  EXPECT_EQ(SimDefaultCompression("ig-1:50051", v1::PIXEL_TYPE_DEFAULT), v1::EXR_COMPRESSION_B44A);
   EXPECT_EQ(SimDefaultCompression("ig-1:50051", v1::PIXEL_TYPE_HALF), v1::EXR_COMPRESSION_B44A);
   // b44a compresses half channels only: float frames keep zip rather than fail.
   EXPECT_EQ(SimDefaultCompression("ig-1:50051", v1::PIXEL_TYPE_FLOAT), v1::EXR_COMPRESSION_ZIP);
