@@ -18,6 +18,7 @@
 #include "request_flags.h"
 #include "scene_upload.h"
 #include "sim_channels.h"
+#include "sim_compression.h"
 #include "sim_path.h"
 
 namespace aperture {
@@ -178,6 +179,10 @@ int RunSim() {
   if (!scene.ok()) return fail(scene.status());
   auto base = FrameRequestFromFlags(*scene);
   if (!base.ok()) return fail(base.status());
+  // Without --compression, the codec suits where the server is (sim_compression.h).
+  if (base->options().compression() == v1::EXR_COMPRESSION_DEFAULT)
+    base->mutable_options()->set_compression(
+        SimDefaultCompression(absl::GetFlag(FLAGS_server), base->options().pixel_type()));
   auto frusta =
       ChannelFrusta(base->camera(), channels, base->options().width(), base->options().height());
   if (!frusta.ok()) return fail(frusta.status());

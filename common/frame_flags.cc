@@ -78,9 +78,10 @@ ABSL_FLAG(double, delta, 0.1,
           "fragments (seed 003, eq. 9)");
 ABSL_FLAG(int, max_depth, 3,
           "with --mode raytrace, the subdivisions of a pixel whose corner rays disagree (0..8)");
-ABSL_FLAG(std::string, compression, "zip",
+ABSL_FLAG(std::string, compression, "",
           absl::StrCat("EXR compression: ",
-                       aperture::NameList(aperture::v1::ExrCompression_descriptor())));
+                       aperture::NameList(aperture::v1::ExrCompression_descriptor()),
+                       "; empty: zip (aperture sim from a server across a network: b44a)"));
 ABSL_FLAG(bool, float_pixels, false, "32-bit float channels instead of half");
 ABSL_FLAG(bool, transparent_sky, false,
           "leave the sky transparent: alpha is what the scene covers, the colour premultiplied by "
@@ -242,10 +243,12 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(
     options.mutable_raytrace_max_depth()->set_value(static_cast<uint32_t>(depth));
   }
 
-  auto compression = EnumFromFlag(*v1::ExrCompression_descriptor(), "compression",
-                                  absl::GetFlag(FLAGS_compression));
-  if (!compression.ok()) return compression.status();
-  options.set_compression(static_cast<v1::ExrCompression>(*compression));
+  // Unset: EXR_COMPRESSION_DEFAULT, zip, unless the command chooses (aperture sim's remote one).
+  if (const std::string c = absl::GetFlag(FLAGS_compression); !c.empty()) {
+    auto compression = EnumFromFlag(*v1::ExrCompression_descriptor(), "compression", c);
+    if (!compression.ok()) return compression.status();
+    options.set_compression(static_cast<v1::ExrCompression>(*compression));
+  }
   options.set_pixel_type(absl::GetFlag(FLAGS_float_pixels) ? v1::PIXEL_TYPE_FLOAT
                                                            : v1::PIXEL_TYPE_HALF);
   options.set_transparent_sky(absl::GetFlag(FLAGS_transparent_sky));

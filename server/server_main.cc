@@ -32,6 +32,8 @@
 #include "flag_names.h"
 #include "keepalive.h"
 #include "large_buffers.h"
+#include "metrics_http.h"
+#include "metrics_interceptor.h"
 #include "render/frame_memory.h"
 #include "render_service.h"
 #include "scene_store.h"
@@ -83,6 +85,10 @@ ABSL_FLAG(std::string, auth_tokens, "",
 ABSL_FLAG(bool, insecure_listen_any, false,
           "allow --listen on an address other machines reach without --auth-tokens or "
           "--tls-client-ca (anyone who connects may upload, load and render)");
+ABSL_FLAG(std::string, metrics_listen, "",
+          "serve Prometheus metrics over HTTP at HOST:PORT, path /metrics (port 0: any free "
+          "port, logged at start); empty: off. Read-only counters without authentication: give "
+          "an address only the monitoring system reaches");
 ABSL_FLAG(double, grace_s, 10,
           "on SIGTERM: seconds in-flight frames get to finish before they "
           "are cancelled");
@@ -236,6 +242,11 @@ int Run() {
                     scenes_budget);
   AdmissionControl admission(limits.concurrent_frames, limits.max_queue);
   RenderService service(limits, textures, scenes, admission, arena, auth.get());
+  std::unique_ptr<ServiceMetrics> metrics;  // --metrics-listen: fed by an interceptor
+  if (!absl::GetFlag(FLAGS_metrics_listen).empty()) {
+    metrics = std::make_unique<ServiceMetrics>();
+    metrics->Watch(admission, textures, scenes, limits.max_store_bytes);
+  }
 
   const std::shared_ptr<grpc::ServerCredentials> credentials = ServerCredentials();
   if (!credentials) return 2;
@@ -251,10 +262,25 @@ int Run() {
   builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS,
                              keepalive::kServerMinPingIntervalMs);
   builder.RegisterService(&service);
+  if (metrics) {
+    std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> creators;
+    creators.push_back(MetricsInterceptorFactory(*metrics));
+    builder.experimental().SetInterceptorCreators(std::move(creators));
+  }
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {
     spdlog::error("cannot listen on {}", listen);
     return 2;
+  }
+  std::unique_ptr<MetricsHttpServer> metrics_http;
+  if (metrics) {
+    auto started = MetricsHttpServer::Start(absl::GetFlag(FLAGS_metrics_listen), *metrics);
+    if (!started.ok()) {
+      spdlog::error("{}", std::string(started.status().message()));
+      return 2;
+    }
+    metrics_http = *std::move(started);
+    spdlog::info("metrics on http://{}{}", metrics_http->address(), MetricsHttpServer::kPath);
   }
   // The first line on stdout is for scripts and tests that asked for port 0.
   std::printf("listening on %s:%d\n", host.c_str(), port);

@@ -61,6 +61,12 @@ exr_compression_t CoreCompression(ExrCompression c) {
       return EXR_COMPRESSION_PIZ;
     case ExrCompression::kDwaa:
       return EXR_COMPRESSION_DWAA;
+    case ExrCompression::kB44:
+      return EXR_COMPRESSION_B44;
+    case ExrCompression::kB44a:
+      return EXR_COMPRESSION_B44A;
+    case ExrCompression::kDwab:
+      return EXR_COMPRESSION_DWAB;
   }
   return EXR_COMPRESSION_ZIP;
 }
@@ -253,7 +259,7 @@ class ChunkWriter {
 }  // namespace
 
 bool CoreEncoderSupports(ExrCompression compression) {
-  return compression != ExrCompression::kDwaa;
+  return compression != ExrCompression::kDwaa && compression != ExrCompression::kDwab;
 }
 
 absl::Status EncodeExrChunks(const Image& image, const ExrOptions& options, std::string* bytes) {

@@ -11,7 +11,7 @@
 
 namespace aperture {
 
-// Whether OpenEXR 3.1's core library can write this compression (dwaa it cannot).
+// Whether OpenEXR 3.1's core library can write this compression (dwaa and dwab it cannot).
 bool CoreEncoderSupports(ExrCompression compression);
 
 // Encodes `image` as a single-part scanline EXR into `bytes` (replaced). Parallel in the calling

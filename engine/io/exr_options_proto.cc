@@ -38,10 +38,25 @@ absl::StatusOr<ExrOptions> ExrOptionsFromProto(const v1::RenderOptions& options)
     case v1::EXR_COMPRESSION_DWAA:
       exr.compression = ExrCompression::kDwaa;
       break;
+    case v1::EXR_COMPRESSION_B44:
+      exr.compression = ExrCompression::kB44;
+      break;
+    case v1::EXR_COMPRESSION_B44A:
+      exr.compression = ExrCompression::kB44a;
+      break;
+    case v1::EXR_COMPRESSION_DWAB:
+      exr.compression = ExrCompression::kDwab;
+      break;
     default:
       return absl::InvalidArgumentError(
           absl::StrCat("options.compression has unknown value ", options.compression()));
   }
+  // No silent fallback to half: the caller asked for float values and would get other numbers.
+  if (CompressesHalfOnly(exr.compression) && exr.pixel_type == ExrPixelType::kFloat)
+    return absl::InvalidArgumentError(
+        absl::StrCat("options.pixel_type FLOAT (--float-pixels) with options.compression ",
+                     ExrCompressionName(exr.compression), ": ", ExrCompressionName(exr.compression),
+                     " compresses half channels only; ask for half pixels or another compression"));
   return exr;
 }
 

@@ -8,7 +8,8 @@
 
 namespace aperture {
 
-// Pixel type and compression; DEFAULT values mean half and zip, as aperture-render writes.
+// Pixel type and compression; DEFAULT values mean half and zip, as aperture-render writes. Float
+// pixels with b44 or b44a, which compress half channels only, are INVALID_ARGUMENT.
 absl::StatusOr<ExrOptions> ExrOptionsFromProto(const v1::RenderOptions& options);
 
 }  // namespace aperture

@@ -15,9 +15,9 @@
 namespace aperture {
 namespace {
 
-// dwaa only: OpenEXR 3.1's core library cannot write it, OpenImageIO's C++ path can. No OpenEXR
-// pool ("exr_threads" -1): a server's two concurrent frames waiting on OpenEXR 3.1's one global
-// pool once left a request waiting forever in OutputFile::writePixels.
+// dwaa and dwab only: OpenEXR 3.1's core library cannot write them, OpenImageIO's C++ path can. No
+// OpenEXR pool ("exr_threads" -1): a server's two concurrent frames waiting on OpenEXR 3.1's one
+// global pool once left a request waiting forever in OutputFile::writePixels.
 absl::Status EncodeThroughOpenImageIO(const Image& image, const ExrOptions& options,
                                       std::string* bytes) {
   std::vector<unsigned char> buffer;
@@ -68,11 +68,25 @@ const char* ExrCompressionName(ExrCompression c) {
       return "piz";
     case ExrCompression::kDwaa:
       return "dwaa";
+    case ExrCompression::kB44:
+      return "b44";
+    case ExrCompression::kB44a:
+      return "b44a";
+    case ExrCompression::kDwab:
+      return "dwab";
   }
   return "zip";
 }
 
+bool CompressesHalfOnly(ExrCompression c) {
+  return c == ExrCompression::kB44 || c == ExrCompression::kB44a;
+}
+
 absl::StatusOr<std::string> EncodeExr(const Image& image, const ExrOptions& options) {
+  if (CompressesHalfOnly(options.compression) && options.pixel_type != ExrPixelType::kHalf)
+    return absl::InvalidArgumentError(
+        absl::StrCat(ExrCompressionName(options.compression),
+                     " compresses half channels only; float pixels need another compression"));
   std::string bytes;
   const absl::Status status = CoreEncoderSupports(options.compression)
                                   ? EncodeExrChunks(image, options, &bytes)

@@ -1,6 +1,6 @@
 // OpenEXR output: RGBA half (default) or float, selectable compression, metadata; to a file or to
 // bytes in memory. Encoded by OpenEXR's core library with blocks of scanlines compressed in
-// parallel (exr_chunk_encoder.h); dwaa through OpenImageIO.
+// parallel (exr_chunk_encoder.h); dwaa and dwab through OpenImageIO (OpenEXR's C++ library).
 #pragma once
 
 #include <string>
@@ -13,10 +13,14 @@
 
 namespace aperture {
 
-enum class ExrCompression { kNone, kRle, kZips, kZip, kPiz, kDwaa };
+enum class ExrCompression { kNone, kRle, kZips, kZip, kPiz, kDwaa, kB44, kB44a, kDwab };
 enum class ExrPixelType { kHalf, kFloat };
 
 const char* ExrCompressionName(ExrCompression c);
+
+// Whether the compression encodes half channels only: B44 and B44A leave float channels
+// uncompressed, so a float frame asked of them is refused rather than sent at full size.
+bool CompressesHalfOnly(ExrCompression c);
 
 struct ExrOptions {
   ExrPixelType pixel_type = ExrPixelType::kHalf;
@@ -26,8 +30,8 @@ struct ExrOptions {
   int zip_level = 4;
   // Blocks of scanlines are compressed in parallel with oneTBB: > 0 in a task arena of that many
   // threads, 0 in the calling thread's arena (a server encodes inside its render arena, so encode
-  // and render share the cores instead of oversubscribing them). dwaa, which OpenEXR 3.1's core
-  // library cannot write, goes through OpenImageIO on the calling thread.
+  // and render share the cores instead of oversubscribing them). dwaa and dwab, which OpenEXR
+  // 3.1's core library cannot write, go through OpenImageIO on the calling thread.
   int threads = 0;
   ExrMetadata metadata;  // the header, and where the image lies in its frame
 };

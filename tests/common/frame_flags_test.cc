@@ -25,7 +25,7 @@ absl::StatusOr<FrameJob> JobFromFlags() {
 TEST(FrameFlags, EnumNamesComeFromTheProto) {
   EXPECT_THAT(EnumFlagNames(*v1::AntiAliasing_descriptor()), ElementsAre("box1", "box2", "tent2"));
   EXPECT_THAT(EnumFlagNames(*v1::ExrCompression_descriptor()),
-              ElementsAre("none", "rle", "zips", "zip", "piz", "dwaa"));
+              ElementsAre("none", "rle", "zips", "zip", "piz", "dwaa", "b44", "b44a", "dwab"));
   EXPECT_THAT(EnumFlagNames(*v1::RenderMode_descriptor()), ElementsAre("raster", "raytrace"));
   EXPECT_EQ(EnumFlagNames(*v1::TextureFilter_descriptor()).size(), 6u);
 }
@@ -57,6 +57,22 @@ TEST(FrameFlags, EveryNameReachesTheEngineValueOfThatName) {
     ASSERT_TRUE(job.ok()) << job.status();
     EXPECT_EQ(job->mode.raytrace, name == "raytrace");
   }
+}
+
+// Without --compression the request leaves the codec to its default (zip), so that a command
+// may choose its own (aperture sim's for a remote server); a name given is always sent.
+TEST(FrameFlags, CompressionUnsetIsTheDefaultAndAGivenNameIsSent) {
+  absl::FlagSaver saver;
+  auto request = FrameRequestFromFlags(std::nullopt, {});
+  ASSERT_TRUE(request.ok());
+  EXPECT_EQ(request->options().compression(), v1::EXR_COMPRESSION_DEFAULT);
+  auto job = FrameJobFromRequest(*request);
+  ASSERT_TRUE(job.ok());
+  EXPECT_EQ(job->exr.compression, ExrCompression::kZip);
+  absl::SetFlag(&FLAGS_compression, "zip");
+  request = FrameRequestFromFlags(std::nullopt, {});
+  ASSERT_TRUE(request.ok());
+  EXPECT_EQ(request->options().compression(), v1::EXR_COMPRESSION_ZIP);
 }
 
 TEST(FrameFlags, HelpAndErrorsListEveryName) {

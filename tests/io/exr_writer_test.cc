@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iterator>
+#include <map>
 #include <random>
 
 #include "io/exr_pack.h"
@@ -61,11 +62,12 @@ class ExrWriterTest : public ::testing::Test {
 // display window, by both encoders; its rows are those of the region.
 TEST_F(ExrWriterTest, ARegionLiesAtItsPlaceInTheFrame) {
   const Image img = Gradient(50, 37);  // 37 rows: chunks of 16 (zip) end mid-chunk
-  for (ExrCompression c :
-       {ExrCompression::kNone, ExrCompression::kZip, ExrCompression::kPiz, ExrCompression::kDwaa}) {
+  for (ExrCompression c : {ExrCompression::kNone, ExrCompression::kZip, ExrCompression::kPiz,
+                           ExrCompression::kDwaa, ExrCompression::kDwab, ExrCompression::kB44a}) {
     ExrOptions options;
     options.compression = c;
-    options.pixel_type = ExrPixelType::kFloat;
+    // b44a compresses half channels only.
+    options.pixel_type = CompressesHalfOnly(c) ? ExrPixelType::kHalf : ExrPixelType::kFloat;
     options.metadata.x = 30;
     options.metadata.y = 21;  // not a multiple of any chunk height
     options.metadata.frame_width = 100;
@@ -85,15 +87,20 @@ TEST_F(ExrWriterTest, ARegionLiesAtItsPlaceInTheFrame) {
     float worst = 0;
     for (size_t i = 0; i < r.pixels.size(); ++i)
       worst = std::max(worst, std::abs(r.pixels[i] - (&img.texels()[i / 4].r)[i % 4]));
-    EXPECT_LE(worst, c == ExrCompression::kDwaa ? 2e-2f : 0.0f) << ExrCompressionName(c);
+    EXPECT_LE(worst, c == ExrCompression::kDwaa || c == ExrCompression::kDwab ? 2e-2f
+                     : CompressesHalfOnly(c)                                  ? 1e-2f
+                                                                              : 0.0f)
+        << ExrCompressionName(c);
   }
 }
 
 TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
   const Image img = Gradient(67, 41);
   for (ExrCompression c : {ExrCompression::kNone, ExrCompression::kRle, ExrCompression::kZips,
-                           ExrCompression::kZip, ExrCompression::kPiz, ExrCompression::kDwaa}) {
+                           ExrCompression::kZip, ExrCompression::kPiz, ExrCompression::kDwaa,
+                           ExrCompression::kDwab, ExrCompression::kB44, ExrCompression::kB44a}) {
     for (ExrPixelType type : {ExrPixelType::kHalf, ExrPixelType::kFloat}) {
+      if (CompressesHalfOnly(c) && type == ExrPixelType::kFloat) continue;  // an error, below
       ExrOptions options;
       options.compression = c;
       options.pixel_type = type;
@@ -122,10 +129,11 @@ TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
       EXPECT_EQ(r.spec.y, 0);
       EXPECT_EQ(r.spec.full_width, 67);
       EXPECT_EQ(r.spec.full_height, 41);
-      // Lossless codecs keep half precision (dwaa is lossy).
-      const float tolerance = c == ExrCompression::kDwaa    ? 2e-2f
-                              : type == ExrPixelType::kHalf ? 1e-3f
-                                                            : 0.0f;
+      // Lossless codecs keep half precision (dwaa, dwab, b44 and b44a are lossy).
+      const float tolerance = c == ExrCompression::kDwaa || c == ExrCompression::kDwab ? 2e-2f
+                              : CompressesHalfOnly(c)                                  ? 1e-2f
+                              : type == ExrPixelType::kHalf                            ? 1e-3f
+                                                                                       : 0.0f;
       float worst = 0;
       for (size_t i = 0; i < r.pixels.size(); ++i) {
         const Rgba& t = img.texels()[i / 4];
@@ -134,6 +142,47 @@ TEST_F(ExrWriterTest, EveryCompressionRoundTripsThroughOpenImageIO) {
       }
       EXPECT_LE(worst, tolerance) << ExrCompressionName(c);
     }
+  }
+}
+
+// B44 and B44A: 4 x 4 blocks of half values in 14 bytes, and in 3 for a flat block in B44A (an
+// opaque frame's alpha, a flat sky); lossy, each value within a fraction of its block's range
+// (smooth content loses little; other tests' steeper gradients allow 1e-2). Float
+// pixels they would leave uncompressed: an error naming both, never a silent half frame.
+TEST_F(ExrWriterTest, B44FramesAreSmallerAndCloseToTheHalfFrame) {
+  const Image img = Gradient(128, 64);  // opaque: alpha 1 everywhere
+  ExrOptions options;
+  options.compression = ExrCompression::kNone;
+  auto none = EncodeExr(img, options);
+  ASSERT_TRUE(none.ok()) << none.status();
+  std::map<ExrCompression, size_t> sizes;
+  for (ExrCompression c : {ExrCompression::kB44, ExrCompression::kB44a}) {
+    options.compression = c;
+    auto bytes = EncodeExr(img, options);
+    ASSERT_TRUE(bytes.ok()) << bytes.status();
+    sizes[c] = bytes->size();
+    OIIO::Filesystem::IOMemReader reader(bytes->data(), bytes->size());
+    const ReadBack r = ReadExr("frame.exr", &reader);
+    EXPECT_EQ(r.spec.get_string_attribute("compression"), ExrCompressionName(c));
+    ASSERT_EQ(r.pixels.size(), img.texels().size() * 4);
+    float worst = 0;
+    for (size_t i = 0; i < r.pixels.size(); ++i)
+      worst = std::max(worst, std::abs(r.pixels[i] - (&img.texels()[i / 4].r)[i % 4]));
+    EXPECT_GT(worst, 0.0f) << "lossy: some value differs";
+    EXPECT_LE(worst, 2e-3f) << ExrCompressionName(c);
+  }
+  // RGBA half is 128 bytes a block; b44 stores 4 x 14, b44a 3 x 14 + 3 (the flat alpha).
+  EXPECT_LT(sizes[ExrCompression::kB44], none->size() / 2);
+  EXPECT_LT(sizes[ExrCompression::kB44a], sizes[ExrCompression::kB44] * 9 / 10);
+
+  options.pixel_type = ExrPixelType::kFloat;
+  for (ExrCompression c : {ExrCompression::kB44, ExrCompression::kB44a}) {
+    options.compression = c;
+    auto refused = EncodeExr(img, options);
+    ASSERT_FALSE(refused.ok()) << ExrCompressionName(c);
+    EXPECT_TRUE(absl::IsInvalidArgument(refused.status()));
+    EXPECT_NE(refused.status().message().find(ExrCompressionName(c)), std::string::npos);
+    EXPECT_NE(refused.status().message().find("half"), std::string::npos);
   }
 }
 
@@ -216,8 +265,9 @@ TEST_F(ExrWriterTest, InMemoryBytesEqualTheFile) {
 // come back exactly.
 TEST_F(ExrWriterTest, ParallelEncodingGivesTheSerialBytes) {
   const Image img = Gradient(640, 333);
-  for (ExrCompression c : {ExrCompression::kNone, ExrCompression::kRle, ExrCompression::kZips,
-                           ExrCompression::kZip, ExrCompression::kPiz}) {
+  for (ExrCompression c :
+       {ExrCompression::kNone, ExrCompression::kRle, ExrCompression::kZips, ExrCompression::kZip,
+        ExrCompression::kPiz, ExrCompression::kB44, ExrCompression::kB44a}) {
     ExrOptions options;
     options.compression = c;
     options.threads = 1;
@@ -232,7 +282,7 @@ TEST_F(ExrWriterTest, ParallelEncodingGivesTheSerialBytes) {
     float worst = 0;
     for (size_t i = 0; i < r.pixels.size(); ++i)
       worst = std::max(worst, std::abs(r.pixels[i] - (&img.texels()[i / 4].r)[i % 4]));
-    EXPECT_LE(worst, 1e-3f) << ExrCompressionName(c);
+    EXPECT_LE(worst, CompressesHalfOnly(c) ? 1e-2f : 1e-3f) << ExrCompressionName(c);
   }
 }
 

@@ -81,5 +81,29 @@ TEST(RenderOptionsTest, ErrorsNameTheField) {
             absl::StatusCode::kInvalidArgument);
 }
 
+// b44 and b44a compress half channels only: float pixels with them are refused, naming the pixel
+// type (and its flag) and the compression, never sent as half. dwab takes float channels.
+TEST(RenderOptionsTest, FloatPixelsWithB44AreRefused) {
+  v1::RenderOptions options = Options(8, 8);
+  options.set_pixel_type(v1::PIXEL_TYPE_FLOAT);
+  for (v1::ExrCompression c : {v1::EXR_COMPRESSION_B44, v1::EXR_COMPRESSION_B44A}) {
+    options.set_compression(c);
+    const absl::Status status = ExrOptionsFromProto(options).status();
+    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_NAMES(status, "options.pixel_type");
+    EXPECT_NAMES(status, "--float-pixels");
+    EXPECT_NAMES(status, c == v1::EXR_COMPRESSION_B44 ? "compression b44" : "compression b44a");
+  }
+  options.set_compression(v1::EXR_COMPRESSION_DWAB);
+  auto dwab = ExrOptionsFromProto(options);
+  ASSERT_TRUE(dwab.ok()) << dwab.status();
+  EXPECT_EQ(dwab->compression, ExrCompression::kDwab);
+  options.set_pixel_type(v1::PIXEL_TYPE_HALF);
+  options.set_compression(v1::EXR_COMPRESSION_B44A);
+  auto b44a = ExrOptionsFromProto(options);
+  ASSERT_TRUE(b44a.ok()) << b44a.status();
+  EXPECT_EQ(b44a->compression, ExrCompression::kB44a);
+}
+
 }  // namespace
 }  // namespace aperture
