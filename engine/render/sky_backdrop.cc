@@ -41,19 +41,34 @@ SkyBackdrop::SkyBackdrop(const SkyDome& dome, const Camera& camera, int width, i
 }
 
 Rgba SkyBackdrop::At(int x, int y) const {
-  const int i = x / kSkyGridStep, j = y / kSkyGridStep;
-  // The next node is a step on, or the frame's last pixel in the last cell.
-  const int span_x = std::min(kSkyGridStep, width_ - 1 - i * kSkyGridStep);
-  const int span_y = std::min(kSkyGridStep, height_ - 1 - j * kSkyGridStep);
-  const float fx = span_x > 0 ? static_cast<float>(x - i * kSkyGridStep) / span_x : 0.0f;
-  const float fy = span_y > 0 ? static_cast<float>(y - j * kSkyGridStep) / span_y : 0.0f;
-  const Rgba* top = &nodes_[static_cast<size_t>(j - j0_) * columns_ + (i - i0_)];
-  const Rgba* bottom = top + columns_;
-  const Rgba upper = top[0] * (1 - fx) + top[1] * fx;
-  const Rgba lower = bottom[0] * (1 - fx) + bottom[1] * fx;
-  Rgba c = upper * (1 - fy) + lower * fy;
-  c.a = 1;
+  Rgba c;
+  Row(y, x, x + 1, &c);
   return c;
+}
+
+void SkyBackdrop::Row(int y, int x0, int x1, Rgba* out) const {
+  // The row's sky at the nodes' columns (blended between the two rows of nodes around it), then
+  // along the row between them.
+  const int j = y / kSkyGridStep;
+  const int span_y = std::min(kSkyGridStep, height_ - 1 - j * kSkyGridStep);
+  const float fy = span_y > 0 ? static_cast<float>(y - j * kSkyGridStep) / span_y : 0.0f;
+  const Rgba* top = &nodes_[static_cast<size_t>(j - j0_) * columns_];
+  const Rgba* bottom = top + columns_;
+  const auto column = [&](int i) { return top[i - i0_] * (1 - fy) + bottom[i - i0_] * fy; };
+  int i = x0 / kSkyGridStep;
+  Rgba left = column(i), right = column(i + 1);
+  for (int x = x0; x < x1; ++x) {
+    if (x / kSkyGridStep != i) {
+      i = x / kSkyGridStep;
+      left = right;
+      right = column(i + 1);
+    }
+    const int span_x = std::min(kSkyGridStep, width_ - 1 - i * kSkyGridStep);
+    const float fx = span_x > 0 ? static_cast<float>(x - i * kSkyGridStep) / span_x : 0.0f;
+    Rgba c = left * (1 - fx) + right * fx;
+    c.a = 1;
+    out[x - x0] = c;
+  }
 }
 
 Rgba SkyBackdrop::Exact(const SkyDome& dome, const Camera& camera, int width, int height, int x,
@@ -67,16 +82,22 @@ void CompositeSky(const SkyDome& dome, const Camera& camera, int width, int heig
   const SkyBackdrop sky(dome, camera, width, height, region);
   tbb::parallel_for(tbb::blocked_range<int>(0, region.height(), 16),
                     [&](const tbb::blocked_range<int>& rows) {
-                      for (int py = rows.begin(); py < rows.end(); ++py)
-                        for (int px = 0; px < region.width(); ++px) {
-                          Rgba& p = image.at(px, py);
+                      std::vector<Rgba> row(static_cast<size_t>(region.width()));
+                      for (int py = rows.begin(); py < rows.end(); ++py) {
+                        Rgba* pixels = &image.at(0, py);
+                        // Rows the scene covers whole (most of the ground) need no sky.
+                        int first = 0;
+                        while (first < region.width() && pixels[first].a >= 1) ++first;
+                        if (first == region.width()) continue;
+                        sky.Row(region.y0 + py, region.x0 + first, region.x1, row.data());
+                        for (int px = first; px < region.width(); ++px) {
+                          Rgba& p = pixels[px];
                           const float open = std::max(0.0f, 1.0f - p.a);
-                          if (open > 0) {
-                            const Rgba s = sky.At(region.x0 + px, region.y0 + py);
-                            p.r += s.r * open, p.g += s.g * open, p.b += s.b * open;
-                          }
+                          const Rgba& s = row[px - first];
+                          p.r += s.r * open, p.g += s.g * open, p.b += s.b * open;
                           p.a = 1;
                         }
+                      }
                     });
 }
 

@@ -24,6 +24,8 @@ class SkyBackdrop {
               const PixelRect& region);
   // The sky at frame pixel (x, y) of the region (its centre), alpha 1.
   Rgba At(int x, int y) const;
+  // The sky at frame pixels [x0, x1) of row y into out[0 .. x1 - x0) (each as At gives it).
+  void Row(int y, int x0, int x1, Rgba* out) const;
   // The sky's value at the centre of frame pixel (x, y), evaluated there (no grid).
   static Rgba Exact(const SkyDome& dome, const Camera& camera, int width, int height, int x, int y);
 
