@@ -33,15 +33,16 @@ std::string NameList(const google::protobuf::EnumDescriptor* descriptor) {
 
 // The lists of names in the help are read from the proto's enums, so the help cannot drift from
 // what the parser accepts.
-ABSL_FLAG(std::string, scene, "airport",
-          "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'night' (that "
-          "airport at night: runway, approach and taxiway lights, a lit town, 16 aircraft with "
-          "their own lights), 'night-by-day' (the same by day, without its lights: the night's load "
-          "to compare), 'demo' (the benchmarks' synthetic airfield), 'triangles' (10,000 "
-          "random triangles), 'skewed' (a city block in one corner of the view), 'tris-N' (N "
-          "triangles painted in order, the peer benchmark's), 'slivers-N' (N slivers on 13 "
-          "planes, the service tests' slow frame), a scene JSON file or a glTF 2.0 model (.gltf, "
-          ".glb)");
+ABSL_FLAG(
+    std::string, scene, "airport",
+    "'airport' (built-in: a real airport's map, buildings, cut-out trees), 'night' (that "
+    "airport at night: runway, approach and taxiway lights, a lit town, 16 aircraft with "
+    "their own lights), 'night-by-day' (the same by day, without its lights: the night's load "
+    "to compare), 'demo' (the benchmarks' synthetic airfield), 'triangles' (10,000 "
+    "random triangles), 'skewed' (a city block in one corner of the view), 'tris-N' (N "
+    "triangles painted in order, the peer benchmark's), 'slivers-N' (N slivers on 13 "
+    "planes, the service tests' slow frame), a scene JSON file or a glTF 2.0 model (.gltf, "
+    ".glb)");
 ABSL_FLAG(std::string, camera, "",
           "X,Y,Z,YAW,PITCH,ROLL, or the name of a glTF model's camera; default: a built-in "
           "scene's approach camera, a glTF model's first camera, else 0,1.7,0,0,0,0");
@@ -88,6 +89,12 @@ ABSL_FLAG(bool, transparent_sky, false,
           "it (for compositing the frame over other imagery)");
 ABSL_FLAG(double, scene_time_s, 0,
           "the scene's clock, seconds: which flashing light points are on (LightFlash)");
+ABSL_FLAG(std::string, time, "",
+          "the time of day, ISO 8601 with its offset (2026-06-21T12:00Z): the sun, sky, ambient "
+          "light and fog colour follow the hour at the scene's place (the built-in airport's is "
+          "Schiphol) or --place's (docs/SCENE.md, \"Time of day\")");
+ABSL_FLAG(std::string, place, "",
+          "LATITUDE,LONGITUDE in degrees (north and east positive) for --time, over the scene's");
 ABSL_FLAG(bool, light_points, true,
           "draw the scene's light points; false: the frame without them (to compare their cost)");
 ABSL_FLAG(std::string, o, "frame.exr", "output EXR path (aperture batch: an output directory)");
@@ -201,6 +208,24 @@ absl::Status CameraFromFlags(const std::optional<v1::Camera>& own,
   return absl::OkStatus();
 }
 
+// --time and --place into the request's scene update (the engine checks the values and names
+// the field; here only the form of --place).
+absl::Status TimeOfDayFromFlags(v1::RenderFrameRequest* request) {
+  const std::string time = absl::GetFlag(FLAGS_time), place = absl::GetFlag(FLAGS_place);
+  if (time.empty() && place.empty()) return absl::OkStatus();
+  v1::TimeOfDay& t = *request->mutable_update()->mutable_time_of_day();
+  t.set_utc(time);
+  if (place.empty()) return absl::OkStatus();
+  const std::vector<std::string> parts = absl::StrSplit(place, ',');
+  double lat = 0, lon = 0;
+  if (parts.size() != 2 || !absl::SimpleAtod(parts[0], &lat) || !absl::SimpleAtod(parts[1], &lon))
+    return absl::InvalidArgumentError(
+        absl::StrCat("--place '", place, "' is not LATITUDE,LONGITUDE (e.g. 52.31,4.76)"));
+  t.mutable_place()->set_latitude_deg(lat);
+  t.mutable_place()->set_longitude_deg(lon);
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(
@@ -254,6 +279,7 @@ absl::StatusOr<v1::RenderFrameRequest> FrameRequestFromFlags(
   options.set_transparent_sky(absl::GetFlag(FLAGS_transparent_sky));
   options.set_hide_light_points(!absl::GetFlag(FLAGS_light_points));
   request.set_scene_time_s(absl::GetFlag(FLAGS_scene_time_s));
+  if (auto s = TimeOfDayFromFlags(&request); !s.ok()) return s;
   return request;
 }
 

@@ -33,6 +33,8 @@ ABSL_DECLARE_FLAG(std::string, compression);
 ABSL_DECLARE_FLAG(bool, float_pixels);
 ABSL_DECLARE_FLAG(bool, transparent_sky);
 ABSL_DECLARE_FLAG(double, scene_time_s);
+ABSL_DECLARE_FLAG(std::string, time);
+ABSL_DECLARE_FLAG(std::string, place);
 ABSL_DECLARE_FLAG(bool, light_points);
 ABSL_DECLARE_FLAG(std::string, o);
 

@@ -15,6 +15,7 @@
 #include "render/frame_memory.h"
 #include "render/leaf_renderer.h"
 #include "render/light_pass.h"
+#include "render/sky_backdrop.h"
 #include "render/visible_surfaces.h"
 
 namespace aperture {
@@ -96,8 +97,8 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
     size_t kinds[3] = {0, 0, 0};
   };
   tbb::enumerable_thread_specific<Worker> workers([&] {
-    Worker w{LeafRenderer(geometry, shader, settings.aa, FrameSky(scene.sky, settings),
-                          frame.region, stop, &memory),
+    Worker w{LeafRenderer(geometry, shader, settings.aa, FrameSky(scene, settings), frame.region,
+                          stop, &memory),
              {},
              0,
              {}};
@@ -140,6 +141,9 @@ absl::StatusOr<RenderedFrame> RenderInArena(const Scene& scene, const Camera& ca
         }
       },
       tbb::simple_partitioner());
+  if (!stopped && !memory.Exceeded() && SkyByDirection(scene, settings))
+    CompositeSky(scene.sky_dome, camera, settings.width, settings.height, frame.region,
+                 frame.image);
   if (!stopped && !memory.Exceeded()) {
     LightPassStats lights;
     if (auto s = DrawLightPoints(geometry, settings, frame.region, footprints, frame.image,

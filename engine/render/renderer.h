@@ -40,10 +40,18 @@ struct RenderSettings {
   bool draw_light_points = true;
 };
 
-// The sky a frame's pixels show where nothing covers them.
-inline Rgba FrameSky(const Rgba& scene_sky, const RenderSettings& settings) {
-  return settings.transparent_sky ? Rgba{0, 0, 0, 0}
-                                  : Rgba{scene_sky.r, scene_sky.g, scene_sky.b, 1};
+// Whether the frame's sky varies with direction (a scene with a time of day, drawn opaque): the
+// renderers then draw over a transparent sky and composite render/sky_backdrop.h's under it.
+inline bool SkyByDirection(const Scene& scene, const RenderSettings& settings) {
+  return scene.sky_dome.analytic && !settings.transparent_sky;
+}
+
+// The sky the renderers draw where nothing covers a pixel: the scene's one colour, or
+// transparent (a transparent sky, or one composited afterwards by direction).
+inline Rgba FrameSky(const Scene& scene, const RenderSettings& settings) {
+  return settings.transparent_sky || SkyByDirection(scene, settings)
+             ? Rgba{0, 0, 0, 0}
+             : Rgba{scene.sky.r, scene.sky.g, scene.sky.b, 1};
 }
 
 struct TaskTiming {

@@ -14,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "base/stopwatch.h"
 #include "render/frame_memory.h"
+#include "render/sky_backdrop.h"
 #include "scene/shading.h"
 #include "texture/packed/packed_sampler.h"
 #include "texture/summed_area_levels.h"
@@ -157,7 +158,7 @@ class Frame {
     return true;
   }
 
-  Rgba Sky() const { return FrameSky(scene_.sky, settings_); }
+  Rgba Sky() const { return FrameSky(scene_, settings_); }
 
   // Lambert sun plus ambient for the normal `n` on the camera's side.
   Rgba Light(const Material& mat, const Vec3& n) const { return SurfaceLight(scene_, mat, n); }
@@ -465,6 +466,8 @@ absl::StatusOr<RenderedFrame> TracedScene::Render(const Camera& camera,
               out.image.at(x, y) = frame.ShadeSquare(x0 + x, y0 + y, 1.0, c, 0, &local);
             }
         });
+    if (!stopping() && SkyByDirection(scene_, settings))
+      CompositeSky(scene_.sky_dome, camera, settings.width, settings.height, region, out.image);
     s.shade_ms = timer.Milliseconds();
   };
   try {

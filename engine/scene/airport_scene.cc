@@ -88,6 +88,15 @@ v1::Scene BuildAirportScene() {
   v1::Scene scene;
   scene.set_name("airport-schiphol");
   SetDemoWeather(scene);
+  // Schiphol's place (the aerodrome reference point, 52.31 N 4.76 E), so that a frame's time of
+  // day (aperture-render --time) lights it; the map's north is up, so the world's -z, along the
+  // Polderbaan, points at the runway's true bearing.
+  v1::TimeOfDay* time_of_day = scene.mutable_time_of_day();
+  time_of_day->mutable_place()->set_latitude_deg(52.31);
+  time_of_day->mutable_place()->set_longitude_deg(4.76);
+  time_of_day->set_grid_north_deg(
+      std::atan2(kPolderbaanNorthX - kPolderbaanSouthX, kPolderbaanSouthY - kPolderbaanNorthY) *
+      180 / kPi);
 
   v1::Texture* map = scene.add_textures();
   map->set_id("schiphol");

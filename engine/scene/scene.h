@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "absl/status/statusor.h"
 #include "aperture/v1/scene.pb.h"
 #include "base/image.h"
+#include "scene/daylight.h"
 #include "scene/light_points.h"
 #include "scene/vec.h"
 #include "store/shared_store.h"
@@ -119,6 +121,16 @@ struct SceneObject {
   std::shared_ptr<const ObjectMesh> mesh;  // what placing it again needs, shared by copies
 };
 
+// A scene's hour and place (v1::TimeOfDay): its sun, ambient, sky and fog colour follow from them
+// (scene/daylight.h) once it has both. A scene may give its place alone (the built-in airport):
+// the hour then comes with a frame's update.
+struct SceneTimeOfDay {
+  std::optional<absl::Time> utc;
+  GeoPlace place;
+  DaylightOptions options;
+  bool operator==(const SceneTimeOfDay&) const = default;
+};
+
 struct Scene {
   std::string name;
   std::vector<std::shared_ptr<const SceneTexture>> textures;
@@ -136,6 +148,9 @@ struct Scene {
   Rgba fog_color{0, 0, 0, 1};
   double fog_density = 0;
   Rgba sky{0, 0, 0, 1};
+  // The sky in each direction: `sky` everywhere unless the scene has a time of day.
+  SkyDome sky_dome;
+  std::optional<SceneTimeOfDay> time_of_day;
   SceneLights lights;  // light points (scene/light_points.h)
 };
 

@@ -196,6 +196,8 @@ class Builder {
       if (auto s = SetFog(proto_.fog(), &scene_); !s.ok()) return s;
     if (proto_.has_sky())
       if (auto s = SetSky(proto_.sky(), &scene_); !s.ok()) return s;
+    if (proto_.has_time_of_day())  // over the sun, ambient, sky and fog colour above
+      return SetTimeOfDay(proto_.time_of_day(), /*update=*/false, "time_of_day", &scene_);
     return absl::OkStatus();
   }
 

@@ -66,7 +66,14 @@ absl::Status SetEnvironment(const v1::SceneUpdate& update, Scene* scene) {
   if (s.ok() && update.has_ambient()) s = SetAmbient(update.ambient(), scene);
   if (s.ok() && update.has_fog()) s = SetFog(update.fog(), scene);
   if (s.ok() && update.has_sky()) s = SetSky(update.sky(), scene);
-  return s.ok() ? s : Prefixed(s, "update.");
+  if (!s.ok()) return Prefixed(s, "update.");
+  // The hour's light wins over the values above while the scene has a time of day, so that
+  // merged updates of skipped frames make the frame that applying them in turn does.
+  if (update.has_time_of_day())
+    return SetTimeOfDay(update.time_of_day(), /*update=*/true, "update.time_of_day", scene);
+  if (update.has_sun() || update.has_ambient() || update.has_fog() || update.has_sky())
+    ApplyDaylight(scene);
+  return s;
 }
 
 // What an update makes of one object: its final visibility and transform, and the polygons that
@@ -153,6 +160,7 @@ absl::Status CheckSceneUpdate(const Scene& scene, const v1::SceneUpdate& update,
           absl::StrCat(where, ".intensity_scale: must be >= 0, is ", g.intensity_scale().value()));
   }
   Scene scratch;  // the environment's checks, on a throwaway copy of its few values
+  scratch.time_of_day = scene.time_of_day;  // what an update's time of day keeps
   return SetEnvironment(update, &scratch);
 }
 
@@ -242,6 +250,14 @@ void MergedSceneUpdate::Merge(const v1::SceneUpdate& later) {
   if (later.has_ambient()) *merged_.mutable_ambient() = later.ambient();
   if (later.has_fog()) *merged_.mutable_fog() = later.fog();
   if (later.has_sky()) *merged_.mutable_sky() = later.sky();
+  if (later.has_time_of_day()) {
+    // Each part from the later update where it sets it (an update's unset parts keep the scene's).
+    const v1::TimeOfDay& t = later.time_of_day();
+    v1::TimeOfDay& merged = *merged_.mutable_time_of_day();
+    if (!t.utc().empty()) merged.set_utc(t.utc());
+    if (t.has_place()) *merged.mutable_place() = t.place();
+    if (t.turbidity() != 0) merged.set_turbidity(t.turbidity());
+  }
   for (const v1::LightGroupUpdate& g : later.light_groups()) {
     auto [it, inserted] = light_group_entry_.try_emplace(g.group(), merged_.light_groups_size());
     if (inserted) {
@@ -253,7 +269,8 @@ void MergedSceneUpdate::Merge(const v1::SceneUpdate& later) {
     if (g.visibility() != v1::VISIBILITY_UNCHANGED) merged.set_visibility(g.visibility());
   }
   empty_ = empty_ && later.objects_size() == 0 && !later.has_sun() && !later.has_ambient() &&
-           !later.has_fog() && !later.has_sky() && later.light_groups_size() == 0;
+           !later.has_fog() && !later.has_sky() && !later.has_time_of_day() &&
+           later.light_groups_size() == 0;
 }
 
 v1::SceneUpdate MergedSceneUpdate::Take() {

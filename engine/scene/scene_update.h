@@ -1,10 +1,10 @@
 // Per-frame state of a live channel: a SceneUpdate moves, shows or hides named objects
-// and changes the sun, ambient, fog and sky of a built scene in place. A moved object's polygons
-// are placed again by the builder's own code (object_placement), so the updated scene holds what
-// a fresh build of the moved scene would, polygon for polygon. The cost is in proportion to what
-// the update names: each entry finds its object through the scene's name index, each moved object
-// is placed again, and when objects are shown or hidden the polygon array is laid out again once
-// (never a rebuild of the scene).
+// and changes the sun, ambient, fog, sky and time of day of a built scene in place. A moved
+// object's polygons are placed again by the builder's own code (object_placement), so the updated
+// scene holds what a fresh build of the moved scene would, polygon for polygon. The cost is in
+// proportion to what the update names: each entry finds its object through the scene's name index,
+// each moved object is placed again, and when objects are shown or hidden the polygon array is laid
+// out again once (never a rebuild of the scene).
 #pragma once
 
 #include <functional>

@@ -34,6 +34,7 @@
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
+#include "scene/scene_update.h"
 #include "store/shared_store.h"
 #include "tools/calibration.h"
 
@@ -167,7 +168,7 @@ int Run() {
     return Fail(absl::InvalidArgumentError(
         absl::StrCat("--zip_level ", exr.zip_level, " is outside 1..9")));
   exr.threads = settings.threads;  // encoding follows rendering: the cores are free again
-  // "both": raster, then raytrace, on the same scene in one run (the issue 7 benchmark).
+  // "both": raster, then raytrace, on the same scene in one run (to compare the two modes).
   const std::vector<bool> raytrace_modes =
       both_modes ? std::vector<bool>{false, true} : std::vector<bool>{job->mode.raytrace};
   TraceOptions trace_options = job->mode.trace;
@@ -194,6 +195,17 @@ int Run() {
   // The request's form of the scene is not needed once it is built (tris-1000000: 0.4 GB).
   if (builtin.ok()) v1::Scene().Swap(&builtin->scene);
   if (model) model.reset();
+  // The request's update (--time, --place) applies as the server applies a frame's.
+  if (request->has_update())
+    if (auto s = ApplySceneUpdate(request->update(), &*built); !s.ok()) return Fail(s);
+  if (built->time_of_day && built->time_of_day->utc) {
+    const SceneTimeOfDay& t = *built->time_of_day;
+    const SunPosition sun = SunPositionAt(*t.utc, t.place);
+    std::printf("time of day %s at %.4f, %.4f: sun altitude %.2f deg, azimuth %.2f deg (%s)\n",
+                absl::FormatTime("%Y-%m-%dT%H:%M:%SZ", *t.utc, absl::UTCTimeZone()).c_str(),
+                t.place.latitude_deg, t.place.longitude_deg, sun.altitude_deg, sun.azimuth_deg,
+                PhaseName(PhaseOf(sun.altitude_deg)));
+  }
 
   double raster_ms = 0, raytrace_ms = 0;
   for (const bool raytrace : raytrace_modes) {
