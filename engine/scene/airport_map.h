@@ -1,8 +1,8 @@
 // The built-in airport's ground map: Amsterdam Schiphol's aeroway features from OpenStreetMap
 // (© OpenStreetMap contributors, ODbL 1.0; ../shared/data/vector/osm_eham_schiphol_8192.png,
 // 9.16 km square, 1.12 m a texel) packed as a seed 001 vector texture by `aperture-tex pack`
-// (engine/scene/data/eham_schiphol_8192.apv, 465 KB), embedded in the binary so that every tool
-// and the server has it without data files.
+// (engine/scene/data/eham_schiphol_8192.apv, 105 KB, .apv version 2), embedded in the binary so
+// that every tool and the server has it without data files.
 #pragma once
 
 #include <cstdint>

@@ -17,6 +17,7 @@ struct DaylightOptions {
   double turbidity = 3;  // Preetham's haze, 2..10 (2: very clear, 3: clear, 10: hazy)
   // The true bearing of the world's -z axis, degrees east of north (0: -z is north, +x east).
   double grid_north_deg = 0;
+  bool operator==(const DaylightOptions&) const = default;
 };
 
 // The sun's altitude bands: day, then civil (to -6 degrees), nautical (-12) and astronomical

@@ -51,7 +51,7 @@ absl::StatusOr<EncodedTextureInfo> EstimateEncodedTexture(std::span<const uint8_
   if (packed::LooksLikeApv(bytes)) {
     EncodedTextureInfo info;
     info.packed = true;
-    info.texture_bytes = bytes.size();
+    info.texture_bytes = packed::ApvDecodedBytesEstimate(bytes);  // the runs decompressed
     return info;
   }
   return InspectEncodedTexture(bytes);

@@ -14,6 +14,7 @@ namespace aperture {
 // A place on the Earth: latitude north positive, longitude east positive, degrees.
 struct GeoPlace {
   double latitude_deg = 0, longitude_deg = 0;
+  bool operator==(const GeoPlace&) const = default;
 };
 
 // The sun seen from a place: apparent altitude above the horizon (refraction included) and azimuth

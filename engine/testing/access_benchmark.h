@@ -26,6 +26,7 @@ struct PackedBenchReport {
   uint64_t raw_bytes = 0, png_bytes = 0, apv_hilbert_bytes = 0, apv_morton_bytes = 0;
   uint64_t memory_hilbert_bytes = 0, index_bytes = 0, quadtree_bytes = 0;
   double pack_seconds = 0;  // Hilbert packing, palette excluded
+  double load_seconds = 0;  // decoding the Hilbert .apv (the timed textures are the decoded ones)
   size_t accesses = 0;      // per method and round
   std::vector<AccessTiming> timings;
   // Area sampling: random rectangles with fractional edges, sides uniform in [1, 16] texels,

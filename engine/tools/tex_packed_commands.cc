@@ -39,21 +39,29 @@ bool WantsHelp(int argc, char** argv, const char* usage, const char* about) {
   return false;
 }
 
-constexpr char kPackUsage[] = "pack IN -o OUT.apv [--curve hilbert|morton] [--quantize]";
+constexpr char kPackUsage[] =
+    "pack IN -o OUT.apv [--curve hilbert|morton] [--quantize] [--apv-version 1|2]";
 
 int RunPack(int argc, char** argv) {
   if (WantsHelp(argc, argv, kPackUsage,
                 "Packs a palette image (<= 256 colours; --quantize reduces more to 256) into runs\n"
-                "along a Hilbert (default) or Morton curve, written as an .apv file (seed 001)."))
+                "along a Hilbert (default) or Morton curve, written as an .apv file (seed 001):\n"
+                "version 2 (default) with its runs compressed by zstd, version 1 uncompressed."))
     return 0;
   std::string in, out, curve_name = "hilbert";
   bool quantize = false;
+  ApvWriteOptions write;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if ((a == "-o" || a == "--curve") && i + 1 >= argc)
+    if ((a == "-o" || a == "--curve" || a == "--apv-version") && i + 1 >= argc)
       return UsageError("pack", kPackUsage, a + " needs a value");
     if (a == "-o") {
       out = argv[++i];
+    } else if (a == "--apv-version") {
+      const std::string v = argv[++i];
+      if (v != "1" && v != "2")
+        return UsageError("pack", kPackUsage, "--apv-version is 1 or 2, not '" + v + "'");
+      write.version = v == "1" ? kApvVersionPlain : kApvVersionZstd;
     } else if (a == "--curve") {
       curve_name = argv[++i];
     } else if (a == "--quantize") {
@@ -77,7 +85,7 @@ int RunPack(int argc, char** argv) {
                 absl::InvalidArgumentError(in + ": " + std::string(image.status().message())));
   auto texture = PackTexture(*image, *curve);
   if (!texture.ok()) return Fail("pack", texture.status());
-  const std::vector<uint8_t> bytes = EncodeApv(texture->view());
+  const std::vector<uint8_t> bytes = EncodeApv(texture->view(), write);
   if (absl::Status s = WriteFileBytes(out, bytes); !s.ok()) return Fail("pack", s);
   std::printf("%s: %ux%u, %zu colours, %s curve, %zu runs, %zu bytes (%.4f bits per texel)\n",
               out.c_str(), image->width, image->height, image->palette.size(), CurveName(*curve),
@@ -130,7 +138,8 @@ int RunInfo(int argc, char** argv) {
   if (!texture.ok()) return Fail("info", texture.status());
   const PackedTextureView& v = texture->view();
   const double texels = double(v.width()) * v.height();
-  std::printf("%s: packed vector texture (.apv version %u)\n", argv[1], kApvVersion);
+  std::printf("%s: packed vector texture (.apv version %u%s)\n", argv[1], ApvVersionOf(*bytes),
+              ApvVersionOf(*bytes) == kApvVersionZstd ? ", runs compressed by zstd" : "");
   std::printf("  size        %u x %u texels\n", v.width(), v.height());
   std::printf("  curve       %s, order %d (%u x %u enclosing square)\n", CurveName(v.curve()),
               v.order(), 1u << v.order(), 1u << v.order());
