@@ -162,6 +162,25 @@ double VisibleShareBySampling(const std::vector<ScreenPolygon>& walls, double x,
   return static_cast<double>(visible) / inside;
 }
 
+// The light's energy in the frame of `proto` from the origin camera (box2): the frame less the
+// frame without the light (the walls' grey is the same in both), and the walls as projected.
+void RenderLightBehindWalls(const v1::Scene& proto, double& light, FrameGeometry& geo) {
+  auto scene = BuildScene(proto);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  const Camera camera = OriginCamera();
+  const RenderSettings settings = Settings(AntiAliasing::kBox2);
+  auto frame = RenderFrame(*scene, camera, settings);
+  ASSERT_TRUE(frame.ok());
+  v1::Scene dark = proto;
+  dark.clear_lights();
+  auto dark_scene = BuildScene(dark);
+  ASSERT_TRUE(dark_scene.ok());
+  auto without = RenderFrame(*dark_scene, camera, settings);
+  ASSERT_TRUE(without.ok());
+  light = RedSum(frame->image) - RedSum(without->image);
+  geo = ProjectScene(*scene, camera, kWidth, kHeight, 2);
+}
+
 TEST(LightPass, ALightPartlyBehindAnEdgeKeepsItsVisibleShare) {
   // A light 40 m ahead, its footprint widened to 6 pixels, behind a wall 20 m ahead whose
   // slanted left edge crosses the footprint at several offsets.
@@ -183,22 +202,9 @@ TEST(LightPass, ALightPartlyBehindAnEdgeKeepsItsVisibleShare) {
       v.set_y(y * pixel_m);
       v.set_z(-20);
     }
-    auto scene = BuildScene(proto);
-    ASSERT_TRUE(scene.ok()) << scene.status();
-    const Camera camera = OriginCamera();
-    const RenderSettings settings = Settings(AntiAliasing::kBox2);
-    auto frame = RenderFrame(*scene, camera, settings);
-    ASSERT_TRUE(frame.ok());
-    // The wall's colour is grey and unlit-free: the light's energy is the frame less the frame
-    // without the light.
-    v1::Scene dark = proto;
-    dark.clear_lights();
-    auto dark_scene = BuildScene(dark);
-    ASSERT_TRUE(dark_scene.ok());
-    auto without = RenderFrame(*dark_scene, camera, settings);
-    ASSERT_TRUE(without.ok());
-    const double light = RedSum(frame->image) - RedSum(without->image);
-    const FrameGeometry geo = ProjectScene(*scene, camera, kWidth, kHeight, 2);
+    double light = 0;
+    FrameGeometry geo;
+    ASSERT_NO_FATAL_FAILURE(RenderLightBehindWalls(proto, light, geo));
     ASSERT_EQ(geo.polygons.size(), 1u);
     const double share = VisibleShareBySampling(geo.polygons, kWidth / 2.0, kHeight / 2.0, 3);
     const double want = AnalyticEnergy({0, 0, -40}, 30) * share;
@@ -234,20 +240,9 @@ TEST(LightPass, ALightBehindACombOfSlatsKeepsItsVisibleShare) {
         v.set_z(-20);
       }
     }
-    auto scene = BuildScene(proto);
-    ASSERT_TRUE(scene.ok()) << scene.status();
-    const Camera camera = OriginCamera();
-    const RenderSettings settings = Settings(AntiAliasing::kBox2);
-    auto frame = RenderFrame(*scene, camera, settings);
-    ASSERT_TRUE(frame.ok());
-    v1::Scene dark = proto;
-    dark.clear_lights();
-    auto dark_scene = BuildScene(dark);
-    ASSERT_TRUE(dark_scene.ok());
-    auto without = RenderFrame(*dark_scene, camera, settings);
-    ASSERT_TRUE(without.ok());
-    const double light = RedSum(frame->image) - RedSum(without->image);
-    const FrameGeometry geo = ProjectScene(*scene, camera, kWidth, kHeight, 2);
+    double light = 0;
+    FrameGeometry geo;
+    ASSERT_NO_FATAL_FAILURE(RenderLightBehindWalls(proto, light, geo));
     ASSERT_EQ(geo.polygons.size(), static_cast<size_t>(slats));
     const double share = VisibleShareBySampling(geo.polygons, kWidth / 2.0, kHeight / 2.0, 3);
     const double want = AnalyticEnergy({0, 0, -40}, 30) * share;
