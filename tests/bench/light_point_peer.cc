@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <map>
 
+#include "osmesa_context.h"
+
 namespace aperture {
 
 std::vector<SizedPoint> OsgSimPointSizes(double pixel_size, double min_size, double max_size) {
@@ -40,27 +42,8 @@ LightPointPeer::~LightPointPeer() {
 }
 
 bool LightPointPeer::Init() {
-  const int attributes[] = {OSMESA_FORMAT,
-                            OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,
-                            24,
-                            OSMESA_PROFILE,
-                            OSMESA_COMPAT_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION,
-                            3,
-                            OSMESA_CONTEXT_MINOR_VERSION,
-                            0,
-                            0};
-  context_ = OSMesaCreateContextAttribs(attributes, nullptr);
-  if (context_ == nullptr) {
-    std::fprintf(stderr, "light peer: no OSMesa context\n");
-    return false;
-  }
-  dummy_.assign(16 * 16, 0);
-  if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, 16, 16)) {
-    std::fprintf(stderr, "light peer: OSMesaMakeCurrent failed\n");
-    return false;
-  }
+  context_ = testing::CreateCurrentOsMesaContext("light peer", dummy_);
+  if (context_ == nullptr) return false;
   // Proof that the buffers hold what is blended: a large point of colour 0.5 reads back as 0.5.
   if (!Resize(16, 16)) return false;
   Camera camera;

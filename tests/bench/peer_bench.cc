@@ -51,6 +51,7 @@
 #include "absl/strings/str_cat.h"
 #include "bench/bench_inputs.h"
 #include "large_buffers.h"
+#include "osmesa_context.h"
 #include "raster/projection.h"
 #include "render/frame_renderer.h"
 #include "scene/benchmark_scenes.h"
@@ -84,18 +85,7 @@ double Median(std::vector<double> v) {
 class Peer {
  public:
   bool Init(bool quiet = false) {
-    const int attributes[] = {OSMESA_FORMAT,
-                              OSMESA_RGBA,
-                              OSMESA_DEPTH_BITS,
-                              24,
-                              OSMESA_PROFILE,
-                              OSMESA_COMPAT_PROFILE,
-                              OSMESA_CONTEXT_MAJOR_VERSION,
-                              3,
-                              OSMESA_CONTEXT_MINOR_VERSION,
-                              0,
-                              0};
-    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    context_ = testing::CreateOsMesaContext();
     if (context_ == nullptr) return false;
     pixels_.resize(static_cast<size_t>(kWidth) * kHeight);
     if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, kWidth, kHeight))

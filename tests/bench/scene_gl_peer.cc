@@ -12,6 +12,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "gl_texels.h"
+#include "osmesa_context.h"
 #include "scene/shading.h"
 
 namespace aperture {
@@ -60,27 +61,8 @@ SceneGlPeer::~SceneGlPeer() {
 }
 
 bool SceneGlPeer::Init() {
-  const int attributes[] = {OSMESA_FORMAT,
-                            OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,
-                            24,
-                            OSMESA_PROFILE,
-                            OSMESA_COMPAT_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION,
-                            3,
-                            OSMESA_CONTEXT_MINOR_VERSION,
-                            0,
-                            0};
-  context_ = OSMesaCreateContextAttribs(attributes, nullptr);
-  if (context_ == nullptr) {
-    std::fprintf(stderr, "scene peer: no OSMesa context\n");
-    return false;
-  }
-  dummy_.assign(16 * 16, 0);
-  if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, 16, 16)) {
-    std::fprintf(stderr, "scene peer: OSMesaMakeCurrent failed\n");
-    return false;
-  }
+  context_ = testing::CreateCurrentOsMesaContext("scene peer", dummy_);
+  if (context_ == nullptr) return false;
   return glGetError() == GL_NO_ERROR;
 }
 
