@@ -13,26 +13,12 @@
 #include "scene/demo_scene.h"
 #include "scene/runway_markings.h"
 #include "scene/scene_builder.h"
+#include "support/map_texel.h"
 
 namespace aperture {
 namespace {
 
-// The map's colour at world point (x, 0, z): its nearest texel, through the ground polygon's own
-// texture mapping.
-Rgba MapAt(const Scene& scene, double x, double z) {
-  for (const ScenePolygon& p : scene.polygons) {
-    const Material& m = scene.materials[p.material];
-    if (m.id != "map") continue;
-    const Vec3 at{x, 0, z};
-    TextureFootprint f;
-    f.u = Dot(p.mapping.su, at) + p.mapping.u0;
-    f.v = Dot(p.mapping.sv, at) + p.mapping.v0;
-    f.u -= std::floor(f.u), f.v -= std::floor(f.v);
-    return (*scene.textures[m.texture]->Sampler(FilterMode::kNearest))->Sample(f);
-  }
-  ADD_FAILURE() << "no map polygon";
-  return {};
-}
+using testing::MapAt;
 
 bool IsRunway(const Rgba& c) {  // runway asphalt #383838 or its white markings #F0F0F0
   auto near = [&](float v) { return std::abs(c.r - v) < 0.01f && c.g == c.r && c.b == c.r; };

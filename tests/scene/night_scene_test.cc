@@ -19,6 +19,7 @@
 #include "scene/light_points.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_update.h"
+#include "support/map_texel.h"
 
 namespace aperture {
 namespace {
@@ -169,22 +170,7 @@ TEST(NightScene, SixteenAircraftMoveWithTheirOwnLights) {
   EXPECT_LE(changed, 9);  // its own lights only
 }
 
-// The map's colour at world point (x, 0, z): its nearest texel, through the ground polygon's own
-// texture mapping (as tests/scene/airport_scene_test.cc reads it).
-Rgba MapAt(const Scene& scene, double x, double z) {
-  for (const ScenePolygon& p : scene.polygons) {
-    const Material& m = scene.materials[p.material];
-    if (m.id != "map") continue;
-    const Vec3 at{x, 0, z};
-    TextureFootprint f;
-    f.u = Dot(p.mapping.su, at) + p.mapping.u0;
-    f.v = Dot(p.mapping.sv, at) + p.mapping.v0;
-    f.u -= std::floor(f.u), f.v -= std::floor(f.v);
-    return (*scene.textures[m.texture]->Sampler(FilterMode::kNearest))->Sample(f);
-  }
-  ADD_FAILURE() << "no map polygon";
-  return {};
-}
+using testing::MapAt;
 
 // The taxiways' lights were placed from the map's texels (AirportMapToWorld): nine in ten of
 // their centre line lights stand on the map's paved taxiways (the rest where the measured centre
