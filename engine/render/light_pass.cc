@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "base/held_bytes.h"
@@ -114,13 +115,16 @@ class LightProjector {
     const double distance = Length(to_light);
     const Vec3 p = to_camera_ * to_light;
     if (!(-p.z > camera_.near) || (camera_.far > 0 && -p.z > camera_.far)) return;
+    const double tx = p.x / -p.z, ty = p.y / -p.z;
+    const double x = (tx - geo_.frustum.left) / sx_, y = (geo_.frustum.top - ty) / sy_;
+    // Beyond the frame by more than the largest footprint: nothing of it can show.
+    constexpr double kReach = kMaxFootprintPx + 2;
+    if (x < -kReach || x > geo_.width + kReach || y < -kReach || y > geo_.height + kReach) return;
     Vec3 to_eye = to_light * (-1.0 / distance);
     if (rotation != nullptr) to_eye = rotation->Transposed() * to_eye;  // the lobe's frame
     const double intensity =
         LightIntensityTowards(light, to_eye, settings_.scene_time_s, scene_.lights.groups);
     if (!(intensity > 0)) return;
-    const double tx = p.x / -p.z, ty = p.y / -p.z;
-    const double x = (tx - geo_.frustum.left) / sx_, y = (geo_.frustum.top - ty) / sy_;
     // The solid angle of one pixel there, and Allard's law through the fog.
     const double pixel_sr = sx_ * sy_ / std::pow(1 + tx * tx + ty * ty, 1.5);
     const double tau = scene_.fog_density * distance;
@@ -175,6 +179,25 @@ class LightProjector {
   std::vector<std::optional<Placement>> placements_;
 };
 
+// What deciding whether a polygon may hide a light reads of it, in one cache line: its box, its
+// plane and its nearest inverse depth (-inf for a transparent polygon, which hides nothing). Most
+// of the polygons seen near a light are refused on these alone, without reading the polygon.
+struct alignas(64) OccluderKey {
+  double min_x, min_y, max_x, max_y;
+  ScreenLinear inv_depth;
+  double nearest;
+};
+
+std::vector<OccluderKey> OccluderKeys(const FrameGeometry& geometry) {
+  std::vector<OccluderKey> keys(geometry.polygons.size());
+  tbb::parallel_for(size_t{0}, keys.size(), [&](size_t i) {
+    const ScreenPolygon& p = geometry.polygons[i];
+    keys[i] = {p.min_x, p.min_y,     p.max_x,
+               p.max_y, p.inv_depth, p.transparent ? -INFINITY : NearestInvDepth(p)};
+  });
+  return keys;
+}
+
 // The polygons of the frame by tile, for the lights whose cells the raster pass did not record
 // (more polygons seen than a cell keeps, transparent surfaces): each tile's nearest first (by each
 // one's nearest inverse depth), so that the search stops at the first polygon behind the light.
@@ -183,8 +206,45 @@ struct PolygonTiles {
   int x0 = 0, y0 = 0;              // the frame region's first pixel, where tile (0, 0) starts
   int columns = 0, rows = 0;
   std::vector<std::vector<int>> tiles;
-  std::vector<double> nearest;
 };
+
+// Fills the tiles of `t` that the boxes of the footprints not `recorded` reach with the polygons
+// whose boxes, grown by `margin`, reach them inside `region`, in ascending order (as
+// raster/warnock.h's BinPolygons does for every tile); the other tiles stay empty (few
+// footprints are not recorded: binning the whole frame would cost more than all their searches).
+void BinNearUnrecorded(const std::vector<OccluderKey>& keys,
+                       const std::vector<LightFootprint>& footprints,
+                       const std::vector<uint8_t>& recorded, const PixelRect& region, double margin,
+                       PolygonTiles& t) {
+  if (t.columns <= 0 || t.rows <= 0) return;
+  const int tile = PolygonTiles::kTile;
+  auto column = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x - t.x0) / tile)), 0, t.columns - 1);
+  };
+  auto row = [&](double y) {
+    return std::clamp(static_cast<int>(std::floor((y - t.y0) / tile)), 0, t.rows - 1);
+  };
+  std::vector<uint8_t> wanted(t.tiles.size(), 0);
+  for (size_t k = 0; k < footprints.size(); ++k) {
+    if (recorded[k]) continue;
+    const LightFootprint& f = footprints[k];
+    const double r = f.radius * kOctagonCircumradius;
+    for (int j = row(f.y - r); j <= row(f.y + r); ++j)
+      for (int i = column(f.x - r); i <= column(f.x + r); ++i)
+        wanted[static_cast<size_t>(j) * t.columns + i] = 1;
+  }
+  for (size_t index = 0; index < keys.size(); ++index) {
+    const OccluderKey& p = keys[index];
+    if (p.max_x < region.x0 - margin || p.min_x > region.x1 + margin ||
+        p.max_y < region.y0 - margin || p.min_y > region.y1 + margin)
+      continue;
+    for (int j = row(p.min_y - margin); j <= row(p.max_y + margin); ++j)
+      for (int i = column(p.min_x - margin); i <= column(p.max_x + margin); ++i) {
+        const size_t n = static_cast<size_t>(j) * t.columns + i;
+        if (wanted[n]) t.tiles[n].push_back(static_cast<int>(index));
+      }
+  }
+}
 
 // The pixels of `region` a footprint's filter apertures may reach.
 PixelRect FootprintPixels(const Footprint& f, const AaFilterShape& shape, const PixelRect& region) {
@@ -205,9 +265,11 @@ enum class Shown { kWhole, kPartly, kNone };
 // adds to a pixel).
 class Splatter {
  public:
-  Splatter(const FrameGeometry& geometry, const RenderSettings& settings,
-           const VisibleSurfaces* surfaces, const PolygonTiles* tiles)
+  Splatter(const FrameGeometry& geometry, const std::vector<OccluderKey>& keys,
+           const RenderSettings& settings, const VisibleSurfaces* surfaces,
+           const PolygonTiles* tiles)
       : geo_(geometry),
+        keys_(keys),
         aa_(settings.aa),
         shape_(ShapeOf(settings.aa)),
         surfaces_(surfaces),
@@ -220,13 +282,13 @@ class Splatter {
     if (surfaces == nullptr) return false;
     for (int ky = f.CellY0(shape); ky <= f.CellY1(shape); ++ky)
       for (int kx = f.CellX0(shape); kx <= f.CellX1(shape); ++kx)
-        if (!surfaces->Holds(kx, ky) || surfaces->at(kx, ky).count < 0) return false;
+        if (!surfaces->Holds(kx, ky) || surfaces->count(kx, ky) < 0) return false;
     return true;
   }
 
   // Adds the footprint's weights to `weights`, the pixels of `pixels` (FootprintPixels) row by row;
-  // how much of it shows.
-  Shown Splat(const Footprint& f, const PixelRect& pixels, float* weights) {
+  // how much of it shows. `recorded`: Recorded(f, ...).
+  Shown Splat(const Footprint& f, bool recorded, const PixelRect& pixels, float* weights) {
     const std::array<Vec2, 8> octagon = OctagonVertices(f);
     Box box{octagon[0].x, octagon[0].y, octagon[0].x, octagon[0].y};
     for (const Vec2& v : octagon) {
@@ -235,12 +297,11 @@ class Splatter {
     }
     found_.clear();
     ++stamp_;
-    if (Recorded(f, shape_, surfaces_)) {
+    if (recorded) {
       // The polygons seen in its cells: those hidden there by others nearer still add nothing.
       for (int ky = f.CellY0(shape_); ky <= f.CellY1(shape_); ++ky)
         for (int kx = f.CellX0(shape_); kx <= f.CellX1(shape_); ++kx) {
-          const CellSurfaces& cell = surfaces_->at(kx, ky);
-          for (int k = 0; k < cell.count; ++k) Found(cell.polygons[k]);
+          surfaces_->ForPolygons(kx, ky, [&](int index) { Found(index); });
         }
     } else {
       SearchTiles(box, f.inv_depth);
@@ -263,15 +324,23 @@ class Splatter {
     const int ky0 = static_cast<int>(std::floor(box.y0 - offset));
     const int ky1 = static_cast<int>(std::floor(box.y1 - offset));
     const int stride = pixels.width();
-    row_.resize(kx1 - kx0 + 1);
+    const int columns = kx1 - kx0 + 1;
+    // The box filters weigh a cell's area alone: accumulated over the whole grid at once.
+    const bool areas_only = in_pieces && !shape_.needs_moments;
+    if (areas_only) {
+      areas_.resize(static_cast<size_t>(columns) * (ky1 - ky0 + 1));
+      visible_.AreasInCells(kx0 + offset, ky0 + offset, columns, ky1 - ky0 + 1, areas_.data());
+    }
+    row_.resize(columns);
     for (int ky = ky0; ky <= ky1; ++ky) {
-      if (in_pieces)
-        visible_.InRow(kx0 + offset, ky + offset + 0.5, kx1 - kx0 + 1, shape_.needs_moments,
-                       row_.data());
+      if (in_pieces && !areas_only)
+        visible_.InRow(kx0 + offset, ky + offset + 0.5, columns, shape_.needs_moments, row_.data());
       for (int kx = kx0; kx <= kx1; ++kx) {
         const double cx = kx + offset + 0.5, cy = ky + offset + 0.5;
         CellMoments m;
-        if (in_pieces) {
+        if (areas_only) {
+          m.area = areas_[static_cast<size_t>(ky - ky0) * columns + (kx - kx0)];
+        } else if (in_pieces) {
           m = row_[kx - kx0];
         } else {
           pieces_.clear();
@@ -319,7 +388,7 @@ class Splatter {
     for (int r = r0; r <= r1; ++r)
       for (int c = c0; c <= c1; ++c)
         for (int index : t.tiles[static_cast<size_t>(r) * t.columns + c]) {
-          if (!(t.nearest[index] > nearer)) break;  // the rest are behind it all over
+          if (!(keys_[index].nearest > nearer)) break;  // the rest are behind it all over
           Found(index);
         }
   }
@@ -336,13 +405,12 @@ class Splatter {
     occluders_.clear();
     size_t front = 0;
     for (int index : found_) {
+      const OccluderKey& k = keys_[index];
+      if (k.max_x <= box.x0 || k.min_x >= box.x1 || k.max_y <= box.y0 || k.min_y >= box.y1 ||
+          !(k.inv_depth.At(f.x, f.y) > nearer) || !(k.nearest > nearer))
+        continue;
       const ScreenPolygon& p = geo_.polygons[index];
-      if (p.transparent || p.max_x <= box.x0 || p.min_x >= box.x1 || p.max_y <= box.y0 ||
-          p.min_y >= box.y1 || !(p.inv_depth.At(f.x, f.y) > nearer))
-        continue;
-      if (!ReachesDisc(p, f.x, f.y, f.radius * kOctagonCircumradius) ||
-          !(NearestInvDepth(p) > nearer))
-        continue;
+      if (!ReachesDisc(p, f.x, f.y, f.radius * kOctagonCircumradius)) continue;
       occluders_.push_back(index);
       if (p.Contains(f.x, f.y)) std::swap(occluders_.back(), occluders_[front++]);
     }
@@ -364,6 +432,7 @@ class Splatter {
   }
 
   const FrameGeometry& geo_;
+  const std::vector<OccluderKey>& keys_;
   AntiAliasing aa_;
   AaFilterShape shape_;
   const VisibleSurfaces* surfaces_;
@@ -371,6 +440,7 @@ class Splatter {
   VisibleFootprint visible_;
   std::vector<int> found_, occluders_;
   std::vector<CellMoments> row_;
+  std::vector<double> areas_;
   // Which polygons found_ holds: seen_[i] == stamp_ (a fresh stamp per footprint).
   std::vector<uint32_t> seen_;
   uint32_t stamp_ = 0;
@@ -425,28 +495,32 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
     return absl::OkStatus();
   }
   const AaFilterShape shape = ShapeOf(settings.aa);
+  const std::vector<OccluderKey> keys = OccluderKeys(geometry);
+  size_t held = 0, pass_bytes = HeldBytes(keys);
   // The polygons by tile, nearest first, only when some footprint's cells were not all recorded.
   std::optional<PolygonTiles> tiles;
-  size_t held = 0, tile_bytes = 0;
-  if (!std::all_of(footprints.begin(), footprints.end(), [&](const LightFootprint& f) {
-        return Splatter::Recorded(f, shape, surfaces);
-      })) {
+  std::vector<uint8_t> recorded(footprints.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, footprints.size(), 1024),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      for (size_t k = range.begin(); k < range.end(); ++k)
+                        recorded[k] = Splatter::Recorded(footprints[k], shape, surfaces);
+                    });
+  if (!std::all_of(recorded.begin(), recorded.end(), [](uint8_t r) { return r != 0; })) {
     PolygonTiles& t = tiles.emplace();
-    t.tiles = BinPolygons(geometry, shape.margin + 1, region, PolygonTiles::kTile, &t.columns);
     t.x0 = region.x0, t.y0 = region.y0;
-    t.rows = t.columns > 0 ? static_cast<int>(t.tiles.size()) / t.columns : 0;
-    tile_bytes = HeldBytes(t.tiles) + geometry.polygons.size() * sizeof(double);
-    for (const std::vector<int>& tile : t.tiles) tile_bytes += HeldBytes(tile);
-    if (memory != nullptr && !memory->Hold(held, tile_bytes)) {
-      memory->Refuse("the light points' lists of polygons by tile", tile_bytes);
+    t.columns = (region.width() + PolygonTiles::kTile - 1) / PolygonTiles::kTile;
+    t.rows = (region.height() + PolygonTiles::kTile - 1) / PolygonTiles::kTile;
+    t.tiles.resize(static_cast<size_t>(t.columns) * t.rows);
+    BinNearUnrecorded(keys, footprints, recorded, region, shape.margin + 1, t);
+    pass_bytes += HeldBytes(t.tiles);
+    for (const std::vector<int>& tile : t.tiles) pass_bytes += HeldBytes(tile);
+    if (memory != nullptr && !memory->Hold(held, pass_bytes)) {
+      memory->Refuse("the light points' lists of polygons by tile", pass_bytes);
       return memory->Error();
     }
-    t.nearest.resize(geometry.polygons.size());
-    tbb::parallel_for(size_t{0}, geometry.polygons.size(),
-                      [&](size_t i) { t.nearest[i] = NearestInvDepth(geometry.polygons[i]); });
     tbb::parallel_for(size_t{0}, t.tiles.size(), [&](size_t i) {
       std::sort(t.tiles[i].begin(), t.tiles[i].end(),
-                [&](int a, int b) { return t.nearest[a] > t.nearest[b]; });
+                [&](int a, int b) { return keys[a].nearest > keys[b].nearest; });
     });
   }
   // In batches: each footprint resolved on its own (any worker, any order) into its pixels'
@@ -458,16 +532,31 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
     pixels[k] = FootprintPixels(footprints[k], shape, region);
     offset[k + 1] = offset[k] + static_cast<size_t>(pixels[k].width()) * pixels[k].height();
   }
+  // Resolved in the order of their places on the screen (by tiles, row by row), so that
+  // neighbouring footprints, which read the same cells and polygons, follow one another.
+  // Each footprint's key: its tile's row, then column (32-pixel tiles, offset to stay positive),
+  // then its index.
+  std::vector<uint64_t> by_place(footprints.size());
+  for (size_t k = 0; k < footprints.size(); ++k) {
+    constexpr double kPlaceTile = 32;
+    const auto tile = [](double v) {
+      return static_cast<uint64_t>(std::clamp(std::floor(v / kPlaceTile) + 1024, 0.0, 65535.0));
+    };
+    by_place[k] = tile(footprints[k].y) << 48 | tile(footprints[k].x) << 32 | k;
+  }
   tbb::enumerable_thread_specific<Splatter> splatters(
-      [&] { return Splatter(geometry, settings, surfaces, tiles ? &*tiles : nullptr); });
+      [&] { return Splatter(geometry, keys, settings, surfaces, tiles ? &*tiles : nullptr); });
   std::vector<float> weights;
+  std::vector<size_t> band_begin, band_fill;
+  std::vector<uint32_t> band_footprints;
   std::atomic<size_t> hidden{0}, partly_hidden{0};
   std::atomic<bool> stopped{false};
   for (size_t first = 0; first < footprints.size() && !stopped;) {
     size_t last = first + 1;
     while (last < footprints.size() && offset[last + 1] - offset[first] <= kBatchWeights) ++last;
     weights.assign(offset[last] - offset[first], 0.0f);
-    if (memory != nullptr && !memory->Hold(held, tile_bytes + HeldBytes(weights))) {
+    std::sort(by_place.begin() + first, by_place.begin() + last);
+    if (memory != nullptr && !memory->Hold(held, pass_bytes + HeldBytes(weights))) {
       memory->Refuse("the light points' pixel weights", HeldBytes(weights));
       return memory->Error();
     }
@@ -479,8 +568,9 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
                         }
                         Splatter& splatter = splatters.local();
                         size_t wholly = 0, partly = 0;
-                        for (size_t k = range.begin(); k < range.end(); ++k)
-                          switch (splatter.Splat(footprints[k], pixels[k],
+                        for (size_t i = range.begin(); i < range.end(); ++i) {
+                          const size_t k = by_place[i] & 0xffffffffu;
+                          switch (splatter.Splat(footprints[k], recorded[k], pixels[k],
                                                  weights.data() + offset[k] - offset[first])) {
                             case Shown::kWhole:
                               break;
@@ -491,14 +581,31 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
                               ++wholly;
                               break;
                           }
+                        }
                         hidden += wholly;
                         partly_hidden += partly;
                       });
     if (stopped) break;
+    // Each band's footprints in their order (a counting sort by band), so that a band passes
+    // over only those that reach it.
     const int bands = (region.height() + kBandRows - 1) / kBandRows;
+    auto band_of = [&](int y) { return (y - region.y0) / kBandRows; };
+    band_begin.assign(static_cast<size_t>(bands) + 1, 0);
+    for (size_t k = first; k < last; ++k)
+      for (int b = band_of(pixels[k].y0);
+           pixels[k].y1 > pixels[k].y0 && b <= band_of(pixels[k].y1 - 1); ++b)
+        ++band_begin[b + 1];
+    for (int b = 0; b < bands; ++b) band_begin[b + 1] += band_begin[b];
+    band_footprints.resize(band_begin[bands]);
+    band_fill.assign(band_begin.begin(), band_begin.end() - 1);
+    for (size_t k = first; k < last; ++k)
+      for (int b = band_of(pixels[k].y0);
+           pixels[k].y1 > pixels[k].y0 && b <= band_of(pixels[k].y1 - 1); ++b)
+        band_footprints[band_fill[b]++] = static_cast<uint32_t>(k);
     tbb::parallel_for(0, bands, [&](int b) {
       const int row0 = region.y0 + b * kBandRows, row1 = std::min(region.y1, row0 + kBandRows);
-      for (size_t k = first; k < last; ++k) {
+      for (size_t i = band_begin[b]; i < band_begin[b + 1]; ++i) {
+        const size_t k = band_footprints[i];
         const PixelRect& p = pixels[k];
         const Footprint& f = footprints[k];
         const float* w = weights.data() + offset[k] - offset[first];

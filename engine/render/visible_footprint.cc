@@ -142,6 +142,77 @@ void VisibleFootprint::InRow(double x0, double cy, int cells, bool with_moments,
   }
 }
 
+namespace {
+
+// Adds to row-major `cells` (`stride` per row, rows [0, rows)) the signed area between the edge
+// (x0, y0) -> (x1, y1) and the line x = +inf, row by row and cell by cell: +dy for the cells right
+// of the edge within its rows, the trapezoid's share in the cells it crosses. Coordinates are in
+// cells; the edge lies inside x in [0, stride - 2], y in [0, rows].
+void AccumulateEdge(double x0, double y0, double x1, double y1, int rows, int stride,
+                    double* cells) {
+  if (y0 == y1) return;
+  const double dir = y0 < y1 ? 1.0 : -1.0;
+  if (y0 > y1) std::swap(x0, x1), std::swap(y0, y1);
+  const double dxdy = (x1 - x0) / (y1 - y0);
+  const int first_row = std::max(0, static_cast<int>(std::floor(y0)));
+  const int end_row = std::min(rows, static_cast<int>(std::ceil(y1)));
+  for (int row = first_row; row < end_row; ++row) {
+    const double top = std::max(y0, static_cast<double>(row));
+    const double bottom = std::min(y1, static_cast<double>(row + 1));
+    if (!(bottom > top)) continue;
+    const double xa = x0 + dxdy * (top - y0), xb = x0 + dxdy * (bottom - y0);
+    const double d = dir * (bottom - top);
+    const double lo = std::min(xa, xb), hi = std::max(xa, xb);
+    double* line = cells + static_cast<size_t>(row) * stride;
+    const int i0 = static_cast<int>(std::floor(lo));
+    const int i1 = static_cast<int>(std::floor(hi));
+    if (i0 == i1 || (hi == std::floor(hi) && i1 == i0 + 1)) {
+      // Within one cell: its part right of the edge's mean abscissa, the rest to the next.
+      const double right = (i0 + 1) - 0.5 * (lo + hi);
+      line[i0] += d * right;
+      line[i0 + 1] += d * (1 - right);
+      continue;
+    }
+    // Across cells i0 .. i1: the edge's height in each cell is in proportion to its width there;
+    // each cell it crosses gets the part right of the edge, the cells after it the whole height.
+    const double slope = d / (hi - lo);  // height per unit of x, signed
+    double x = lo;
+    for (int i = i0; i <= i1; ++i) {
+      const double next = std::min(hi, static_cast<double>(i + 1));
+      const double h = slope * (next - x);  // the edge's height inside cell i
+      const double right = (i + 1) - 0.5 * (x + next);
+      line[i] += h * right;
+      line[i + 1] += h * (1 - right);
+      x = next;
+    }
+  }
+}
+
+}  // namespace
+
+void VisibleFootprint::AreasInCells(double x0, double y0, int columns, int rows, double* out) {
+  const int stride = columns + 2;
+  accumulated_.assign(static_cast<size_t>(stride) * rows, 0.0);
+  for (const Piece& piece : pieces_) {
+    const size_t n = piece.end - piece.begin;
+    for (size_t k = 0; k < n; ++k) {
+      const Vec2& p = verts_[piece.begin + k];
+      const Vec2& q = verts_[piece.begin + (k + 1 == n ? 0 : k + 1)];
+      AccumulateEdge(p.x - x0, p.y - y0, q.x - x0, q.y - y0, rows, stride, accumulated_.data());
+    }
+  }
+  // Counter-clockwise on the screen (y down), the pieces' edges go up on their left: the sums
+  // are negative inside.
+  for (int row = 0; row < rows; ++row) {
+    const double* line = accumulated_.data() + static_cast<size_t>(row) * stride;
+    double sum = 0;
+    for (int i = 0; i < columns; ++i) {
+      sum += line[i];
+      out[static_cast<size_t>(row) * columns + i] = -sum;
+    }
+  }
+}
+
 size_t VisibleFootprint::Clip(size_t n, double a, double b, double c, size_t capacity) {
   const size_t cut = ClipByHalfPlane(a_.data(), n, a, b, c, b_.data(), capacity);
   if (cut == kClipOverflow) return 0;  // (not for a convex piece: its vertices at most double)

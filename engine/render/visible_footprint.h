@@ -37,6 +37,14 @@ class VisibleFootprint {
   // (raster/aa_filter.h's CellMoments), written to out[i]. Each piece is clipped to the row once,
   // then split at each cell's right side in turn: one cut per cell it reaches.
   void InRow(double x0, double cy, int cells, bool with_moments, CellMoments* out);
+  // The pieces' area in each cell of a grid of `columns` x `rows` unit cells whose first is
+  // [x0, x0 + 1] x [y0, y0 + 1], row by row into out[rows * columns]; the grid holds the pieces.
+  // Area alone (the box filters'), accumulated edge by edge: each edge adds the signed area
+  // between it and the grid's right side, row by row, cut exactly at the cells' sides, and the
+  // sums along each row are the cells' areas (the accumulation of font-rs and of FreeType's
+  // "smooth" rasterizer). A few operations per cell an edge crosses, where InRow clips every
+  // piece to every cell.
+  void AreasInCells(double x0, double y0, int columns, int rows, double* out);
 
  private:
   struct Piece {
@@ -51,6 +59,7 @@ class VisibleFootprint {
   std::vector<Piece> pieces_, next_pieces_;
   std::vector<Vec2> verts_, next_verts_;
   std::vector<Vec2> a_, b_, c_;  // clip buffers
+  std::vector<double> accumulated_;
 };
 
 }  // namespace aperture

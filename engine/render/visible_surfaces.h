@@ -14,20 +14,20 @@
 
 namespace aperture {
 
-struct CellSurfaces {
-  static constexpr int kMax = 16;
-  // How many polygons are visible in the cell (0: the sky), or -1: not known (more than kMax, or
-  // transparent surfaces, whose cells are not recorded).
-  int8_t count;
-  int32_t polygons[kMax];  // indices into the frame's polygons
-};
+// How many polygons are visible in a cell: 0 the sky, kUnknown more than kMaxPolygons, or
+// transparent surfaces (whose cells are not recorded).
+inline constexpr int8_t kUnknownSurfaces = -1;
 
 // The cells of a frame region's filter grid: cell k covers [k + offset, k + offset + 1] on each
 // axis (raster/aa_filter.h), k from the region's first pixel to its last plus `span`. Only the
-// cells marked wanted (by tiles of kTile cells) are recorded and read; the rest is never touched.
+// cells marked wanted are recorded and read; the rest is never touched. The marks are kept by
+// cell and by tile of kTile x kTile cells, so that a window far from any light is passed over a
+// tile at a time.
 class VisibleSurfaces {
  public:
   static constexpr int kTile = 8;
+  // The most polygons a cell keeps.
+  static constexpr int kMaxPolygons = 16;
 
   VisibleSurfaces(const PixelRect& region, int span)
       : x0_(region.x0),
@@ -36,7 +36,10 @@ class VisibleSurfaces {
         ny_(region.height() + span),
         tiles_x_((nx_ + kTile - 1) / kTile),
         wanted_(static_cast<size_t>(tiles_x_) * ((ny_ + kTile - 1) / kTile), 0),
-        cells_(new CellSurfaces[static_cast<size_t>(nx_) * ny_]) {}
+        cell_wanted_(static_cast<size_t>(nx_) * ny_, 0),
+        counts_(new int8_t[static_cast<size_t>(nx_) * ny_]),
+        first_(new int32_t[static_cast<size_t>(nx_) * ny_]),
+        rest_(new int32_t[static_cast<size_t>(nx_) * ny_ * (kMaxPolygons - 1)]) {}
 
   bool Holds(int kx, int ky) const {
     return kx >= x0_ && ky >= y0_ && kx < x0_ + nx_ && ky < y0_ + ny_;
@@ -47,6 +50,12 @@ class VisibleSurfaces {
     const int ty0 = std::max(ky0 - y0_, 0) / kTile, ty1 = std::min(ky1 - y0_, ny_ - 1) / kTile;
     for (int ty = ty0; ty <= ty1; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx) wanted_[static_cast<size_t>(ty) * tiles_x_ + tx] = 1;
+    for (int ky = std::max(ky0, y0_); ky <= std::min(ky1, y0_ + ny_ - 1); ++ky)
+      for (int kx = std::max(kx0, x0_); kx <= std::min(kx1, x0_ + nx_ - 1); ++kx) {
+        uint8_t& w = cell_wanted_[Index(kx, ky)];
+        wanted_cells_ += w == 0;
+        w = 1;
+      }
   }
   // Calls visit(kx, ky) for each wanted cell of [kx0, kx1) x [ky0, ky1), tile by tile.
   template <class Visit>
@@ -61,30 +70,55 @@ class VisibleSurfaces {
         const int cy0 = std::max(ky0, y0_ + ty * kTile);
         const int cy1 = std::min(ky1, y0_ + (ty + 1) * kTile);
         for (int ky = cy0; ky < cy1; ++ky)
-          for (int kx = cx0; kx < cx1; ++kx) visit(kx, ky);
+          for (int kx = cx0; kx < cx1; ++kx)
+            if (cell_wanted_[Index(kx, ky)]) visit(kx, ky);
       }
   }
-  bool Wanted(int kx, int ky) const {
-    return wanted_[static_cast<size_t>((ky - y0_) / kTile) * tiles_x_ + (kx - x0_) / kTile] != 0;
+  bool Wanted(int kx, int ky) const { return cell_wanted_[Index(kx, ky)] != 0; }
+  // The number of polygons visible in cell (kx, ky), or kUnknownSurfaces.
+  int count(int kx, int ky) const { return counts_[Index(kx, ky)]; }
+  // Records that `count` polygons are visible in cell (kx, ky), polygon(k) the k-th (an index
+  // into the frame's polygons); more than kMaxPolygons are recorded as unknown.
+  template <class Polygon>
+  void Record(int kx, int ky, size_t count, Polygon polygon) {
+    const size_t i = Index(kx, ky);
+    if (count > kMaxPolygons) {
+      counts_[i] = kUnknownSurfaces;
+      return;
+    }
+    counts_[i] = static_cast<int8_t>(count);
+    if (count == 0) return;
+    first_[i] = polygon(0);
+    for (size_t k = 1; k < count; ++k) rest_[i * (kMaxPolygons - 1) + k - 1] = polygon(k);
   }
-  CellSurfaces& at(int kx, int ky) {
-    return cells_[static_cast<size_t>(ky - y0_) * nx_ + (kx - x0_)];
-  }
-  const CellSurfaces& at(int kx, int ky) const {
-    return cells_[static_cast<size_t>(ky - y0_) * nx_ + (kx - x0_)];
+  void RecordUnknown(int kx, int ky) { counts_[Index(kx, ky)] = kUnknownSurfaces; }
+  // Calls visit(index) for each polygon recorded visible in cell (kx, ky).
+  template <class Visit>
+  void ForPolygons(int kx, int ky, Visit visit) const {
+    const size_t i = Index(kx, ky);
+    const int count = counts_[i];
+    if (count <= 0) return;
+    visit(first_[i]);
+    for (int k = 1; k < count; ++k) visit(rest_[i * (kMaxPolygons - 1) + k - 1]);
   }
   // What it may hold: its marks, and the cells wanted (the others are never written).
   size_t Bytes() const {
-    size_t wanted = 0;
-    for (uint8_t w : wanted_) wanted += w;
-    return wanted_.size() + wanted * kTile * kTile * sizeof(CellSurfaces);
+    return wanted_.size() + cell_wanted_.size() +
+           wanted_cells_ * (sizeof(int8_t) + kMaxPolygons * sizeof(int32_t));
   }
 
  private:
+  size_t Index(int kx, int ky) const { return static_cast<size_t>(ky - y0_) * nx_ + (kx - x0_); }
+
   int x0_, y0_, nx_, ny_, tiles_x_;
-  std::vector<uint8_t> wanted_;
-  // Not initialized: only wanted cells are written, then read.
-  std::unique_ptr<CellSurfaces[]> cells_;
+  std::vector<uint8_t> wanted_, cell_wanted_;
+  size_t wanted_cells_ = 0;
+  // Not initialized: only wanted cells are written, then read. The counts and each cell's first
+  // polygon are dense, apart from the rest of the lists: a light reads the cells of its
+  // footprint, most of which see one polygon, and neighbouring cells share cache lines.
+  std::unique_ptr<int8_t[]> counts_;
+  std::unique_ptr<int32_t[]> first_;
+  std::unique_ptr<int32_t[]> rest_;
 };
 
 }  // namespace aperture
