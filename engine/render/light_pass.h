@@ -7,8 +7,9 @@
 // surface: the polygons seen in its cells whose planes are nearer than the light where it is (at
 // the footprint's centre), and that are nearer than it somewhere, hide it by their outlines; the
 // others not at all (the ground under a runway light: the view ray meets the light before it). The
-// footprint less those outlines is cut into convex pieces (render/visible_footprint.h), clipped
-// exactly to each cell and integrated over the pixels' filter apertures like any polygon's piece.
+// footprint less those outlines is cut into convex pieces (render/visible_footprint.h), whose exact
+// area (and moments, for the tent) in each cell is integrated over the pixels' filter apertures
+// like any polygon's piece.
 // So the sum of a light's pixels is S times the visible share of its footprint, to float rounding,
 // wherever it falls inside a pixel; its image's centroid follows its projection continuously; and a
 // light sliding behind an edge dims continuously, by exactly the part of its footprint the edge
