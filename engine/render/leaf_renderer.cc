@@ -37,15 +37,15 @@ void LeafRenderer::RecordWindowSurfaces(const PixelRect& r, int cover) {
   const int ky1 = r.y1 == region_.y1 ? r.y1 + span : r.y1;
   surfaces_->ForWantedCells(r.x0, r.y0, kx1, ky1, [&](int kx, int ky) {
     if (cover < -1)
-      surfaces_->RecordUnknown(kx, ky);
+      writer_->RecordUnknown(kx, ky);
     else
-      surfaces_->Record(kx, ky, cover == -1 ? 0 : 1, [&](size_t) { return cover; });
+      writer_->Record(kx, ky, cover == -1 ? 0 : 1, [&](size_t) { return cover; });
   });
 }
 
 void LeafRenderer::RecordCellSurfaces(int kx, int ky, size_t first) {
-  surfaces_->Record(kx, ky, pieces_.size() - first,
-                    [&](size_t k) { return pieces_[first + k].polygon; });
+  writer_->Record(kx, ky, pieces_.size() - first,
+                  [&](size_t k) { return pieces_[first + k].polygon; });
 }
 
 void LeafRenderer::ShadeEntries(const PixelRect& r) {
@@ -279,7 +279,7 @@ bool LeafRenderer::ComputeCells(const PixelRect& r, std::span<const int> polygon
       if (bins_.Cell(i, j).empty()) {  // nothing reaches it (most of a sparse frame)
         if (surfaces_ != nullptr && OwnsCell(r, r.x0 + i, r.y0 + j) &&
             surfaces_->Wanted(r.x0 + i, r.y0 + j))
-          surfaces_->Record(r.x0 + i, r.y0 + j, 0, [](size_t) { return 0; });
+          writer_->Record(r.x0 + i, r.y0 + j, 0, [](size_t) { return 0; });
         continue;
       }
       const double cx = r.x0 + i + shape_.cell_offset + 0.5;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -50,7 +51,10 @@ class LeafRenderer {
   size_t WorkingBytes() const;
   // Records the polygons visible in the wanted cells of the leaves it renders
   // (render/visible_surfaces.h) into `surfaces`; each cell is written by one leaf only.
-  void RecordSurfaces(VisibleSurfaces* surfaces) { surfaces_ = surfaces; }
+  void RecordSurfaces(VisibleSurfaces* surfaces) {
+    surfaces_ = surfaces;
+    writer_.emplace(surfaces);
+  }
 
  private:
   bool RenderMixed(const LeafWindow& leaf, Image& image);
@@ -117,6 +121,7 @@ class LeafRenderer {
   std::function<bool()> stop_;
   FrameMemory* memory_;
   VisibleSurfaces* surfaces_ = nullptr;
+  std::optional<VisibleSurfaces::Writer> writer_;
   // Whether this leaf writes absolute cell (kx, ky) of surfaces_: the cells of its own pixels, and
   // those past the region's last pixel for the leaves along its right and bottom edges.
   bool OwnsCell(const PixelRect& r, int kx, int ky) const {

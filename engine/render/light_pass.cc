@@ -225,25 +225,61 @@ void BinNearUnrecorded(const std::vector<OccluderKey>& keys,
     return std::clamp(static_cast<int>(std::floor((y - t.y0) / tile)), 0, t.rows - 1);
   };
   std::vector<uint8_t> wanted(t.tiles.size(), 0);
+  std::vector<std::pair<int, int>> wanted_list;  // (row, column), row by row
   for (size_t k = 0; k < footprints.size(); ++k) {
     if (recorded[k]) continue;
     const LightFootprint& f = footprints[k];
     const double r = f.radius * kOctagonCircumradius;
     for (int j = row(f.y - r); j <= row(f.y + r); ++j)
-      for (int i = column(f.x - r); i <= column(f.x + r); ++i)
-        wanted[static_cast<size_t>(j) * t.columns + i] = 1;
+      for (int i = column(f.x - r); i <= column(f.x + r); ++i) {
+        uint8_t& w = wanted[static_cast<size_t>(j) * t.columns + i];
+        if (!w) wanted_list.push_back({j, i});
+        w = 1;
+      }
   }
   for (size_t index = 0; index < keys.size(); ++index) {
     const OccluderKey& p = keys[index];
     if (p.max_x < region.x0 - margin || p.min_x > region.x1 + margin ||
         p.max_y < region.y0 - margin || p.min_y > region.y1 + margin)
       continue;
-    for (int j = row(p.min_y - margin); j <= row(p.max_y + margin); ++j)
-      for (int i = column(p.min_x - margin); i <= column(p.max_x + margin); ++i) {
+    const int j0 = row(p.min_y - margin), j1 = row(p.max_y + margin);
+    const int i0 = column(p.min_x - margin), i1 = column(p.max_x + margin);
+    if (static_cast<size_t>(j1 - j0 + 1) * (i1 - i0 + 1) > wanted_list.size()) {
+      // A polygon over much of the frame (the ground): the wanted tiles it reaches.
+      for (const auto& [j, i] : wanted_list)
+        if (j >= j0 && j <= j1 && i >= i0 && i <= i1)
+          t.tiles[static_cast<size_t>(j) * t.columns + i].push_back(static_cast<int>(index));
+      continue;
+    }
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
         const size_t n = static_cast<size_t>(j) * t.columns + i;
         if (wanted[n]) t.tiles[n].push_back(static_cast<int>(index));
       }
   }
+}
+
+// The footprints [first, last) in the order of their places on the screen (by tiles of 32
+// pixels, row by row; each tile's in their own order), by a counting sort into `order`.
+void OrderByPlace(const std::vector<LightFootprint>& footprints, size_t first, size_t last,
+                  const PixelRect& region, std::vector<size_t>& counts,
+                  std::vector<uint32_t>& order) {
+  constexpr int kPlaceTile = 32;
+  const int columns = (region.width() + kPlaceTile - 1) / kPlaceTile;
+  const int rows = (region.height() + kPlaceTile - 1) / kPlaceTile;
+  auto place = [&](const LightFootprint& f) {
+    const int i =
+        std::clamp(static_cast<int>(std::floor((f.x - region.x0) / kPlaceTile)), 0, columns - 1);
+    const int j =
+        std::clamp(static_cast<int>(std::floor((f.y - region.y0) / kPlaceTile)), 0, rows - 1);
+    return static_cast<size_t>(j) * columns + i;
+  };
+  counts.assign(static_cast<size_t>(columns) * rows + 1, 0);
+  for (size_t k = first; k < last; ++k) ++counts[place(footprints[k]) + 1];
+  for (size_t n = 1; n < counts.size(); ++n) counts[n] += counts[n - 1];
+  order.resize(last - first);
+  for (size_t k = first; k < last; ++k)
+    order[counts[place(footprints[k])]++] = static_cast<uint32_t>(k);
 }
 
 // The pixels of `region` a footprint's filter apertures may reach.
@@ -532,18 +568,10 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
     pixels[k] = FootprintPixels(footprints[k], shape, region);
     offset[k + 1] = offset[k] + static_cast<size_t>(pixels[k].width()) * pixels[k].height();
   }
-  // Resolved in the order of their places on the screen (by tiles, row by row), so that
-  // neighbouring footprints, which read the same cells and polygons, follow one another.
-  // Each footprint's key: its tile's row, then column (32-pixel tiles, offset to stay positive),
-  // then its index.
-  std::vector<uint64_t> by_place(footprints.size());
-  for (size_t k = 0; k < footprints.size(); ++k) {
-    constexpr double kPlaceTile = 32;
-    const auto tile = [](double v) {
-      return static_cast<uint64_t>(std::clamp(std::floor(v / kPlaceTile) + 1024, 0.0, 65535.0));
-    };
-    by_place[k] = tile(footprints[k].y) << 48 | tile(footprints[k].x) << 32 | k;
-  }
+  // Resolved in the order of their places on the screen, so that neighbouring footprints, which
+  // read the same cells and polygons, follow one another.
+  std::vector<size_t> place_counts;
+  std::vector<uint32_t> by_place;
   tbb::enumerable_thread_specific<Splatter> splatters(
       [&] { return Splatter(geometry, keys, settings, surfaces, tiles ? &*tiles : nullptr); });
   std::vector<float> weights;
@@ -555,12 +583,12 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
     size_t last = first + 1;
     while (last < footprints.size() && offset[last + 1] - offset[first] <= kBatchWeights) ++last;
     weights.assign(offset[last] - offset[first], 0.0f);
-    std::sort(by_place.begin() + first, by_place.begin() + last);
+    OrderByPlace(footprints, first, last, region, place_counts, by_place);
     if (memory != nullptr && !memory->Hold(held, pass_bytes + HeldBytes(weights))) {
       memory->Refuse("the light points' pixel weights", HeldBytes(weights));
       return memory->Error();
     }
-    tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64),
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, last - first, 64),
                       [&](const tbb::blocked_range<size_t>& range) {
                         if (stopped.load(std::memory_order_relaxed) || (stop && stop())) {
                           stopped = true;
@@ -569,7 +597,7 @@ absl::Status DrawLightPoints(const FrameGeometry& geometry, const RenderSettings
                         Splatter& splatter = splatters.local();
                         size_t wholly = 0, partly = 0;
                         for (size_t i = range.begin(); i < range.end(); ++i) {
-                          const size_t k = by_place[i] & 0xffffffffu;
+                          const size_t k = by_place[i];
                           switch (splatter.Splat(footprints[k], recorded[k], pixels[k],
                                                  weights.data() + offset[k] - offset[first])) {
                             case Shown::kWhole:

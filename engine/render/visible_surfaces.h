@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "base/pixel_rect.h"
@@ -39,7 +41,7 @@ class VisibleSurfaces {
         cell_wanted_(static_cast<size_t>(nx_) * ny_, 0),
         counts_(new int8_t[static_cast<size_t>(nx_) * ny_]),
         first_(new int32_t[static_cast<size_t>(nx_) * ny_]),
-        rest_(new int32_t[static_cast<size_t>(nx_) * ny_ * (kMaxPolygons - 1)]) {}
+        more_(new More[static_cast<size_t>(nx_) * ny_]) {}
 
   bool Holds(int kx, int ky) const {
     return kx >= x0_ && ky >= y0_ && kx < x0_ + nx_ && ky < y0_ + ny_;
@@ -77,21 +79,43 @@ class VisibleSurfaces {
   bool Wanted(int kx, int ky) const { return cell_wanted_[Index(kx, ky)] != 0; }
   // The number of polygons visible in cell (kx, ky), or kUnknownSurfaces.
   int count(int kx, int ky) const { return counts_[Index(kx, ky)]; }
-  // Records that `count` polygons are visible in cell (kx, ky), polygon(k) the k-th (an index
-  // into the frame's polygons); more than kMaxPolygons are recorded as unknown.
-  template <class Polygon>
-  void Record(int kx, int ky, size_t count, Polygon polygon) {
-    const size_t i = Index(kx, ky);
-    if (count > kMaxPolygons) {
-      counts_[i] = kUnknownSurfaces;
-      return;
+
+  // Where one worker of the raster pass appends the lists of its cells past their first polygon
+  // (each worker its own, so that they record at once without locks).
+  class Writer {
+   public:
+    explicit Writer(VisibleSurfaces* surfaces) : surfaces_(surfaces) {
+      const std::lock_guard<std::mutex> lock(surfaces->writers_mutex_);
+      id_ = static_cast<uint16_t>(surfaces->lists_.size());
+      list_ = &surfaces->lists_.emplace_back();
     }
-    counts_[i] = static_cast<int8_t>(count);
-    if (count == 0) return;
-    first_[i] = polygon(0);
-    for (size_t k = 1; k < count; ++k) rest_[i * (kMaxPolygons - 1) + k - 1] = polygon(k);
-  }
-  void RecordUnknown(int kx, int ky) { counts_[Index(kx, ky)] = kUnknownSurfaces; }
+    // Records that `count` polygons are visible in cell (kx, ky), polygon(k) the k-th (an index
+    // into the frame's polygons); more than kMaxPolygons are recorded as unknown.
+    template <class Polygon>
+    void Record(int kx, int ky, size_t count, Polygon polygon) {
+      VisibleSurfaces& s = *surfaces_;
+      const size_t i = s.Index(kx, ky);
+      if (count > kMaxPolygons) {
+        s.counts_[i] = kUnknownSurfaces;
+        return;
+      }
+      s.counts_[i] = static_cast<int8_t>(count);
+      if (count == 0) return;
+      s.first_[i] = polygon(0);
+      if (count == 1) return;
+      s.more_[i] = {id_, static_cast<uint32_t>(list_->size())};
+      for (size_t k = 1; k < count; ++k) list_->push_back(polygon(k));
+    }
+    void RecordUnknown(int kx, int ky) {
+      surfaces_->counts_[surfaces_->Index(kx, ky)] = kUnknownSurfaces;
+    }
+
+   private:
+    VisibleSurfaces* surfaces_;
+    uint16_t id_;
+    std::vector<int32_t>* list_;
+  };
+
   // Calls visit(index) for each polygon recorded visible in cell (kx, ky).
   template <class Visit>
   void ForPolygons(int kx, int ky, Visit visit) const {
@@ -99,26 +123,38 @@ class VisibleSurfaces {
     const int count = counts_[i];
     if (count <= 0) return;
     visit(first_[i]);
-    for (int k = 1; k < count; ++k) visit(rest_[i * (kMaxPolygons - 1) + k - 1]);
+    if (count == 1) return;
+    const int32_t* more = lists_[more_[i].list].data() + more_[i].at;
+    for (int k = 1; k < count; ++k) visit(more[k - 1]);
   }
-  // What it may hold: its marks, and the cells wanted (the others are never written).
+  // What it may hold: its marks, and the cells wanted (the others are never written) with
+  // kMaxPolygons each at most.
   size_t Bytes() const {
     return wanted_.size() + cell_wanted_.size() +
-           wanted_cells_ * (sizeof(int8_t) + kMaxPolygons * sizeof(int32_t));
+           wanted_cells_ * (sizeof(int8_t) + sizeof(int32_t) + sizeof(More) +
+                            (kMaxPolygons - 1) * sizeof(int32_t));
   }
 
  private:
+  // Where a cell's list goes on past its first polygon: lists_[list], from `at`.
+  struct More {
+    uint16_t list;
+    uint32_t at;
+  };
   size_t Index(int kx, int ky) const { return static_cast<size_t>(ky - y0_) * nx_ + (kx - x0_); }
 
   int x0_, y0_, nx_, ny_, tiles_x_;
   std::vector<uint8_t> wanted_, cell_wanted_;
   size_t wanted_cells_ = 0;
-  // Not initialized: only wanted cells are written, then read. The counts and each cell's first
-  // polygon are dense, apart from the rest of the lists: a light reads the cells of its
-  // footprint, most of which see one polygon, and neighbouring cells share cache lines.
+  // Not initialized: only wanted cells are written, then read. Dense, one entry per cell: a light
+  // reads the cells of its footprint, most of which see one polygon, and neighbouring cells share
+  // cache lines.
   std::unique_ptr<int8_t[]> counts_;
   std::unique_ptr<int32_t[]> first_;
-  std::unique_ptr<int32_t[]> rest_;
+  std::unique_ptr<More[]> more_;
+  // The writers' lists (a deque: a writer's list stays where it is while others are added).
+  std::deque<std::vector<int32_t>> lists_;
+  std::mutex writers_mutex_;
 };
 
 }  // namespace aperture
