@@ -1,4 +1,4 @@
-// A RenderFrameRequest as the engine's job (engine/io/frame_job.h), within the server's pixel
+// A RenderFrameRequest as the engine's job (engine/frame/frame_job.h), within the server's pixel
 // limit.
 #pragma once
 
@@ -6,7 +6,7 @@
 
 #include "absl/status/statusor.h"
 #include "aperture/v1/render_service.pb.h"
-#include "io/frame_job.h"
+#include "frame/frame_job.h"
 
 namespace aperture {
 

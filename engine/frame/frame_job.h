@@ -6,8 +6,8 @@
 
 #include "absl/status/statusor.h"
 #include "aperture/v1/render_service.pb.h"
+#include "frame/render_options_proto.h"
 #include "io/exr_writer.h"
-#include "render/render_options.h"
 #include "render/renderer.h"
 #include "scene/camera.h"
 

@@ -1,10 +1,10 @@
-#include "io/frame_job.h"
+#include "frame/frame_job.h"
 
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
-#include "io/exr_options_proto.h"
-#include "scene/camera_proto.h"
+#include "frame/camera_proto.h"
+#include "frame/exr_options_proto.h"
 
 namespace aperture {
 
