@@ -1,5 +1,5 @@
 // A RenderFrameRequest as the engine's job (engine/frame/frame_job.h), within the server's pixel
-// limit.
+// limit, with the server's own choices for it (`local`: its frame memory budget).
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,6 @@
 namespace aperture {
 
 absl::StatusOr<FrameJob> ParseFrameRequest(const v1::RenderFrameRequest& request,
-                                           uint64_t max_pixels);
+                                           uint64_t max_pixels, const FrameJobOptions& local = {});
 
 }  // namespace aperture

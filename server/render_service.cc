@@ -206,9 +206,9 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
                                                          v1::RenderFrameResponse* response) {
   const auto start = Clock::now();
   response->set_frame_index(request.frame_index());
-  auto job = ParseFrameRequest(request, limits_.max_pixels);
+  auto job = ParseFrameRequest(request, limits_.max_pixels,
+                               FrameJobOptions{.max_frame_bytes = limits_.max_frame_bytes});
   if (!job.ok()) return job.status();
-  job->settings.max_frame_bytes = limits_.max_frame_bytes;
   StopCheck stop(context, stop_at);
   // Before admission: the update holds from this frame on even if the frame is refused.
   const auto update_start = Clock::now();
