@@ -22,12 +22,12 @@
 #include "flag_names.h"
 #include "frame/camera_proto.h"
 #include "frame/frame_job.h"
+#include "frame/render_frame_job.h"
 #include "frame_flags.h"
 #include "gltf_import.h"
 #include "io/exr_writer.h"
 #include "large_buffers.h"
 #include "render/frame_memory.h"
-#include "render/frame_renderer.h"
 #include "render/trace_renderer.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/builtin_scenes.h"
@@ -212,7 +212,10 @@ int Run() {
 
   double raster_ms = 0, raytrace_ms = 0;
   for (const bool raytrace : raytrace_modes) {
-    std::unique_ptr<TracedScene> traced;
+    FrameJob mode_job = *job;
+    mode_job.mode.raytrace = raytrace;
+    // The scene's ray-tracing state, built once (and timed) for all of this mode's frames.
+    std::shared_ptr<const TracedScene> traced;
     if (raytrace) {
       const Stopwatch build_timer;
       auto ts = TracedScene::Build(*built, store);
@@ -221,6 +224,8 @@ int Run() {
       std::printf("raytrace: Embree BVH of %zu triangles and summed-area tables in %.1f ms\n",
                   traced->rays().triangles(), build_timer.Milliseconds());
     }
+    const TracedSceneSource traced_source =
+        [&]() -> absl::StatusOr<std::shared_ptr<const TracedScene>> { return traced; };
 
     // With both modes, --repeat is for the raster frame; the raytraced one renders once.
     const int repeat =
@@ -229,8 +234,7 @@ int Run() {
     TraceStats trace_stats;
     for (int i = 0; i < repeat; ++i) {
       TraceStats frame_trace;
-      auto frame = traced ? traced->Render(camera, settings, trace_options, &frame_trace)
-                          : RenderFrame(*built, camera, settings);
+      auto frame = RenderFrameJob(*built, mode_job, traced_source, {}, &frame_trace);
       if (!frame.ok()) return Fail(frame.status());
       const auto total = [](const RenderedFrame& f) {
         return f.stats.setup_ms + f.stats.raster_ms;
@@ -242,8 +246,7 @@ int Run() {
     }
     const FrameStats& stats = best->stats;
 
-    exr.metadata = FrameMetadata(built->name, camera, *best, settings.width, settings.height,
-                                 traced ? "raytrace" : "raster");
+    exr.metadata = FrameJobMetadata(built->name, mode_job, *best);
     std::string out = absl::GetFlag(FLAGS_o);
     if (raytrace_modes.size() > 1 && traced) {  // both: the raytraced frame next to the raster one
       std::filesystem::path path(out);
