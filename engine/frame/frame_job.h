@@ -14,8 +14,8 @@
 
 namespace aperture {
 
-// What the process rendering the frame decides, not the request. None of it changes a pixel; the
-// defaults are the server's.
+// What the process rendering the frame decides, not the request: its threads and budget, the
+// renderers' tuning, the encoder's effort. The defaults are the server's.
 struct FrameJobOptions {
   int threads = 0;             // > 0: a task arena of that many, for rendering and encoding
   size_t max_frame_bytes = 0;  // the frame's working memory budget (render/frame_memory.h), 0: none
@@ -29,7 +29,7 @@ struct FrameJobOptions {
 
 struct FrameJob {
   Camera camera;
-  RenderSettings settings;  // threads = 0: the caller's arena
+  RenderSettings settings;  // threads from FrameJobOptions, 0: the caller's arena
   ExrOptions exr;
   ModeOptions mode;  // raster, or seed 003's raytrace with its options
 };
