@@ -1,8 +1,8 @@
 // The frame a command line asks for: the flags `aperture` and `aperture-render` share (--scene,
 // --camera, --size, --aa, --filter, --mode, --compression, ...) and the one function that turns
 // them into a v1::RenderFrameRequest. Proto only: the client links no engine code, and the engine
-// turns the request into its settings (engine/io/frame_job.h) the same way for the server and for
-// aperture-render, so a frame rendered locally and one from the service are the same frame.
+// turns the request into its settings (engine/frame/frame_job.h) the same way for the server and
+// for aperture-render, so a frame rendered locally and one from the service are the same frame.
 #pragma once
 
 #include <cstdint>

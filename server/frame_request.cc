@@ -5,8 +5,8 @@
 namespace aperture {
 
 absl::StatusOr<FrameJob> ParseFrameRequest(const v1::RenderFrameRequest& request,
-                                           uint64_t max_pixels) {
-  auto job = FrameJobFromRequest(request);
+                                           uint64_t max_pixels, const FrameJobOptions& local) {
+  auto job = FrameJobFromRequest(request, local);
   if (!job.ok()) return job.status();
   const uint64_t pixels = uint64_t{request.options().width()} * request.options().height();
   if (pixels > max_pixels)

@@ -9,10 +9,10 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
+#include "frame/render_frame_job.h"
 #include "frame_request.h"
 #include "log_text.h"
 #include "region_plan_request.h"
-#include "render/frame_renderer.h"
 #include "rpc_calls.h"
 #include "scene_id.h"
 #include "scene_request.h"
@@ -206,9 +206,9 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
                                                          v1::RenderFrameResponse* response) {
   const auto start = Clock::now();
   response->set_frame_index(request.frame_index());
-  auto job = ParseFrameRequest(request, limits_.max_pixels);
+  auto job = ParseFrameRequest(request, limits_.max_pixels,
+                               FrameJobOptions{.max_frame_bytes = limits_.max_frame_bytes});
   if (!job.ok()) return job.status();
-  job->settings.max_frame_bytes = limits_.max_frame_bytes;
   StopCheck stop(context, stop_at);
   // Before admission: the update holds from this frame on even if the frame is refused.
   const auto update_start = Clock::now();
@@ -233,38 +233,29 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
 
   auto frame = std::make_shared<absl::StatusOr<RenderedFrame>>();
   double traced_build_ms = 0;
+  // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays. A
+  // channel's updated scene has its own, built for this frame (the tables come from the store
+  // when there is one).
+  const TracedSceneSource traced = [&]() -> absl::StatusOr<std::shared_ptr<const TracedScene>> {
+    if (!updated) {
+      auto cached =
+          traced_.Get(request.scene_id(), scene, &traced_build_ms, [&] { return stop(); });
+      if (!cached.ok()) return StoreBudgetRefusal(cached.status());
+      return cached;
+    }
+    const auto build_start = Clock::now();
+    auto built = TracedScene::Build(
+        *scene, textures_.shared(), [&] { return stop(); }, limits_.max_store_bytes);
+    traced_build_ms = MillisecondsSince(build_start);
+    if (!built.ok()) return StoreBudgetRefusal(built.status());
+    return std::shared_ptr<const TracedScene>(*std::move(built));
+  };
   arena_.execute([&] {
     // Isolated: while this thread waits for its frame's tasks it takes none of another frame's,
     // so a small frame is not held up behind a big one's work.
     tbb::this_task_arena::isolate([&] {
       try {
-        if (!job->mode.raytrace) {
-          *frame =
-              aperture::RenderFrame(*scene, job->camera, job->settings, [&] { return stop(); });
-          return;
-        }
-        // seed 003: the scene's BVH and tables on its first raytraced frame, then corner rays. A
-        // channel's updated scene has its own, built for this frame (the tables come from the
-        // store when there is one).
-        absl::StatusOr<std::shared_ptr<const TracedScene>> traced;
-        if (updated) {
-          const auto build_start = Clock::now();
-          auto built = TracedScene::Build(
-              *scene, textures_.shared(), [&] { return stop(); }, limits_.max_store_bytes);
-          traced_build_ms = MillisecondsSince(build_start);
-          if (built.ok())
-            traced = std::shared_ptr<const TracedScene>(*std::move(built));
-          else
-            traced = built.status();
-        } else {
-          traced = traced_.Get(request.scene_id(), scene, &traced_build_ms, [&] { return stop(); });
-        }
-        if (!traced.ok()) {
-          *frame = StoreBudgetRefusal(traced.status());
-          return;
-        }
-        *frame = (*traced)->Render(job->camera, job->settings, job->mode.trace, nullptr,
-                                   [&] { return stop(); });
+        *frame = RenderFrameJob(*scene, *job, traced, [&] { return stop(); });
       } catch (const std::exception& e) {
         // Never UNKNOWN "Unexpected error in RPC handling": the frame fails with what happened.
         *frame = absl::InternalError(absl::StrCat("the frame failed: ", e.what()));
@@ -282,8 +273,7 @@ absl::StatusOr<EncodeFrameFn> RenderService::RenderImage(grpc::ServerContext* co
   timings.set_setup_ms((*frame)->stats.setup_ms + traced_build_ms);
   timings.set_raster_ms((*frame)->stats.raster_ms);
   ExrOptions exr = job->exr;
-  exr.metadata = FrameMetadata(scene->name, job->camera, **frame, job->settings.width,
-                               job->settings.height, job->mode.raytrace ? "raytrace" : "raster");
+  exr.metadata = FrameJobMetadata(scene->name, *job, **frame);
   return EncodeFrameFn([this, frame, exr, start](v1::RenderFrameResponse* out) -> absl::Status {
     const auto encode_start = Clock::now();
     // Compressed in parallel on the render arena's threads: encode and render share the cores.

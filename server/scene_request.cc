@@ -5,10 +5,10 @@
 
 #include "absl/strings/str_cat.h"
 #include "content_hash.h"
+#include "frame/camera_proto.h"
 #include "google/protobuf/io/coded_stream.h"
 #include "google/protobuf/io/zero_copy_stream_impl_lite.h"
 #include "scene/builtin_scenes.h"
-#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 
 namespace aperture {

@@ -5,10 +5,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raster/window_quadrants.h"
+
 namespace aperture {
 namespace {
 
 constexpr int kRootTile = 64;
+// A task at most this wide and high is not split further, whatever its predicted cost: smaller
+// tasks would cost more to plan and schedule than they could even out.
+constexpr int kSmallestTaskSide = 8;
 
 std::vector<int> Reaching(const FrameGeometry& geo, const std::vector<int>& candidates,
                           const PixelRect& r, double margin) {
@@ -64,21 +69,15 @@ std::vector<TaskWindow> MergeEmptyRuns(std::vector<TaskWindow> roots, const Cost
 
 void Split(const FrameGeometry& geo, const AaFilterShape& aa, const CostModel& model, double grain,
            TaskWindow window, std::vector<TaskWindow>& out) {
-  const PixelRect& r = window.rect;
-  const bool can_split = r.width() > 8 || r.height() > 8;
-  if (window.predicted_us <= grain || !can_split || window.polygons.empty()) {
+  const WindowQuadrants quads = SplitWindow(window.rect, kSmallestTaskSide);
+  if (window.predicted_us <= grain || quads.empty() || window.polygons.empty()) {
     out.push_back(std::move(window));
     return;
   }
-  const int xm = r.width() > 8 ? r.x0 + r.width() / 2 : r.x1;
-  const int ym = r.height() > 8 ? r.y0 + r.height() / 2 : r.y1;
-  const PixelRect quads[4] = {
-      {r.x0, r.y0, xm, ym}, {xm, r.y0, r.x1, ym}, {r.x0, ym, xm, r.y1}, {xm, ym, r.x1, r.y1}};
   // The quadrants in parallel: a frame's work (and so the planning) gathers in few root windows.
   std::vector<TaskWindow> from_quad[4];
-  tbb::parallel_for(0, 4, [&](int k) {
-    const PixelRect& q = quads[k];
-    if (q.width() <= 0 || q.height() <= 0) return;
+  tbb::parallel_for(0, quads.count, [&](int k) {
+    const PixelRect& q = quads.rects[k];
     TaskWindow child;
     child.rect = q;
     child.polygons = Reaching(geo, window.polygons, q, aa.margin);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "raster/depth_order.h"
+#include "raster/window_quadrants.h"
 
 namespace aperture {
 namespace {
@@ -74,22 +75,14 @@ class Subdivider {
     const int leaf_size = static_cast<int>(inside.size()) > options_.crowded_polygons
                               ? std::max(options_.leaf_size, options_.crowded_leaf_size)
                               : options_.leaf_size;
-    const bool split_x = rect.width() > leaf_size;
-    const bool split_y = rect.height() > leaf_size;
-    if (!split_x && !split_y) {
+    const WindowQuadrants quads = SplitWindow(rect, leaf_size);
+    if (quads.empty()) {
       leaf.kind = LeafWindow::Kind::kMixed;
       leaf.polygons = std::move(inside);
       leaves.push_back(std::move(leaf));
       return;
     }
-    const int xm = split_x ? rect.x0 + rect.width() / 2 : rect.x1;
-    const int ym = split_y ? rect.y0 + rect.height() / 2 : rect.y1;
-    const PixelRect quads[4] = {{rect.x0, rect.y0, xm, ym},
-                                {xm, rect.y0, rect.x1, ym},
-                                {rect.x0, ym, xm, rect.y1},
-                                {xm, ym, rect.x1, rect.y1}};
-    for (const PixelRect& q : quads)
-      if (q.width() > 0 && q.height() > 0) Run(q, inside, leaves);
+    for (const PixelRect& q : quads) Run(q, inside, leaves);
   }
 
  private:

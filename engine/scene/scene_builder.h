@@ -1,6 +1,6 @@
 // Turns a proto `Scene` into the engine's `Scene`: validates every field (naming the offending
 // one in the error), loads textures (scene_textures.h), applies object transforms, triangulates
-// concave polygons. The camera's proto form: camera_proto.h.
+// concave polygons. The camera's proto form: frame/camera_proto.h.
 #pragma once
 
 #include <cstdint>

@@ -19,7 +19,8 @@ absl::StatusOr<std::shared_ptr<const SceneTexture>> BuildSceneTexture(
     const v1::Texture& t, const std::string& where, const SceneBuildOptions& options);
 
 // The engine's filter for a proto filter value; nullopt for TEXTURE_FILTER_DEFAULT and for
-// values this build does not know.
+// values this build does not know. Here rather than in frame/ with the request's conversions: a
+// scene's materials name their filter too (scene_builder), and scene/ comes before frame/.
 std::optional<FilterMode> FilterModeFromProto(int filter);
 
 }  // namespace aperture

@@ -20,17 +20,17 @@
 #include "cost/frame_statistics.h"
 #include "cost/window_cost.h"
 #include "flag_names.h"
+#include "frame/camera_proto.h"
+#include "frame/frame_job.h"
+#include "frame/render_frame_job.h"
 #include "frame_flags.h"
 #include "gltf_import.h"
 #include "io/exr_writer.h"
-#include "io/frame_job.h"
 #include "large_buffers.h"
 #include "render/frame_memory.h"
-#include "render/frame_renderer.h"
 #include "render/trace_renderer.h"
 #include "scene/benchmark_scenes.h"
 #include "scene/builtin_scenes.h"
-#include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
@@ -95,6 +95,26 @@ void PrintStatistics(const Scene& scene, const Camera& camera, const RenderSetti
               s.predicted_square, s.predicted_circle, MeasurePolygonsPerAperture(geo, a));
 }
 
+// This process's own choices for the frame (aperture-render's flags, not the request's).
+absl::StatusOr<FrameJobOptions> FrameJobOptionsFromFlags() {
+  FrameJobOptions local;
+  local.threads = absl::GetFlag(FLAGS_threads);
+  local.max_frame_bytes = absl::GetFlag(FLAGS_max_frame_mb) > 0
+                              ? absl::GetFlag(FLAGS_max_frame_mb) << 20
+                              : DefaultFrameBudgetBytes();
+  local.warnock.leaf_size = absl::GetFlag(FLAGS_leaf);
+  local.warnock.crowded_leaf_size = absl::GetFlag(FLAGS_crowded_leaf);
+  if (const std::string mode = absl::GetFlag(FLAGS_scheduling); mode == "uniform") {
+    local.scheduling = Scheduling::kUniform;
+  } else if (mode != "cost") {
+    return absl::InvalidArgumentError("unknown scheduling '" + mode + "' (cost, uniform)");
+  }
+  local.uniform_tile = absl::GetFlag(FLAGS_tile);
+  local.zip_level = absl::GetFlag(FLAGS_zip_level);
+  local.exact_steps = std::max(0, absl::GetFlag(FLAGS_exact_steps));  // below 0: as 0
+  return local;
+}
+
 int RunCalibration() {
   auto demo = BuildScene(MakeDemoScene());
   auto skewed = BuildScene(MakeSkewedCityScene());
@@ -145,34 +165,17 @@ int Run() {
   bool both_modes = false;
   auto request = FrameRequestFromFlags(own_camera, model_cameras, &both_modes);
   if (!request.ok()) return Fail(request.status());
-  auto job = FrameJobFromRequest(*request);
+  auto local = FrameJobOptionsFromFlags();
+  if (!local.ok()) return Fail(local.status());
+  auto job = FrameJobFromRequest(*request, *local);
   if (!job.ok()) return Fail(job.status());
   const Camera& camera = job->camera;
-  RenderSettings& settings = job->settings;
-  settings.threads = absl::GetFlag(FLAGS_threads);
-  settings.max_frame_bytes = absl::GetFlag(FLAGS_max_frame_mb) > 0
-                                 ? absl::GetFlag(FLAGS_max_frame_mb) << 20
-                                 : DefaultFrameBudgetBytes();
-  settings.warnock.leaf_size = absl::GetFlag(FLAGS_leaf);
-  settings.warnock.crowded_leaf_size = absl::GetFlag(FLAGS_crowded_leaf);
-  if (const std::string mode = absl::GetFlag(FLAGS_scheduling); mode == "uniform") {
-    settings.scheduling.mode = Scheduling::kUniform;
-  } else if (mode != "cost") {
-    return Fail(absl::InvalidArgumentError("unknown scheduling '" + mode + "' (cost, uniform)"));
-  }
-  settings.scheduling.uniform_tile = absl::GetFlag(FLAGS_tile);
-  if (auto s = ValidateRenderSettings(settings); !s.ok()) return Fail(s);
+  const RenderSettings& settings = job->settings;
   ExrOptions& exr = job->exr;
-  exr.zip_level = absl::GetFlag(FLAGS_zip_level);
-  if (exr.zip_level < 1 || exr.zip_level > 9)
-    return Fail(absl::InvalidArgumentError(
-        absl::StrCat("--zip_level ", exr.zip_level, " is outside 1..9")));
-  exr.threads = settings.threads;  // encoding follows rendering: the cores are free again
   // "both": raster, then raytrace, on the same scene in one run (to compare the two modes).
   const std::vector<bool> raytrace_modes =
       both_modes ? std::vector<bool>{false, true} : std::vector<bool>{job->mode.raytrace};
-  TraceOptions trace_options = job->mode.trace;
-  trace_options.fragments.exact_steps = std::max(0, absl::GetFlag(FLAGS_exact_steps));
+  const TraceOptions& trace_options = job->mode.trace;
 
   // The shared store, so that a one-frame job maps what an earlier process built. A store that
   // cannot be opened (no /dev/shm, no permission) is not fatal: the tables are built here.
@@ -209,7 +212,10 @@ int Run() {
 
   double raster_ms = 0, raytrace_ms = 0;
   for (const bool raytrace : raytrace_modes) {
-    std::unique_ptr<TracedScene> traced;
+    FrameJob mode_job = *job;
+    mode_job.mode.raytrace = raytrace;
+    // The scene's ray-tracing state, built once (and timed) for all of this mode's frames.
+    std::shared_ptr<const TracedScene> traced;
     if (raytrace) {
       const Stopwatch build_timer;
       auto ts = TracedScene::Build(*built, store);
@@ -218,6 +224,8 @@ int Run() {
       std::printf("raytrace: Embree BVH of %zu triangles and summed-area tables in %.1f ms\n",
                   traced->rays().triangles(), build_timer.Milliseconds());
     }
+    const TracedSceneSource traced_source =
+        [&]() -> absl::StatusOr<std::shared_ptr<const TracedScene>> { return traced; };
 
     // With both modes, --repeat is for the raster frame; the raytraced one renders once.
     const int repeat =
@@ -226,8 +234,7 @@ int Run() {
     TraceStats trace_stats;
     for (int i = 0; i < repeat; ++i) {
       TraceStats frame_trace;
-      auto frame = traced ? traced->Render(camera, settings, trace_options, &frame_trace)
-                          : RenderFrame(*built, camera, settings);
+      auto frame = RenderFrameJob(*built, mode_job, traced_source, {}, &frame_trace);
       if (!frame.ok()) return Fail(frame.status());
       const auto total = [](const RenderedFrame& f) {
         return f.stats.setup_ms + f.stats.raster_ms;
@@ -239,8 +246,7 @@ int Run() {
     }
     const FrameStats& stats = best->stats;
 
-    exr.metadata = FrameMetadata(built->name, camera, *best, settings.width, settings.height,
-                                 traced ? "raytrace" : "raster");
+    exr.metadata = FrameJobMetadata(built->name, mode_job, *best);
     std::string out = absl::GetFlag(FLAGS_o);
     if (raytrace_modes.size() > 1 && traced) {  // both: the raytraced frame next to the raster one
       std::filesystem::path path(out);

@@ -25,11 +25,11 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
 #include "base/stopwatch.h"
+#include "frame/camera_proto.h"
+#include "frame/frame_job.h"
 #include "io/exr_writer.h"
-#include "io/frame_job.h"
 #include "render/frame_renderer.h"
 #include "scene/builtin_scenes.h"
-#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 #include "support/srgb_psnr.h"
 

@@ -30,12 +30,12 @@
 #include <vector>
 
 #include "content_hash.h"
+#include "frame/camera_proto.h"
 #include "frame_request.h"
 #include "io/exr_writer.h"
 #include "render/frame_renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera.h"
-#include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 #include "support/hostile_inputs.h"

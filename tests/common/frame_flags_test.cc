@@ -1,5 +1,5 @@
 // The frame flags `aperture` and `aperture-render` share (common/frame_flags.h), through the
-// request to the engine's job (io/frame_job.h): every name a flag takes reaches the engine value
+// request to the engine's job (frame/frame_job.h): every name a flag takes reaches the engine value
 // of that name, so the proto, the flags and the engine cannot drift apart.
 #include "frame_flags.h"
 
@@ -8,7 +8,7 @@
 
 #include "absl/flags/flag.h"
 #include "absl/flags/reflection.h"
-#include "io/frame_job.h"
+#include "frame/frame_job.h"
 
 namespace aperture {
 namespace {

@@ -10,9 +10,9 @@
 #include <chrono>
 #include <string>
 
+#include "frame/camera_proto.h"
 #include "integration/service_fixture.h"
 #include "scene/camera.h"
-#include "scene/camera_proto.h"
 #include "support/hostile_inputs.h"
 #include "support/hostile_scenes.h"
 

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "frame/camera_proto.h"
 #include "integration/service_fixture.h"
-#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 #include "support/hostile_inputs.h"
 #include "testing/curved_scenes.h"

@@ -11,8 +11,8 @@
 #include <sstream>
 #include <utility>
 
+#include "frame/camera_proto.h"
 #include "scene/benchmark_scenes.h"
-#include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 

@@ -11,9 +11,9 @@
 #include <utility>
 
 #include "content_hash.h"
+#include "frame/camera_proto.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "integration/service_fixture.h"
-#include "scene/camera_proto.h"
 #include "scene/demo_scene.h"
 #include "scene/scene_builder.h"
 

@@ -17,8 +17,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "aperture/v1/render_service.grpc.pb.h"
+#include "frame/camera_proto.h"
 #include "integration/server_process.h"
-#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_file.h"
 #include "testing/curved_scenes.h"

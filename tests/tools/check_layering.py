@@ -30,7 +30,10 @@ LAYERS = [
     ("cost", "the window cost model (seed 002) and the task and region planners"),
     ("render", "the renderers: render/renderer.h (settings, frame, stop test), the raster "
                "renderer (frame_renderer) and the ray tracer (trace_renderer), shading"),
-    ("io", "OpenEXR and PNG output, the frame's header, the proto's encoding options"),
+    ("io", "OpenEXR and PNG output, the frame's header"),
+    ("frame", "the frame request as the engine's job: every conversion of a RenderFrameRequest "
+              "(camera, render options, EXR options) into frame_job, and render_frame_job, the "
+              "one entry that renders a job, raster or raytrace"),
     ("testing", "what only tests and benchmarks use: dense references, benchmark scenes, the "
                 "scheduling replay, the packed access benchmark (aperture_testing)"),
     ("tools", "the installed command-line tools and what only they use (calibration, arguments): "

@@ -1,4 +1,4 @@
-#include "scene/camera_proto.h"
+#include "frame/camera_proto.h"
 
 namespace aperture {
 

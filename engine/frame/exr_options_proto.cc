@@ -1,4 +1,4 @@
-#include "io/exr_options_proto.h"
+#include "frame/exr_options_proto.h"
 
 #include "absl/strings/str_cat.h"
 

@@ -1,12 +1,12 @@
 // v1::RenderOptions -> RenderSettings and ExrOptions: defaults, every enum value, and errors that
 // name the field.
-#include "render/render_options.h"
+#include "frame/render_options_proto.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "io/exr_options_proto.h"
+#include "frame/exr_options_proto.h"
 
 namespace aperture {
 namespace {

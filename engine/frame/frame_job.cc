@@ -1,14 +1,15 @@
-#include "io/frame_job.h"
+#include "frame/frame_job.h"
 
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
-#include "io/exr_options_proto.h"
-#include "scene/camera_proto.h"
+#include "frame/camera_proto.h"
+#include "frame/exr_options_proto.h"
 
 namespace aperture {
 
-absl::StatusOr<FrameJob> FrameJobFromRequest(const v1::RenderFrameRequest& request) {
+absl::StatusOr<FrameJob> FrameJobFromRequest(const v1::RenderFrameRequest& request,
+                                             const FrameJobOptions& local) {
   FrameJob job;
   if (!request.has_camera()) return absl::InvalidArgumentError("camera is missing");
   auto camera = CameraFromProto(request.camera());
@@ -41,6 +42,22 @@ absl::StatusOr<FrameJob> FrameJobFromRequest(const v1::RenderFrameRequest& reque
     job.settings.region = {static_cast<int>(r.x()), static_cast<int>(r.y()), static_cast<int>(x1),
                            static_cast<int>(y1)};
   }
+
+  job.settings.threads = local.threads;
+  job.settings.max_frame_bytes = local.max_frame_bytes;
+  job.settings.warnock = local.warnock;
+  job.settings.scheduling.mode = local.scheduling;
+  job.settings.scheduling.uniform_tile = local.uniform_tile;
+  if (auto s = ValidateRenderSettings(job.settings); !s.ok()) return s;
+  if (local.zip_level < 1 || local.zip_level > 9)
+    return absl::InvalidArgumentError(
+        absl::StrCat("zip_level ", local.zip_level, " is outside 1..9"));
+  job.exr.zip_level = local.zip_level;
+  job.exr.threads = local.threads;  // encoding follows rendering: the cores are free again
+  if (local.exact_steps < 0)
+    return absl::InvalidArgumentError(
+        absl::StrCat("exact_steps ", local.exact_steps, " is negative (0: fragments only)"));
+  job.mode.trace.fragments.exact_steps = local.exact_steps;
   return job;
 }
 

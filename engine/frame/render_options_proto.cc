@@ -1,4 +1,4 @@
-#include "render/render_options.h"
+#include "frame/render_options_proto.h"
 
 #include <cmath>
 

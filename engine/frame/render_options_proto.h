@@ -1,6 +1,6 @@
 // The proto's render options (aperture.v1.RenderOptions) as the engine's settings: what to render
 // (RenderSettings) and with which renderer (ModeOptions). How to encode it is
-// io/exr_options_proto.h's. Errors name the offending field.
+// frame/exr_options_proto.h's. Errors name the offending field.
 #pragma once
 
 #include "absl/status/statusor.h"
