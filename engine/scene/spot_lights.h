@@ -64,15 +64,18 @@ struct PlacedSpot {
 // fog of `fog_density` per unit.
 inline void AddSpotLight(const PlacedSpot& s, const Vec3& p, const Vec3& n, double fog_density,
                          Rgba& light) {
+  // Most points are outside the cone or behind the lamp: refused before any root or division.
   const Vec3 to_lamp = s.position - p;
+  const double facing = Dot(n, to_lamp);  // d cos(i)
+  if (!(facing > 0)) return;
+  const double along = -Dot(s.axis, to_lamp);  // d cos(theta)
+  if (!(along > 0)) return;
   const double d2 = Dot(to_lamp, to_lamp);
-  if (!(d2 > 0)) return;
+  if (!(along * along > s.cos_outer * s.cos_outer * d2)) return;  // cos_outer > 0
   const double d = std::sqrt(d2);
-  const double cos_i = Dot(n, to_lamp) / d;
-  if (!(cos_i > 0)) return;
-  const double f = SpotConeFalloff(-Dot(s.axis, to_lamp) / d, s.cos_inner, s.cos_outer);
+  const double f = SpotConeFalloff(along / d, s.cos_inner, s.cos_outer);
   if (!(f > 0)) return;
-  double e = f * cos_i / d2;
+  double e = f * facing / (d2 * d);
   if (fog_density > 0) e *= std::exp(-fog_density * d);
   const float k = static_cast<float>(e);
   light.r += s.weight.r * k;
