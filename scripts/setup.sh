@@ -10,9 +10,10 @@ mkdir -p out
 # as a packed vector texture (seed 001), its runways' Annex 14 markings (generated packed textures)
 # seen 2 NM out on the approach, hangars, cut-out trees and a glass tower cab (texture
 # alpha); the same airport at night (runway, approach and taxiway lights, a town's streets, 16
-# aircraft with their own lights: light points); then the benchmarks' synthetic airfield.
+# aircraft with their own lights: light points; landing and taxi lights lighting the runway and
+# taxiways ahead: spot lights); then the benchmarks' synthetic airfield.
 build/engine/aperture-render -o out/airport.exr
-build/engine/aperture-render --scene night -o out/night.exr
+build/engine/aperture-render --scene night -o out/airport-night.exr
 build/engine/aperture-render --scene demo -o out/demo.exr
 
 # The service: a server on a free loopback port with a store of its own under out/, the client
@@ -39,5 +40,6 @@ build/client/aperture sim --server "$address" --scene demo --size 1280x720 --rat
 kill -TERM "$server_pid"
 wait "$server_pid" || true
 trap - EXIT
-echo "setup: done. Open out/airport.png, out/night.png and out/demo.png (previews) or their EXRs;" \
+echo "setup: done. Open out/airport.png (by day), out/airport-night.png (at night) and" \
+  "out/demo.png (previews) or their EXRs;" \
   "out/airport-service.exr came through the render service (server log: out/server.log)."

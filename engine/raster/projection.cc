@@ -126,6 +126,8 @@ FrameGeometry ProjectScene(const Scene& scene, const Camera& camera, int width, 
   geo.width = width;
   geo.height = height;
   geo.frustum = ResolveFrustum(camera, width, height);
+  geo.camera_position = camera.position;
+  geo.to_camera = camera.Orientation().Transposed();
   // Fixed chunks of the scene's polygons, projected in parallel (a million polygons took a
   // quarter of a second on one thread), each chunk's results kept in scene order and the chunks
   // joined in order: the geometry is the same whatever the threads. The chunks go in batches, each

@@ -14,6 +14,10 @@ namespace aperture {
 struct FrameGeometry {
   int width = 0, height = 0;
   FrustumTangents frustum;
+  // The camera's position and the rotation from world to camera space (what per-pixel lighting
+  // needs to put a spot light and a surface point in one frame).
+  Vec3 camera_position;
+  Mat3 to_camera;
   std::vector<ScreenPolygon> polygons;
 
   // Camera-space direction through screen point (x, y), with z = -1: P = depth * Ray(x, y).

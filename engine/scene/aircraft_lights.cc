@@ -41,6 +41,25 @@ void SetFlash(v1::LightPoint* p, double period_s, double on_s, double phase_s) {
   p->mutable_flash()->set_phase_s(phase_s);
 }
 
+// A warm white spot light on `object` at `at` (its frame), aimed ahead (-z) `down_deg` below the
+// horizontal.
+void AddSpot(v1::Scene* scene, const std::string& object, const char* group, const Vec3& at,
+             double down_deg, double cd, double inner_deg, double outer_deg) {
+  v1::SpotLight* s = scene->add_spot_lights();
+  SetVec(s->mutable_position(), at);
+  SetVec(s->mutable_direction(), {0, -std::sin(Radians(down_deg)), -std::cos(Radians(down_deg))});
+  s->set_object(object);
+  s->set_group(group);
+  s->set_intensity_cd(cd);
+  s->set_inner_deg(inner_deg);
+  s->set_outer_deg(outer_deg);
+  // 1, 0.95, 0.85 scaled to luminance 1, as the other lamps' colours.
+  s->mutable_color()->set_r(1.0f / 0.95341f);
+  s->mutable_color()->set_g(0.95f / 0.95341f);
+  s->mutable_color()->set_b(0.85f / 0.95341f);
+  s->set_radius_m(0.15);
+}
+
 }  // namespace
 
 // 14 CFR 25.1385-25.1401: the forward navigation lights cover 110 degrees from dead ahead to
@@ -48,8 +67,11 @@ void SetFlash(v1::LightPoint* p, double period_s, double on_s, double phase_s) {
 // degrees out, 70 degrees wide, 60 % of it at 110 degrees); the rear light 140 degrees aft, at
 // least 20 cd (30 cd); anti-collision lights flash 40 to 100 times a minute with at least 400 cd
 // effective (strobes 1,500 cd 50 times a minute, the beacon 400 cd 60 times). Landing lights:
-// 200,000 cd in a 6 degree beam, a typical sealed-beam lamp.
-void AddAircraftLights(const std::string& object, double phase_s, bool landing_lights,
+// 200,000 cd, a typical sealed-beam lamp, full within 5 degrees of its axis and ending at 11,
+// aimed 4 degrees down (on the ground its pool runs from about 10 m ahead to the horizon, brightest
+// 20 to 60 m ahead); the taxi light 40,000 cd, full within 10 degrees and ending at 24, aimed
+// 6 degrees down so that it lights the taxiway from a few metres ahead of the nose gear.
+void AddAircraftLights(const std::string& object, double phase_s, AircraftBeams beams,
                        v1::Scene* scene) {
   const double out = std::sin(Radians(50)), ahead = -std::cos(Radians(50));
   SetLobe(AddLight(scene, object, kNavigationLightGroup, {-17.2, 2.6, -2.5}, 1, 0.04, 0.02, 50),
@@ -65,11 +87,10 @@ void AddAircraftLights(const std::string& object, double phase_s, bool landing_l
   for (double y : {5.3, 1.1})
     SetFlash(AddLight(scene, object, kAntiCollisionLightGroup, {0, y, -1}, 1, 0.04, 0.02, 400), 1.0,
              0.2, phase_s + 0.25);
-  if (!landing_lights) return;
-  for (double side : {-1.0, 1.0})
-    SetLobe(
-        AddLight(scene, object, kLandingLightGroup, {side * 4, 2.3, -3.2}, 1, 0.95, 0.85, 200000),
-        {0, -0.05, -1}, 6, 6);
+  if (beams.landing)
+    for (double side : {-1.0, 1.0})
+      AddSpot(scene, object, kLandingLightGroup, {side * 4, 2.3, -3.2}, 4, 200000, 5, 11);
+  if (beams.taxi) AddSpot(scene, object, kTaxiLightGroup, {0, 1.6, -15}, 6, 40000, 10, 24);
 }
 
 }  // namespace aperture

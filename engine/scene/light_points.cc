@@ -100,7 +100,11 @@ absl::StatusOr<PointLight> MakeLight(const v1::LightPoint& p, const std::string&
 }  // namespace
 
 absl::StatusOr<uint64_t> CountSceneLights(const v1::Scene& proto, uint64_t max_lights) {
-  uint64_t lights = static_cast<uint64_t>(proto.lights_size());
+  if (proto.spot_lights_size() > kMaxSpotLights)
+    return absl::InvalidArgumentError(
+        absl::StrCat("spot_lights: the scene has ", proto.spot_lights_size(),
+                     ", above the budget of ", kMaxSpotLights, " spot lights per scene"));
+  uint64_t lights = static_cast<uint64_t>(proto.lights_size() + proto.spot_lights_size());
   for (int i = 0; i < proto.light_rows_size(); ++i) {
     auto count = RowCount(proto.light_rows(i), absl::StrCat("light_rows[", i, "]"), max_lights);
     if (!count.ok()) return count.status();
@@ -132,6 +136,12 @@ absl::StatusOr<SceneLights> BuildSceneLights(
                      absl::StrCat("must be in (0, 64] pixels, is ", s.min_size_px()));
     out.settings.min_size_px = s.min_size_px();
   }
+  if (s.surface_exposure() != 0) {
+    if (!(s.surface_exposure() > 0) || !std::isfinite(s.surface_exposure()))
+      return Invalid("light_settings.surface_exposure",
+                     absl::StrCat("must be > 0, is ", s.surface_exposure()));
+    out.settings.surface_exposure = s.surface_exposure();
+  }
   for (int i = 0; i < proto.lights_size(); ++i) {
     auto light = MakeLight(proto.lights(i), absl::StrCat("lights[", i, "]"), object_index, out);
     if (!light.ok()) return light.status();
@@ -156,6 +166,18 @@ absl::StatusOr<SceneLights> BuildSceneLights(
       l.flash.phase_s += row.sequence_s() * static_cast<double>(k);
       out.lights.push_back(l);
     }
+  }
+  for (int i = 0; i < proto.spot_lights_size(); ++i) {
+    const std::string where = absl::StrCat("spot_lights[", i, "]");
+    v1::LightPoint lamp;
+    auto spot = MakeSpotLight(proto.spot_lights(i), where, object_index, &lamp);
+    if (!spot.ok()) return spot.status();
+    auto light = MakeLight(lamp, where, object_index, out);
+    if (!light.ok()) return light.status();
+    spot->group = light->group;
+    spot->object = light->object;
+    out.lights.push_back(*std::move(light));
+    out.spots.push_back(*std::move(spot));
   }
   return out;
 }

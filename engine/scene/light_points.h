@@ -13,6 +13,7 @@
 #include "absl/status/statusor.h"
 #include "aperture/v1/scene.pb.h"
 #include "base/image.h"
+#include "scene/spot_lights.h"
 #include "scene/vec.h"
 
 namespace aperture {
@@ -51,6 +52,8 @@ struct LightGroup {
 struct LightSettings {
   double exposure = 0.01;    // pixel value per cd/m^2 of footprint luminance
   double min_size_px = 1.5;  // the footprint's smallest diameter
+  // Surfaces lit by spot lights: pixel value = exposure x surface_exposure x albedo x E / pi.
+  double surface_exposure = 1;
 };
 
 struct SceneLights {
@@ -58,18 +61,22 @@ struct SceneLights {
   std::vector<LightGroup> groups;
   absl::flat_hash_map<std::string, size_t> group_index;
   LightSettings settings;
+  // Spot lights (scene/spot_lights.h); each one's lamp is also one of `lights`.
+  std::vector<SpotLight> spots;
 };
 
-// The scene's light points from its `lights` and `light_rows` (rows expanded), validated: errors
-// name the field (`light_rows[2].spacing_m: must be > 0, is 0`). `object_index` resolves
+// The scene's light points from its `lights` and `light_rows` (rows expanded) and its spot lights
+// (each adds its lamp to the light points), validated: errors name the field
+// (`light_rows[2].spacing_m: must be > 0, is 0`). `object_index` resolves
 // `LightPoint.object`; more than `max_lights` lights in all (0: no limit) is refused before any is
 // made.
 absl::StatusOr<SceneLights> BuildSceneLights(
     const v1::Scene& proto, const absl::flat_hash_map<std::string, size_t>& object_index,
     uint64_t max_lights);
 
-// How many lights `proto` makes (its rows expanded), from the counts alone; an error names a row
-// that cannot be counted (a bad spacing, a row longer than the limit allows).
+// How many lights `proto` makes (its rows expanded, a lamp per spot light), from the counts alone;
+// an error names a row that cannot be counted (a bad spacing, a row longer than the limit allows)
+// or spot lights above kMaxSpotLights.
 absl::StatusOr<uint64_t> CountSceneLights(const v1::Scene& proto, uint64_t max_lights);
 
 // The intensity a light sends towards the eye, along the unit direction `to_eye` (from the light,

@@ -97,7 +97,7 @@ struct NightAircraft {
   const char* name;
   Vec3 at;
   double yaw_deg, pitch_deg, scale;
-  bool landing_lights;
+  AircraftBeams beams;
 };
 
 // The yaw of travel from texel a to texel b on the map.
@@ -114,6 +114,8 @@ Vec3 OnMap(double ax, double ay, double bx, double by, double t) {
   return p;
 }
 
+constexpr AircraftBeams kLandingLights{.landing = true}, kTaxiing{.taxi = true};
+
 std::vector<NightAircraft> Aircraft() {
   const Vec3 c36_south = AirportMapToWorld(k36CSouthX, k36CSouthY);
   const Vec3 c36_north = AirportMapToWorld(k36CNorthX, k36CNorthY);
@@ -124,28 +126,33 @@ std::vector<NightAircraft> Aircraft() {
     return p;
   };
   return {
-      // Lined up on 36L where the demo puts it (DemoAircraftAt(0)).
-      {kDemoAircraft, {0, 0.15, 50}, 0, 0, 1, false},
+      // Lined up on 36L where the demo puts it (DemoAircraftAt(0)), its landing lights on for the
+      // take-off: they light the runway ahead of it.
+      {kDemoAircraft, {0, 0.15, 50}, 0, 0, 1, kLandingLights},
       // Climbing out of 36L ahead of the camera, its landing lights still on.
-      {"climb-out", {0, 150, -2900}, 0, 8, 1, true},
-      {"rollout", {0, 0.15, -1900}, 0, 0, 1, false},
-      {"taxi-b1", OnMap(1297, 3290, 1297, 3570, 0.3), MapYaw(1297, 3290, 1297, 3570), 0, 1, false},
+      {"climb-out", {0, 150, -2900}, 0, 8, 1, kLandingLights},
+      // Rolling out after landing, its landing lights on the runway ahead.
+      {"rollout", {0, 0.15, -1900}, 0, 0, 1, kLandingLights},
+      {"taxi-b1", OnMap(1297, 3290, 1297, 3570, 0.3), MapYaw(1297, 3290, 1297, 3570), 0, 1,
+       kTaxiing},
       {"taxi-b2", OnMap(1326, 2850, 1312, 3150, 0.2), MapYaw(1326, 2850, 1312, 3150), 0, 0.8,
-       false},
-      {"taxi-z1", OnMap(2090, 4170, 1900, 4000, 0.5), MapYaw(2090, 4170, 1900, 4000), 0, 1, false},
+       kTaxiing},
+      {"taxi-z1", OnMap(2090, 4170, 1900, 4000, 0.5), MapYaw(2090, 4170, 1900, 4000), 0, 1,
+       kTaxiing},
       {"taxi-a1", OnMap(1245, 3950, 1215, 3970, 0.2), MapYaw(1245, 3950, 1215, 3970), 0, 0.8,
-       false},
+       kTaxiing},
       {"taxi-z2", OnMap(1900, 4000, 2090, 4170, 0.8), MapYaw(1900, 4000, 2090, 4170), 0, 1.2,
-       false},
-      {"stand-1", {-196, 0.15, -130}, -90, 0, 1, false},
-      {"stand-2", {-196, 0.15, -220}, -90, 0, 1.1, false},
-      {"stand-3", {-196, 0.15, -310}, -90, 0, 0.8, false},
-      {"stand-4", {-196, 0.15, -400}, -90, 0, 1, false},
-      {"departure-36c", on_36c(0.15), c36_yaw, 0, 1, true},
-      {"rollout-36c", on_36c(0.55), c36_yaw, 0, 1.1, false},
-      {"taxi-w1", OnMap(2700, 4200, 2730, 3700, 0.4), MapYaw(2700, 4200, 2730, 3700), 0, 1, false},
+       kTaxiing},
+      {"stand-1", {-196, 0.15, -130}, -90, 0, 1, {}},
+      {"stand-2", {-196, 0.15, -220}, -90, 0, 1.1, {}},
+      {"stand-3", {-196, 0.15, -310}, -90, 0, 0.8, {}},
+      {"stand-4", {-196, 0.15, -400}, -90, 0, 1, {}},
+      {"departure-36c", on_36c(0.15), c36_yaw, 0, 1, kLandingLights},
+      {"rollout-36c", on_36c(0.55), c36_yaw, 0, 1.1, {}},
+      {"taxi-w1", OnMap(2700, 4200, 2730, 3700, 0.4), MapYaw(2700, 4200, 2730, 3700), 0, 1,
+       kTaxiing},
       {"taxi-v1", OnMap(2600, 4740, 2880, 4796, 0.6), MapYaw(2640, 4790, 2880, 4796), 0, 0.9,
-       false},
+       kTaxiing},
   };
 }
 
@@ -167,6 +174,9 @@ void SetNight(v1::Scene& scene) {
   SetColor(scene.mutable_sun()->mutable_color(), 0.012f, 0.014f, 0.02f);
   scene.clear_fog();
   scene.mutable_light_settings()->set_exposure(0.01);
+  // The ground under the aircraft's landing and taxi lights as a night-adapted eye sees it: a
+  // white surface under 1 lux is 0.03.
+  scene.mutable_light_settings()->set_surface_exposure(10);
 }
 
 // An apron in front of the hangars (their aircraft stands), floodlit from masts along its east
@@ -254,7 +264,7 @@ v1::Scene BuildNightScene() {
     t.set_pitch_deg(a.pitch_deg);
     if (a.scale != 1) SetVec(t.mutable_scale(), {a.scale, a.scale, a.scale});
     // Out of step: at scene time 0 the strobes of a third of them are on, the beacons of another.
-    AddAircraftLights(a.name, -0.4 * (index % 3) - 0.02, a.landing_lights, &scene);
+    AddAircraftLights(a.name, -0.4 * (index % 3) - 0.02, a.beams, &scene);
     ++index;
   }
   return scene;
@@ -277,6 +287,7 @@ v1::Scene MakeNightSceneByDay() {
   *scene.mutable_fog() = day.fog();
   scene.clear_lights();
   scene.clear_light_rows();
+  scene.clear_spot_lights();
   scene.clear_light_settings();
   return scene;
 }

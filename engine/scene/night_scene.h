@@ -5,8 +5,9 @@
 // night brightness step, with their taxiways, stop bars, apron floodlights and obstacle lights on
 // the tower and hangars; a town west of the runway and on both sides of the approach, crossed by
 // a lit motorway (scene/night_town.h); 16 aircraft, named objects, each with its own navigation
-// and anti-collision lights (scene/aircraft_lights.h). Seen from 1 NM out on the 3 degree
-// approach to 36L. docs/SCENE.md, "The night scene", counts its lights by kind.
+// and anti-collision lights, those on the runways with landing lights and those taxiing with a
+// taxi light, spot lights that light the ground ahead (scene/aircraft_lights.h). Seen from 1 NM out
+// on the 3 degree approach to 36L. docs/SCENE.md, "The night scene", counts its lights by kind.
 #pragma once
 
 #include <string>

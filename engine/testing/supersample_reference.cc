@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "scene/shading.h"
+#include "scene/spot_placement.h"
 #include "texture/reference_sampler.h"
 #include "trace/curved_intersect.h"
 #include "trace/texture_mapping.h"
@@ -23,7 +24,8 @@ class Sampler {
         height_(height),
         frustum_(ResolveFrustum(camera, width, height)),
         orientation_(camera.Orientation()),
-        t_far_(camera.far > 0 ? camera.far : std::numeric_limits<double>::infinity()) {
+        t_far_(camera.far > 0 ? camera.far : std::numeric_limits<double>::infinity()),
+        spots_(PlaceSpotLights(scene, camera.position)) {
     for (const CurvedPrimitive& c : scene.curved)
       mappings_.push_back({CurvedMapping(c, false), CurvedMapping(c, true)});
   }
@@ -67,7 +69,12 @@ class Sampler {
       colour =
           colour * BilinearPeriodic(tex.pyramid->level(0), u - std::floor(u), v - std::floor(v));
     }
-    if (!mat.unlit) colour = colour * SurfaceLight(scene_, mat, normal);
+    if (!mat.unlit) {
+      Rgba light = SurfaceLight(scene_, mat, normal);
+      for (const PlacedSpot& s : spots_)  // relative to the camera, as PlaceSpotLights gives them
+        AddSpotLight(s, d * t, normal, scene_.fog_density, light);
+      colour = colour * light;
+    }
     colour = Fogged(scene_, colour, t * Length(d));
     colour.a = 1;
     return colour;
@@ -84,6 +91,7 @@ class Sampler {
   FrustumTangents frustum_;
   Mat3 orientation_;
   double t_far_;
+  std::vector<PlacedSpot> spots_;
   std::vector<Slot> mappings_;
 };
 

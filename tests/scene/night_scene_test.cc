@@ -14,11 +14,13 @@
 #include "raster/projection.h"
 #include "render/frame_renderer.h"
 #include "render/light_pass.h"
+#include "scene/aircraft_lights.h"
 #include "scene/builtin_scenes.h"
 #include "scene/demo_scene.h"
 #include "scene/light_points.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_update.h"
+#include "scene/spot_lights.h"
 #include "support/map_texel.h"
 
 namespace aperture {
@@ -71,6 +73,7 @@ TEST(NightScene, ByDayHasItsPolygonsAndNoLights) {
   EXPECT_EQ(day->scene.meshes_size(), night->scene.meshes_size());
   EXPECT_EQ(day->scene.objects_size(), night->scene.objects_size());
   EXPECT_EQ(day->scene.lights_size() + day->scene.light_rows_size(), 0);
+  EXPECT_EQ(day->scene.spot_lights_size(), 0);
   EXPECT_GT(day->scene.sun().color().r(), 10 * night->scene.sun().color().r());
   EXPECT_EQ(day->camera.position.z, night->camera.position.z);
 }
@@ -240,6 +243,50 @@ TEST(NightScene, ASmallFrameShowsTheRunwayLit) {
   for (int x = 0; x < kSmallWidth; ++x) {
     const Rgba& sky = image.at(x, 2);
     EXPECT_LT(sky.r + sky.g + sky.b, 0.05) << x;
+  }
+}
+
+// The aircraft on the runways carry two landing lights and those taxiing a taxi light, spot lights
+// on their objects within the budget; behind the lined-up aircraft the runway ahead of it is lit
+// by its landing lights and dark with them switched off.
+TEST(NightScene, LandingAndTaxiLightsLightTheRunwayAheadOfTheirAircraft) {
+  const v1::Scene proto = MakeNightScene();
+  ASSERT_LE(proto.spot_lights_size(), kMaxSpotLights);
+  int landing = 0, taxi = 0;
+  const std::vector<std::string> aircraft = NightSceneAircraft();
+  for (const v1::SpotLight& s : proto.spot_lights()) {
+    EXPECT_NE(std::find(aircraft.begin(), aircraft.end(), s.object()), aircraft.end())
+        << s.object();
+    landing += s.group() == kLandingLightGroup;
+    taxi += s.group() == kTaxiLightGroup;
+  }
+  EXPECT_EQ(landing, 8);  // the lined-up, climbing, rolling-out and departing aircraft
+  EXPECT_EQ(taxi, 7);     // the seven taxiing
+
+  Scene scene = ClearNight();
+  Camera behind;  // above and behind the aircraft lined up on 36L at z = 50, heading -z
+  behind.position = {0, 60, 150};
+  behind.pitch_deg = -25;
+  constexpr int kSmallWidth = 320, kSmallHeight = 180;
+  RenderSettings settings = FrameSettings(kSmallWidth, kSmallHeight);
+  settings.draw_light_points = false;  // the ground alone
+  auto lit = RenderFrame(scene, behind, settings);
+  ASSERT_TRUE(lit.ok()) << lit.status();
+  v1::SceneUpdate off;
+  v1::LightGroupUpdate& g = *off.add_light_groups();
+  g.set_group(kLandingLightGroup);
+  g.set_visibility(v1::VISIBILITY_HIDDEN);
+  ASSERT_TRUE(ApplySceneUpdate(off, &scene).ok());
+  auto dark = RenderFrame(scene, behind, settings);
+  ASSERT_TRUE(dark.ok()) << dark.status();
+  // 32 m ahead of the lamps (x = +-4 m, z = 46.8 m), near their beams' axes, seen over the
+  // aircraft's tail.
+  for (const Vec3& ahead : {Vec3{-4, 0, 15}, Vec3{4, 0, 15}}) {
+    const Vec2 at = Project(behind, kSmallWidth, kSmallHeight, ahead);
+    const Rgba on = lit->image.at(static_cast<int>(at.x), static_cast<int>(at.y));
+    const Rgba without = dark->image.at(static_cast<int>(at.x), static_cast<int>(at.y));
+    EXPECT_GT(on.r, 0.02) << ahead.x;
+    EXPECT_GT(on.r, 5 * without.r) << ahead.x;
   }
 }
 
