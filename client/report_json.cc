@@ -18,6 +18,21 @@ v1::LatencyMs LatencyReport(const LatencySummary& s) {
   return out;
 }
 
+v1::TransportDelayMs TransportDelayReport(const TransportDelay& t) {
+  v1::TransportDelayMs out;
+  out.set_p50(Rounded(t.delay_ms.p50));
+  out.set_p99(Rounded(t.delay_ms.p99));
+  out.set_max(Rounded(t.delay_ms.max));
+  out.set_request(Rounded(t.request_ms));
+  out.set_wait(Rounded(t.wait_ms));
+  out.set_render(Rounded(t.render_ms));
+  out.set_hold(Rounded(t.hold_ms));
+  out.set_encode(Rounded(t.encode_ms));
+  out.set_send(Rounded(t.send_ms));
+  out.set_unordered(static_cast<uint32_t>(t.unordered));
+  return out;
+}
+
 std::string ReportJson(const google::protobuf::Message& report) {
   google::protobuf::util::JsonPrintOptions options;
   options.always_print_primitive_fields = true;

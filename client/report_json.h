@@ -8,6 +8,7 @@
 
 #include "aperture/v1/client_reports.pb.h"
 #include "latency_stats.h"
+#include "transport_delay.h"
 
 namespace aperture {
 
@@ -15,6 +16,8 @@ namespace aperture {
 double Rounded(double value);
 
 v1::LatencyMs LatencyReport(const LatencySummary& s);
+
+v1::TransportDelayMs TransportDelayReport(const TransportDelay& t);
 
 // One line of JSON (no newline): field names as in the proto, every field present.
 std::string ReportJson(const google::protobuf::Message& report);

@@ -14,12 +14,14 @@
 #include "commands.h"
 #include "exit_status.h"
 #include "latency_stats.h"
+#include "process_cpu.h"
 #include "report_json.h"
 #include "request_flags.h"
 #include "scene_upload.h"
 #include "sim_channels.h"
 #include "sim_compression.h"
 #include "sim_path.h"
+#include "transport_delay.h"
 
 namespace aperture {
 namespace {
@@ -30,6 +32,7 @@ using Clock = std::chrono::steady_clock;
 struct ChannelReport {
   size_t frames = 0, received = 0, dropped = 0, late = 0, skipped = 0;
   LatencySummary latency;
+  TransportDelay transport;
   // Median latency of the rendered frames among the first and the last fifth of the frames sent:
   // equal when no backlog builds.
   double first_fifth_p50 = 0, last_fifth_p50 = 0;
@@ -37,6 +40,21 @@ struct ChannelReport {
   grpc::Status status;
   v1::RenderFrameResponse last;  // the last rendered frame (--last_frames)
 };
+
+// A rendered frame's clocks and the server's stages, grouped as the transport delay reports them.
+FrameClocks ClocksOf(const v1::RenderFrameResponse& response, uint64_t host_received_ns) {
+  const v1::FrameTimings& t = response.timings();
+  FrameClocks c;
+  c.host_sent_ns = response.host_sent_unix_ns();
+  c.server_received_ns = response.server_received_unix_ns();
+  c.server_sent_ns = response.server_sent_unix_ns();
+  c.host_received_ns = host_received_ns;
+  c.wait_ms = t.wait_ms() + t.queue_ms();
+  c.render_ms = t.update_ms() + t.setup_ms() + t.raster_ms();
+  c.hold_ms = t.hold_ms();
+  c.encode_ms = t.encode_ms();
+  return c;
+}
 
 // One channel: a RenderStream fed one request per slot of the shared clock (slot i carries frame
 // i on every channel), answers read as they come.
@@ -62,16 +80,19 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
         std::lock_guard lock(mutex);
         sent[i] = Clock::now();
       }
+      request.set_host_sent_unix_ns(UnixNanosecondsNow());
       if (!stream->Write(request)) break;
     }
     stream->WritesDone();
   });
 
   std::vector<double> latencies, first_fifth, last_fifth;
+  std::vector<FrameClocks> clocks;
   Clock::time_point last_frame = start;
   v1::RenderFrameResponse response;
   while (stream->Read(&response)) {
     const auto now = Clock::now();
+    const uint64_t received_ns = UnixNanosecondsNow();  // its last byte is in
     const size_t i = response.frame_index();
     ++report.received;
     if (response.status_code() != 0 || i >= path.size()) {
@@ -96,6 +117,7 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
     if (i * 5 < path.size()) first_fifth.push_back(ms);
     if (i * 5 >= path.size() * 4) last_fifth.push_back(ms);
     last_frame = now;
+    clocks.push_back(ClocksOf(response, received_ns));
     // A frame is late when it arrives after the end of its own slot.
     if (now > start + slot * static_cast<int64_t>(i + 1)) ++report.late;
     if (keep_last) report.last = std::move(response);
@@ -104,6 +126,7 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
   report.status = stream->Finish();
   report.dropped += path.size() - report.received;
   report.latency = Summarize(latencies);
+  report.transport = SummarizeTransport(clocks);
   report.first_fifth_p50 = Summarize(first_fifth).p50;
   report.last_fifth_p50 = Summarize(last_fifth).p50;
   // Frames shown per second of the run, from the first slot to the last frame received.
@@ -148,6 +171,14 @@ void PrintText(const ChannelReport& r, double rate, const std::string& label) {
   std::printf("%slatency ms: p50 %.2f  p90 %.2f  p99 %.2f  max %.2f\n",
               std::string(label.size(), ' ').c_str(), r.latency.p50, r.latency.p90, r.latency.p99,
               r.latency.max);
+  const TransportDelay& t = r.transport;
+  std::printf(
+      "%stransport delay ms: p50 %.2f  p99 %.2f  max %.2f; medians: request %.2f  wait %.2f  "
+      "render %.2f  hold %.2f  encode %.2f  send %.2f%s\n",
+      std::string(label.size(), ' ').c_str(), t.delay_ms.p50, t.delay_ms.p99, t.delay_ms.max,
+      t.request_ms, t.wait_ms, t.render_ms, t.hold_ms, t.encode_ms, t.send_ms,
+      t.unordered > 0 ? absl::StrCat(" (", t.unordered, " frames' clocks out of order)").c_str()
+                      : "");
   if (!r.status.ok()) std::printf("stream ended: %s\n", r.status.error_message().c_str());
 }
 
@@ -196,18 +227,25 @@ int RunSim() {
   const std::string last_frames = absl::GetFlag(FLAGS_last_frames);
   std::vector<ChannelReport> reports(static_cast<size_t>(channels));
   std::vector<std::thread> threads;
+  const double cpu_start = ProcessCpuSeconds();
   for (int k = 0; k < channels; ++k)
     threads.emplace_back([&, k] {
       reports[k] = RunChannel(*stub, *base, *path, channels > 1 ? &(*frusta)[k] : nullptr, start,
                               slot, !last_frames.empty());
     });
   for (std::thread& t : threads) t.join();
+  size_t rendered = 0;
+  for (const ChannelReport& r : reports) rendered += r.latency.count;
+  const double host_cpu_ms_per_frame =
+      rendered > 0 ? 1000 * (ProcessCpuSeconds() - cpu_start) / static_cast<double>(rendered) : 0;
 
   const size_t worst = WorstChannel(reports);
   if (absl::GetFlag(FLAGS_json)) {
     // The top-level figures are the worst channel's (all of them when there is one channel).
     v1::SimReport report;
     FillReport(reports[worst], rate, report);
+    *report.mutable_transport_delay_ms() = TransportDelayReport(reports[worst].transport);
+    report.set_host_cpu_ms_per_frame(Rounded(host_cpu_ms_per_frame));
     if (channels > 1) {
       report.set_worst_channel(static_cast<uint32_t>(worst));
       for (const ChannelReport& r : reports) FillReport(r, rate, *report.add_channels());
@@ -220,6 +258,8 @@ int RunSim() {
       PrintText(reports[k], rate, absl::StrCat("channel ", k, ": "));
     std::printf("worst channel: %zu\n", worst);
   }
+  if (!absl::GetFlag(FLAGS_json))
+    std::printf("host CPU per frame rendered: %.2f ms\n", host_cpu_ms_per_frame);
   if (!last_frames.empty())
     if (auto s = WriteLastFrames(reports, last_frames); !s.ok()) return fail(s);
   bool ok = true;

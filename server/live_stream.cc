@@ -24,6 +24,12 @@ double MillisecondsSince(LiveClock::time_point start) {
   return std::chrono::duration<double, std::milli>(LiveClock::now() - start).count();
 }
 
+uint64_t UnixNanosecondsNow() {
+  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                   std::chrono::system_clock::now().time_since_epoch())
+                                   .count());
+}
+
 LiveClock::time_point FrameDeadline(const LiveAnswer& answer, uint32_t deadline_ms) {
   return deadline_ms > 0 ? answer.received + std::chrono::milliseconds(deadline_ms)
                          : LiveClock::time_point::max();
@@ -79,6 +85,8 @@ void LiveStream::ReadRequests() {
     if (!stream_->Read(&held->request)) break;
     auto answer = std::make_shared<LiveAnswer>();
     answer->received = LiveClock::now();
+    answer->received_unix_ns = UnixNanosecondsNow();
+    answer->host_sent_unix_ns = held->request.host_sent_unix_ns();
     answer->frame_index = held->request.frame_index();
     answer->summary.scene_id = held->request.scene_id().substr(0, kSummaryIdChars);
     answer->summary.width = held->request.options().width();
@@ -134,6 +142,7 @@ void LiveStream::RenderNewest() {
       ++rendered_unwritten_;
     }
     LiveAnswer& answer = *held->answer;
+    answer.response.mutable_timings()->set_wait_ms(MillisecondsSince(answer.received));
     auto encode = render_(held->request, held->scene,
                           FrameDeadline(answer, held->request.deadline_ms()), &answer.response);
     {
@@ -141,6 +150,7 @@ void LiveStream::RenderNewest() {
       if (encode.ok()) {
         answer.encode = std::move(*encode);
         answer.state = LiveAnswer::State::kRendered;
+        answer.rendered = LiveClock::now();
       } else {
         answer.status = encode.status();
         answer.state = LiveAnswer::State::kAnswered;
@@ -170,8 +180,12 @@ void LiveStream::WriteAnswers() {
       answer = answers_.front();
     }
     if (answer->state == LiveAnswer::State::kRendered) {
+      v1::FrameTimings& timings = *answer->response.mutable_timings();
+      timings.set_hold_ms(MillisecondsSince(answer->rendered));
       answer->status = answer->encode(&answer->response);
       answer->encode = nullptr;  // the rendered image goes with it
+      // The whole stay in the server: from the request's arrival, its wait and hold included.
+      timings.set_total_ms(MillisecondsSince(answer->received));
     }
     v1::RenderFrameResponse& response = answer->response;
     response.set_frame_index(answer->frame_index);
@@ -181,6 +195,9 @@ void LiveStream::WriteAnswers() {
       response.set_status_code(static_cast<int>(answer->status.code()));
       response.set_status_message(StatusMessageForClient(answer->status.message()));
     }
+    response.set_host_sent_unix_ns(answer->host_sent_unix_ns);
+    response.set_server_received_unix_ns(answer->received_unix_ns);
+    response.set_server_sent_unix_ns(UnixNanosecondsNow());
     const bool written = !context_->IsCancelled() && stream_->Write(response);
     ++counts_.frames;
     if (response.outcome() != v1::FRAME_OUTCOME_RENDERED)

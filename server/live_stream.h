@@ -65,6 +65,10 @@ struct LiveRequestSummary {
 struct LiveAnswer {
   uint64_t frame_index = 0;
   LiveClock::time_point received;
+  // The server's wall clock at the request's arrival, and the host's send time it carried, both
+  // nanoseconds since the Unix epoch: echoed in the answer for the host's transport delay.
+  uint64_t received_unix_ns = 0, host_sent_unix_ns = 0;
+  LiveClock::time_point rendered;  // kRendered since (the frame's hold before its encoding)
   LiveRequestSummary summary;
   enum class State { kWaiting, kRendering, kRendered, kAnswered } state = State::kWaiting;
   bool in_pipeline = false;  // rendering started: it holds a place until written

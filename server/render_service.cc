@@ -354,16 +354,18 @@ absl::Status RenderService::Stream(
       return;
     }
     (answer.status.ok() ? frames_rendered_ : frames_failed_)++;
-    calls_.Log(answer.status, "frame",
-               fmt::format(
-                   "req={}.{} rpc=RenderStream scene={} size={}x{} mode={} "
-                   "update_ms={:.3f} queue_ms={:.2f} setup_ms={:.2f} raster_ms={:.2f} "
-                   "encode_ms={:.2f} total_ms={:.2f} bytes={} status={}{}",
-                   id, answer.frame_index, LogText(Short(request.scene_id)), request.width,
-                   request.height, request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster",
-                   t.update_ms(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.encode_ms(),
-                   MillisecondsSince(answer.received), response.exr().size(),
-                   absl::StatusCodeToString(answer.status.code()), ErrorText(answer.status)));
+    calls_.Log(
+        answer.status, "frame",
+        fmt::format("req={}.{} rpc=RenderStream scene={} size={}x{} mode={} "
+                    "wait_ms={:.2f} update_ms={:.3f} queue_ms={:.2f} setup_ms={:.2f} "
+                    "raster_ms={:.2f} hold_ms={:.2f} encode_ms={:.2f} total_ms={:.2f} bytes={} "
+                    "status={}{}",
+                    id, answer.frame_index, LogText(Short(request.scene_id)), request.width,
+                    request.height,
+                    request.mode == v1::RENDER_MODE_RAYTRACE ? "raytrace" : "raster", t.wait_ms(),
+                    t.update_ms(), t.queue_ms(), t.setup_ms(), t.raster_ms(), t.hold_ms(),
+                    t.encode_ms(), MillisecondsSince(answer.received), response.exr().size(),
+                    absl::StatusCodeToString(answer.status.code()), ErrorText(answer.status)));
   };
   const LiveStreamCounts counts = LiveStream(context, stream, check, render, answered).Run();
   // What the stream's threads allocated (requests, answers, frames) glibc keeps in its arenas
