@@ -1,0 +1,221 @@
+// The geometry of a channel set around the eye, as a simulator's visual system is checked: a dome
+// of black and white 5-degree squares around the eye, seen through the 180 x 40 degree set of
+// docs/examples/wrap-180x40.txtpb (three channels turned 60 degrees apart), projected and
+// rendered by the engine as the server would (the channel's camera in its proto form).
+//  - Every square's corner lands where its analytic direction says: the pixel position the
+//    engine projects it to, turned back into a direction by the channel's own definition (its
+//    yaw and frustum, in closed form), is the corner's direction; errors printed in degrees.
+//  - Neighbouring channels meet with neither gap nor overlap: the directions through the last
+//    pixel column of one channel and the first of the next are the two half pixels apart that
+//    meet at the shared frustum side, row by row; and rendered with a box filter over each pixel,
+//    the two columns at a seam (which lies on a square's edge) are pure black and pure white, the
+//    squares continuing across it.
+//  - A set of planar off-axis tiles (--channels N) is one wide render, cut.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <utility>
+
+#include "raster/projection.h"
+#include "render/frame_renderer.h"
+#include "scene/camera_proto.h"
+#include "scene/scene_builder.h"
+#include "scene/shading.h"
+#include "sim_channels.h"
+#include "support/checker_dome.h"
+
+namespace aperture {
+namespace {
+
+using testing::AngleBetweenDeg;
+using testing::ChannelView;
+using testing::DomeAngles;
+using testing::DomeDirection;
+using testing::DomeWhite;
+using testing::InsideSquare;
+using testing::kDomeSquareDeg;
+
+double Deg(double radians) { return radians * 180 / M_PI; }
+
+// The channel's closed-form mapping from its definition.
+ChannelView ViewOf(const SimChannel& c) {
+  return ChannelView(c.view_offset.yaw_deg(), c.frustum, static_cast<int>(c.width),
+                     static_cast<int>(c.height));
+}
+
+class ChannelGeometry : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto channels = ParseChannels(APERTURE_EXAMPLES_DIR "/wrap-180x40.txtpb", v1::Camera(), 0, 0);
+    ASSERT_TRUE(channels.ok()) << channels.status();
+    channels_ = *channels;
+    auto scene = BuildScene(testing::CheckerDome());
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    scene_ = std::move(*scene);
+  }
+  // The engine's camera of channel k, as the server builds it from the request's camera.
+  Camera ChannelCameraK(size_t k) const {
+    auto camera = CameraFromProto(ChannelCamera(v1::Camera(), channels_[k]));
+    EXPECT_TRUE(camera.ok()) << camera.status();
+    return *camera;
+  }
+  std::vector<SimChannel> channels_;
+  Scene scene_;
+};
+
+TEST_F(ChannelGeometry, EverySquaresCornersLandOnTheirAnalyticDirections) {
+  std::set<std::pair<int, int>> found;  // corners (azimuth, elevation) in units of 5 degrees
+  double worst = 0;
+  size_t corners = 0;
+  for (size_t k = 0; k < channels_.size(); ++k) {
+    const ChannelView map = ViewOf(channels_[k]);
+    const FrameGeometry geo =
+        ProjectScene(scene_, ChannelCameraK(k), map.width, map.height, /*margin=*/0);
+    for (const ScreenPolygon& sp : geo.polygons)
+      for (const Vec2& v : sp.vertices) {
+        const Vec3 d = map.At(v.x, v.y);
+        const auto [a, e] = DomeAngles(d);
+        const int i = static_cast<int>(std::lround(a / kDomeSquareDeg));
+        const int j = static_cast<int>(std::lround(e / kDomeSquareDeg));
+        const double error =
+            AngleBetweenDeg(d, DomeDirection(i * kDomeSquareDeg, j * kDomeSquareDeg));
+        // Far below the rule's degree; a vertex where the frame's side cuts a square's edge can
+        // lie a few thousandths of a degree from a corner just outside the frame.
+        if (error < 1e-6) {
+          worst = std::max(worst, error);
+          ++corners;
+          found.insert({i, j});
+        } else {
+          // Not a corner: where the frame's sides cut a square.
+          const double to_side =
+              std::min(std::min(v.x, map.width - v.x), std::min(v.y, map.height - v.y));
+          EXPECT_LT(std::abs(to_side), 1e-6) << "channel " << k << " at " << v.x << "," << v.y;
+        }
+      }
+  }
+  // Every corner of the 180 x 40 degree field, in some channel.
+  for (int i = -18; i <= 18; ++i)
+    for (int j = -4; j <= 4; ++j) EXPECT_TRUE(found.count({i, j})) << i * 5 << "," << j * 5;
+  std::printf(
+      "corner vertices: %zu (%zu distinct corners), largest error %.3g degrees (the "
+      "rule: +-1)\n",
+      corners, found.size(), worst);
+}
+
+TEST_F(ChannelGeometry, NeighbouringChannelsMeetWithNeitherGapNorOverlap) {
+  double worst = 0, pixel_deg = 0;
+  for (size_t k = 0; k + 1 < channels_.size(); ++k) {
+    const Camera left = ChannelCameraK(k), right = ChannelCameraK(k + 1);
+    const int w = static_cast<int>(channels_[k].width), h = static_cast<int>(channels_[k].height);
+    ASSERT_EQ(channels_[k + 1].height, channels_[k].height);
+    const FrustumTangents fl = ResolveFrustum(left, w, h), fr = ResolveFrustum(right, w, h);
+    const double dx = (fl.right - fl.left) / w;
+    for (int y = 0; y < h; ++y) {
+      // The engine's rays through the last column of channel k and the first of channel k + 1.
+      const Vec3 last = Normalize(left.Orientation() * CameraRay(fl, w, h, w - 0.5, y + 0.5));
+      const Vec3 first = Normalize(right.Orientation() * CameraRay(fr, w, h, 0.5, y + 0.5));
+      // Each is half a pixel from the shared side plane x + r z = 0 (normal (1, 0, r)): together
+      // one edge pixel's angle, measured across the seam.
+      const Vec3 p{fl.right - dx / 2, fl.top - (fl.top - fl.bottom) * (y + 0.5) / h, -1};
+      const double half = Deg(std::asin(dx / 2 / (Length(p) * std::hypot(1.0, fl.right))));
+      worst = std::max(worst, std::abs(AngleBetweenDeg(last, first) - 2 * half));
+      pixel_deg = 2 * half;
+    }
+  }
+  std::printf("seams: columns one pixel's angle (%.5f degrees) apart within %.3g degrees\n",
+              pixel_deg, worst);
+  EXPECT_LT(worst, 1e-9);
+}
+
+TEST_F(ChannelGeometry, RenderedSquaresContinueAcrossTheSeams) {
+  RenderSettings settings;
+  settings.aa = AntiAliasing::kBox1;  // each pixel its own square: a seam's columns stay pure
+  std::vector<Image> frames;
+  for (size_t k = 0; k < channels_.size(); ++k) {
+    settings.width = static_cast<int>(channels_[k].width);
+    settings.height = static_cast<int>(channels_[k].height);
+    auto frame = RenderFrame(scene_, ChannelCameraK(k), settings);
+    ASSERT_TRUE(frame.ok()) << frame.status();
+    frames.push_back(std::move(frame->image));
+  }
+  // Pixels whose centre is well inside a square (a quarter degree from its edges, about two
+  // pixels; the sides of constant elevation are chords, at most 0.02 degrees off the parallels)
+  // show that square's colour.
+  auto inside = [](double degrees) { return InsideSquare(degrees, 0.25); };
+  size_t checked = 0, wrong = 0;
+  for (size_t k = 0; k < channels_.size(); ++k) {
+    const ChannelView map = ViewOf(channels_[k]);
+    for (int y = 0; y < map.height; ++y)
+      for (int x = 0; x < map.width; ++x) {
+        const auto [a, e] = DomeAngles(map.At(x + 0.5, y + 0.5));
+        if (!inside(a) || !inside(e)) continue;
+        ++checked;
+        const float expected = DomeWhite(a, e) ? 1.0f : 0.0f;
+        wrong += std::abs(frames[k].at(x, y).r - expected) > 1e-4f;
+      }
+  }
+  EXPECT_EQ(wrong, 0u) << "of " << checked;
+  // At each seam (azimuth +-30, a square's edge) the two columns are one square and the next:
+  // pure, and of opposite colours.
+  double worst_purity = 0;
+  size_t rows = 0;
+  for (size_t k = 0; k + 1 < channels_.size(); ++k) {
+    const ChannelView map = ViewOf(channels_[k]);
+    for (int y = 0; y < map.height; ++y) {
+      const auto [a, e] = DomeAngles(map.At(map.width, y + 0.5));
+      if (!inside(e)) continue;
+      ++rows;
+      const float left = frames[k].at(map.width - 1, y).r, right = frames[k + 1].at(0, y).r;
+      const float left_expected = DomeWhite(a + 1, e) ? 1.0f : 0.0f;
+      worst_purity = std::max({worst_purity, std::abs(left - left_expected) + 0.0,
+                               std::abs(right - (1 - left_expected)) + 0.0});
+    }
+  }
+  std::printf("seam columns: %zu rows, largest departure from pure black/white %.3g\n", rows,
+              worst_purity);
+  EXPECT_GT(rows, 400u);
+  EXPECT_LT(worst_purity, 1e-4);
+}
+
+TEST_F(ChannelGeometry, PlanarTilesAreOneWideRenderCut) {
+  v1::Camera eye;
+  eye.set_vertical_fov_deg(40);
+  eye.set_pitch_deg(3);
+  const int w = 96, h = 64, n = 3;
+  auto tiles = ParseChannels("3", eye, w, h);
+  ASSERT_TRUE(tiles.ok()) << tiles.status();
+  RenderSettings settings;
+  settings.width = w, settings.height = h;
+  // The one wide view: three tiles' width, the same height.
+  v1::Camera wide = eye;
+  const double half_h = std::tan(20 * M_PI / 180), half_w = n * half_h * w / h;
+  wide.mutable_frustum()->set_left_deg(-Deg(std::atan(half_w)));
+  wide.mutable_frustum()->set_right_deg(Deg(std::atan(half_w)));
+  wide.mutable_frustum()->set_bottom_deg(-20);
+  wide.mutable_frustum()->set_top_deg(20);
+  RenderSettings wide_settings = settings;
+  wide_settings.width = n * w;
+  auto wide_camera = CameraFromProto(wide);
+  ASSERT_TRUE(wide_camera.ok());
+  auto whole = RenderFrame(scene_, *wide_camera, wide_settings);
+  ASSERT_TRUE(whole.ok()) << whole.status();
+  double worst = 0;
+  for (int k = 0; k < n; ++k) {
+    auto camera = CameraFromProto(ChannelCamera(eye, (*tiles)[static_cast<size_t>(k)]));
+    ASSERT_TRUE(camera.ok()) << camera.status();
+    auto part = RenderFrame(scene_, *camera, settings);
+    ASSERT_TRUE(part.ok()) << part.status();
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const Rgba a = part->image.at(x, y), b = whole->image.at(k * w + x, y);
+        worst = std::max({worst, std::abs(a.r - b.r) + 0.0, std::abs(a.a - b.a) + 0.0});
+      }
+  }
+  std::printf("planar tiles against one wide render: largest difference %.3g\n", worst);
+  EXPECT_LT(worst, 1e-4);
+}
+
+}  // namespace
+}  // namespace aperture
