@@ -4,7 +4,9 @@
 // rendered by the engine as the server would (the channel's camera in its proto form).
 //  - Every square's corner lands where its analytic direction says: the pixel position the
 //    engine projects it to, turned back into a direction by the channel's own definition (its
-//    yaw and frustum, in closed form), is the corner's direction; errors printed in degrees.
+//    yaw and frustum, in closed form, after the eye's yaw and pitch), is the corner's direction;
+//    errors printed in degrees. Also for five 36-degree channels, and for an eye turned and
+//    pitched, whose channels turn with it (the view offset applies after the eye's orientation).
 //  - Neighbouring channels meet with neither gap nor overlap: the directions through the last
 //    pixel column of one channel and the first of the next are the two half pixels apart that
 //    meet at the shared frustum side, row by row; and rendered with the 2 x 2 box filter, the
@@ -41,11 +43,28 @@ using testing::kDomeSquareDeg;
 
 double Deg(double radians) { return radians * 180 / M_PI; }
 
-// The channel's closed-form mapping from its definition.
-ChannelView ViewOf(const SimChannel& c) {
-  return ChannelView(c.view_offset.yaw_deg(), c.frustum, static_cast<int>(c.width),
-                     static_cast<int>(c.height));
+// The channel's closed-form mapping from its definition and the eye's yaw and pitch.
+ChannelView ViewOf(const SimChannel& c, const v1::Camera& eye = v1::Camera()) {
+  ChannelView view(c.view_offset.yaw_deg(), c.frustum, static_cast<int>(c.width),
+                   static_cast<int>(c.height));
+  view.eye_yaw_deg = eye.yaw_deg();
+  view.eye_pitch_deg = eye.pitch_deg();
+  return view;
 }
+
+// The engine's camera of a channel, as the server builds it from the request's camera.
+Camera CameraOf(const SimChannel& channel, const v1::Camera& eye = v1::Camera()) {
+  auto camera = CameraFromProto(ChannelCamera(eye, channel));
+  EXPECT_TRUE(camera.ok()) << camera.status();
+  return *camera;
+}
+
+// A channel set seen from an eye.
+struct SetCase {
+  std::string name;
+  std::vector<SimChannel> channels;
+  v1::Camera eye;  // at the origin, its yaw and pitch
+};
 
 class ChannelGeometry : public ::testing::Test {
  protected:
@@ -57,33 +76,42 @@ class ChannelGeometry : public ::testing::Test {
     ASSERT_TRUE(scene.ok()) << scene.status();
     scene_ = std::move(*scene);
   }
-  // The engine's camera of channel k, as the server builds it from the request's camera.
   Camera ChannelCameraK(size_t k) const { return CameraOf(channels_[k]); }
-  static Camera CameraOf(const SimChannel& channel) {
-    auto camera = CameraFromProto(ChannelCamera(v1::Camera(), channel));
-    EXPECT_TRUE(camera.ok()) << camera.status();
-    return *camera;
-  }
-  // The example file's set, and five 36-degree channels 42 high at their centres (20 degrees up
-  // at their sides), whose seams at +-18 and +-54 degrees fall inside squares.
-  std::vector<std::pair<std::string, std::vector<SimChannel>>> Sets() const {
+  // The example file's set; five 36-degree channels 42 high at their centres (20 degrees up at
+  // their sides), whose seams at +-18 and +-54 degrees fall inside squares; and the example set
+  // on an eye turned 5 degrees right and pitched 7 up, whose channels turn with it.
+  std::vector<SetCase> Sets() const {
     auto five = ParseChannels("5x36x42", v1::Camera(), 400, 500);
     EXPECT_TRUE(five.ok()) << five.status();
-    return {{"wrap-180x40.txtpb", channels_}, {"5x36x42 at 400x500", *five}};
+    v1::Camera turned;
+    turned.set_yaw_deg(-5);
+    turned.set_pitch_deg(7);
+    return {{"wrap-180x40.txtpb", channels_, v1::Camera()},
+            {"5x36x42 at 400x500", *five, v1::Camera()},
+            {"wrap-180x40.txtpb, eye yaw -5 pitch 7", channels_, turned}};
   }
   std::vector<SimChannel> channels_;
   Scene scene_;
 };
 
 TEST_F(ChannelGeometry, EverySquaresCornersLandOnTheirAnalyticDirections) {
-  for (const auto& [set_name, channels] : Sets()) {
-    std::set<std::pair<int, int>> found;  // corners (azimuth, elevation) in units of 5 degrees
+  for (const auto& [set_name, channels, eye] : Sets()) {
+    std::set<std::pair<int, int>> found;     // corners (azimuth, elevation) in units of 5 degrees
+    std::set<std::pair<int, int>> expected;  // those whose direction lies inside a frame
     double worst = 0;
     size_t corners = 0;
     for (size_t k = 0; k < channels.size(); ++k) {
-      const ChannelView map = ViewOf(channels[k]);
+      const ChannelView map = ViewOf(channels[k], eye);
       const FrameGeometry geo =
-          ProjectScene(scene_, CameraOf(channels[k]), map.width, map.height, /*margin=*/0);
+          ProjectScene(scene_, CameraOf(channels[k], eye), map.width, map.height, /*margin=*/0);
+      for (int i = -19; i <= 19; ++i)
+        for (int j = -6; j <= 6; ++j) {
+          double x, y;
+          const double eps = 1e-6;  // pixels: a corner on the frame's side may go either way
+          if (map.FramePoint(DomeDirection(i * kDomeSquareDeg, j * kDomeSquareDeg), &x, &y) &&
+              x > eps && x < map.width - eps && y > eps && y < map.height - eps)
+            expected.insert({i, j});
+        }
       for (const ScreenPolygon& sp : geo.polygons)
         for (const Vec2& v : sp.vertices) {
           const Vec3 d = map.At(v.x, v.y);
@@ -107,10 +135,16 @@ TEST_F(ChannelGeometry, EverySquaresCornersLandOnTheirAnalyticDirections) {
           }
         }
     }
-    // Every corner of the 180 x 40 degree field, in some channel.
-    for (int i = -18; i <= 18; ++i)
-      for (int j = -4; j <= 4; ++j)
-        EXPECT_TRUE(found.count({i, j})) << set_name << ": " << i * 5 << "," << j * 5;
+    // Every corner inside a frame was found there; looking ahead, the whole 180 x 40 field is.
+    for (const auto& [i, j] : expected)
+      EXPECT_TRUE(found.count({i, j})) << set_name << ": " << i * 5 << "," << j * 5;
+    if (eye.yaw_deg() == 0 && eye.pitch_deg() == 0) {
+      for (int i = -18; i <= 18; ++i)
+        for (int j = -4; j <= 4; ++j) {
+          EXPECT_TRUE(found.count({i, j})) << set_name << ": " << i * 5 << "," << j * 5;
+        }
+    }
+    EXPECT_GT(expected.size(), 250u) << set_name;
     std::printf(
         "%s: corner vertices %zu (%zu distinct corners), largest error %.3g degrees (the "
         "rule: +-1)\n",
@@ -119,10 +153,10 @@ TEST_F(ChannelGeometry, EverySquaresCornersLandOnTheirAnalyticDirections) {
 }
 
 TEST_F(ChannelGeometry, NeighbouringChannelsMeetWithNeitherGapNorOverlap) {
-  for (const auto& [set_name, channels] : Sets()) {
+  for (const auto& [set_name, channels, eye] : Sets()) {
     double worst = 0, pixel_deg = 0;
     for (size_t k = 0; k + 1 < channels.size(); ++k) {
-      const Camera left = CameraOf(channels[k]), right = CameraOf(channels[k + 1]);
+      const Camera left = CameraOf(channels[k], eye), right = CameraOf(channels[k + 1], eye);
       const int w = static_cast<int>(channels[k].width), h = static_cast<int>(channels[k].height);
       ASSERT_EQ(channels[k + 1].height, channels[k].height);
       const FrustumTangents fl = ResolveFrustum(left, w, h), fr = ResolveFrustum(right, w, h);

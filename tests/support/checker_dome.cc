@@ -73,11 +73,32 @@ ChannelView::ChannelView(double yaw, const v1::Frustum& f, int w, int h)
       width(w),
       height(h) {}
 
+namespace {
+
+// Turned about +y by `degrees` (yaw: the view axis (0, 0, -1) goes to (-sin, 0, -cos)).
+Vec3 TurnY(const Vec3& v, double degrees) {
+  const double c = std::cos(Rad(degrees)), s = std::sin(Rad(degrees));
+  return {v.x * c + v.z * s, v.y, -v.x * s + v.z * c};
+}
+// Turned about +x by `degrees` (pitch: the view axis goes to (0, sin, -cos)).
+Vec3 TurnX(const Vec3& v, double degrees) {
+  const double c = std::cos(Rad(degrees)), s = std::sin(Rad(degrees));
+  return {v.x, v.y * c - v.z * s, v.y * s + v.z * c};
+}
+
+}  // namespace
+
 Vec3 ChannelView::At(double x, double y) const {
   const Vec3 r{left + (right - left) * x / width, top - (top - bottom) * y / height, -1};
-  // Turned about +y by the yaw: the view axis (0, 0, -1) goes to (-sin, 0, -cos).
-  const double c = std::cos(Rad(yaw_deg)), s = std::sin(Rad(yaw_deg));
-  return Normalize(Vec3{r.x * c + r.z * s, r.y, -r.x * s + r.z * c});
+  return Normalize(TurnY(TurnX(TurnY(r, yaw_deg), eye_pitch_deg), eye_yaw_deg));
+}
+
+bool ChannelView::FramePoint(const Vec3& direction, double* x, double* y) const {
+  const Vec3 r = TurnY(TurnX(TurnY(direction, -eye_yaw_deg), -eye_pitch_deg), -yaw_deg);
+  if (r.z >= 0) return false;
+  *x = (r.x / -r.z - left) / (right - left) * width;
+  *y = (top - r.y / -r.z) / (top - bottom) * height;
+  return true;
 }
 
 }  // namespace aperture::testing

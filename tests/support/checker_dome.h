@@ -31,15 +31,19 @@ bool InsideSquare(double degrees, double margin);
 
 double AngleBetweenDeg(const Vec3& u, const Vec3& v);
 
-// A channel turned by `yaw_deg` about +y from an eye looking along -z, with an off-axis frustum,
-// width x height pixels.
+// A channel turned by `yaw_deg` about the eye's up axis, with an off-axis frustum, width x height
+// pixels, seen from an eye at the origin turned by eye_yaw_deg and then pitched by eye_pitch_deg
+// (DESIGN.md's conventions; the channel's turn comes after the eye's).
 struct ChannelView {
   ChannelView(double yaw_deg, const v1::Frustum& frustum, int width, int height);
   // The unit direction through frame point (x, y) (pixel corners at integers, row 0 on top).
   Vec3 At(double x, double y) const;
+  // The frame point a direction passes through, and whether it is in front of the channel.
+  bool FramePoint(const Vec3& direction, double* x, double* y) const;
 
   double yaw_deg, left, right, bottom, top;  // the frustum's side tangents
   int width, height;
+  double eye_yaw_deg = 0, eye_pitch_deg = 0;
 };
 
 }  // namespace aperture::testing
