@@ -21,7 +21,8 @@ ABSL_FLAG(std::string, token_file, "",
           "(default: the APERTURE_TOKEN environment variable, if set)");
 ABSL_FLAG(std::string, servers, "127.0.0.1:50051",
           "batch: servers HOST:PORT,... (gRPC round_robin over them); a host name stands for all "
-          "of its IPv4 addresses (a headless Service: every pod behind it)");
+          "of its IPv4 addresses (a headless Service: every pod behind it); sim: the servers the "
+          "channels render on, channel k on server k mod their number (default: --server)");
 ABSL_FLAG(int, split, 0,
           "render: cut the frame into this many regions of equal predicted cost (PlanRegions) "
           "and render them on --servers at once, then assemble one EXR (0: one server)");
@@ -48,9 +49,11 @@ ABSL_FLAG(std::string, path, "",
           "sim: path file, per line a camera X,Y,Z,YAW,PITCH,ROLL or a JSON RenderFrameRequest "
           "with camera and scene update (docs/SERVICE.md; default: flying along -z at 60 m/s, the "
           "scene's named objects rolling forward)");
-ABSL_FLAG(int, channels, 1,
-          "sim: display channels side by side, each its own stream with an off-axis frustum "
-          "(1..16)");
+ABSL_FLAG(std::string, channels, "1",
+          "sim: display channels, each its own stream locked to the others by frame number: N "
+          "(planar off-axis tiles of one wide view), NxW or NxWxV (N channels W degrees wide, V "
+          "high, turned around the eye: 3x60 spans 180 degrees), or a channel-set file "
+          "(aperture.v1.ChannelSet in text format; docs/SERVICE.md)");
 ABSL_FLAG(std::string, last_frames, "",
           "sim: write each channel's last rendered frame to DIR/channel-K.exr");
 
@@ -74,8 +77,6 @@ absl::Status CheckClientFlags() {
   const double rate = absl::GetFlag(FLAGS_rate);
   if (!(rate > 0) || !std::isfinite(rate)) return bad("--rate", rate, "a positive rate in Hz");
   if (const int n = absl::GetFlag(FLAGS_frames); n < 1) return bad("--frames", n, "at least 1");
-  if (const int n = absl::GetFlag(FLAGS_channels); n < 1 || n > 16)
-    return bad("--channels", n, "in 1..16");
   if (const int n = absl::GetFlag(FLAGS_split); n < 0)
     return bad("--split", n, "0 (one server) or more");
   return absl::OkStatus();

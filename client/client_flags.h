@@ -28,7 +28,7 @@ ABSL_DECLARE_FLAG(bool, json);
 ABSL_DECLARE_FLAG(double, rate);
 ABSL_DECLARE_FLAG(int, frames);
 ABSL_DECLARE_FLAG(std::string, path);
-ABSL_DECLARE_FLAG(int, channels);
+ABSL_DECLARE_FLAG(std::string, channels);
 ABSL_DECLARE_FLAG(std::string, last_frames);
 
 namespace aperture {

@@ -1,14 +1,19 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "absl/flags/flag.h"
+#include "absl/flags/reflection.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 #include "channel.h"
 #include "client_flags.h"
 #include "commands.h"
@@ -39,6 +44,9 @@ struct ChannelReport {
   double achieved_hz = 0;
   grpc::Status status;
   v1::RenderFrameResponse last;  // the last rendered frame (--last_frames)
+  // When each frame number's frame was complete (its last byte received); empty: not rendered.
+  std::vector<std::optional<Clock::time_point>> completed;
+  size_t last_rendered = 0;  // the frame number of the last rendered frame
 };
 
 // A rendered frame's clocks and the server's stages, grouped as the transport delay reports them.
@@ -57,12 +65,14 @@ FrameClocks ClocksOf(const v1::RenderFrameResponse& response, uint64_t host_rece
 }
 
 // One channel: a RenderStream fed one request per slot of the shared clock (slot i carries frame
-// i on every channel), answers read as they come.
+// number i on every channel: the host's frame counter locks the channels), answers read as they
+// come.
 ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& base,
-                         const std::vector<SimFrame>& path, const v1::Frustum* frustum,
+                         const std::vector<SimFrame>& path, const SimChannel& channel,
                          Clock::time_point start, Clock::duration slot, bool keep_last) {
   ChannelReport report;
   report.frames = path.size();
+  report.completed.resize(path.size());
   grpc::ClientContext context;
   auto stream = stub.RenderStream(&context);
   std::vector<Clock::time_point> sent(path.size());
@@ -71,8 +81,9 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
     for (size_t i = 0; i < path.size(); ++i) {
       std::this_thread::sleep_until(start + slot * static_cast<int64_t>(i));
       v1::RenderFrameRequest request = base;
-      *request.mutable_camera() = path[i].camera;
-      if (frustum != nullptr) *request.mutable_camera()->mutable_frustum() = *frustum;
+      *request.mutable_camera() = ChannelCamera(path[i].camera, channel);
+      request.mutable_options()->set_width(channel.width);
+      request.mutable_options()->set_height(channel.height);
       if (path[i].update) *request.mutable_update() = *path[i].update;
       request.set_scene_time_s(path[i].scene_time_s);
       request.set_frame_index(i);
@@ -114,6 +125,8 @@ ChannelReport RunChannel(v1::Render::Stub& stub, const v1::RenderFrameRequest& b
     }
     const double ms = std::chrono::duration<double, std::milli>(now - sent_at).count();
     latencies.push_back(ms);
+    report.completed[i] = now;
+    report.last_rendered = std::max(report.last_rendered, i);
     if (i * 5 < path.size()) first_fifth.push_back(ms);
     if (i * 5 >= path.size() * 4) last_fifth.push_back(ms);
     last_frame = now;
@@ -145,6 +158,27 @@ size_t WorstChannel(const std::vector<ChannelReport>& reports) {
   for (size_t k = 1; k < reports.size(); ++k)
     if (badness(reports[k]) > badness(reports[worst])) worst = k;
   return worst;
+}
+
+// Per frame number every channel rendered: the last channel's completion minus the first's, ms.
+std::vector<double> ChannelSkews(const std::vector<ChannelReport>& reports) {
+  std::vector<double> skews;
+  for (size_t i = 0; i < reports[0].completed.size(); ++i) {
+    std::optional<Clock::time_point> first, last;
+    bool everywhere = true;
+    for (const ChannelReport& r : reports) {
+      const auto& t = r.completed[i];
+      if (!t) {
+        everywhere = false;
+        break;
+      }
+      first = first ? std::min(*first, *t) : *t;
+      last = last ? std::max(*last, *t) : *t;
+    }
+    if (everywhere)
+      skews.push_back(std::chrono::duration<double, std::milli>(*last - *first).count());
+  }
+  return skews;
 }
 
 // The channel's figures; SimReport's first fields are SimChannelReport's, field for field.
@@ -197,27 +231,69 @@ absl::Status WriteLastFrames(const std::vector<ChannelReport>& reports, const st
   return absl::OkStatus();
 }
 
+// A server the channels render on: its connection, the scene loaded there, the request its
+// channels start from.
+struct SimServer {
+  std::unique_ptr<v1::Render::Stub> stub;
+  SceneOnServer scene;
+  v1::RenderFrameRequest base;
+};
+
+absl::StatusOr<SimServer> PrepareServer(const std::string& address) {
+  auto channel = ConnectChannel(address);
+  if (!channel.ok()) return channel.status();
+  SimServer server;
+  server.stub = v1::Render::NewStub(*channel);
+  auto scene = LoadSceneOnServer(*server.stub, absl::GetFlag(FLAGS_scene));
+  if (!scene.ok()) return scene.status();
+  server.scene = std::move(*scene);
+  auto base = FrameRequestFromFlags(server.scene);
+  if (!base.ok()) return base.status();
+  server.base = std::move(*base);
+  // Without --compression, the codec suits where the server is (sim_compression.h).
+  if (server.base.options().compression() == v1::EXR_COMPRESSION_DEFAULT)
+    server.base.mutable_options()->set_compression(
+        SimDefaultCompression(address, server.base.options().pixel_type()));
+  return server;
+}
+
+// --servers when given a value of its own (its default serves batch), else none.
+std::vector<std::string> SimServers() {
+  const absl::CommandLineFlag* flag = absl::FindCommandLineFlag("servers");
+  if (flag == nullptr || flag->CurrentValue() == flag->DefaultValue()) return {};
+  return absl::StrSplit(absl::GetFlag(FLAGS_servers), ',', absl::SkipEmpty());
+}
+
 }  // namespace
 
 int RunSim() {
   auto fail = [](const absl::Status& status) { return Fail("sim", status); };
   const double rate = absl::GetFlag(FLAGS_rate);  // > 0 (CheckClientFlags)
-  const int channels = absl::GetFlag(FLAGS_channels);
-  auto channel = ConnectChannel(absl::GetFlag(FLAGS_server));
-  if (!channel.ok()) return fail(channel.status());
-  auto stub = v1::Render::NewStub(*channel);
-  auto scene = LoadSceneOnServer(*stub, absl::GetFlag(FLAGS_scene));
-  if (!scene.ok()) return fail(scene.status());
-  auto base = FrameRequestFromFlags(*scene);
-  if (!base.ok()) return fail(base.status());
-  // Without --compression, the codec suits where the server is (sim_compression.h).
-  if (base->options().compression() == v1::EXR_COMPRESSION_DEFAULT)
-    base->mutable_options()->set_compression(
-        SimDefaultCompression(absl::GetFlag(FLAGS_server), base->options().pixel_type()));
-  auto frusta =
-      ChannelFrusta(base->camera(), channels, base->options().width(), base->options().height());
-  if (!frusta.ok()) return fail(frusta.status());
-  auto path = MakeSimPath(absl::GetFlag(FLAGS_path), base->camera(), scene->objects,
+  const std::string spec = absl::GetFlag(FLAGS_channels);
+  // The first channel's server: its scene and request give the eye and the frame size the
+  // channels start from (the channels read again with them).
+  auto provisional = ParseChannels(spec, v1::Camera(), 1, 1);
+  if (!provisional.ok()) return fail(provisional.status());
+  AssignServers(*provisional, SimServers(), absl::GetFlag(FLAGS_server));
+  const std::string first_address = provisional->front().server;
+  std::map<std::string, SimServer> servers;
+  auto first = PrepareServer(first_address);
+  if (!first.ok()) return fail(first.status());
+  const v1::RenderFrameRequest eye = first->base;
+  const std::vector<v1::NamedObject> objects = first->scene.objects;
+  servers.emplace(first_address, std::move(*first));
+  auto parsed = ParseChannels(spec, eye.camera(), eye.options().width(), eye.options().height());
+  if (!parsed.ok()) return fail(parsed.status());
+  std::vector<SimChannel>& sim_channels = *parsed;
+  AssignServers(sim_channels, SimServers(), absl::GetFlag(FLAGS_server));
+  for (const SimChannel& c : sim_channels)
+    if (!servers.contains(c.server)) {
+      auto server = PrepareServer(c.server);
+      if (!server.ok()) return fail(server.status());
+      servers.emplace(c.server, std::move(*server));
+    }
+  const int channels = static_cast<int>(sim_channels.size());
+  auto path = MakeSimPath(absl::GetFlag(FLAGS_path), eye.camera(), objects,
                           absl::GetFlag(FLAGS_frames), rate);
   if (!path.ok()) return fail(path.status());
 
@@ -230,8 +306,9 @@ int RunSim() {
   const double cpu_start = ProcessCpuSeconds();
   for (int k = 0; k < channels; ++k)
     threads.emplace_back([&, k] {
-      reports[k] = RunChannel(*stub, *base, *path, channels > 1 ? &(*frusta)[k] : nullptr, start,
-                              slot, !last_frames.empty());
+      const SimServer& server = servers.at(sim_channels[k].server);
+      reports[k] = RunChannel(*server.stub, server.base, *path, sim_channels[k], start, slot,
+                              !last_frames.empty());
     });
   for (std::thread& t : threads) t.join();
   size_t rendered = 0;
@@ -240,6 +317,8 @@ int RunSim() {
       rendered > 0 ? 1000 * (ProcessCpuSeconds() - cpu_start) / static_cast<double>(rendered) : 0;
 
   const size_t worst = WorstChannel(reports);
+  const std::vector<double> skews = ChannelSkews(reports);
+  const LatencySummary skew = Summarize(skews);
   if (absl::GetFlag(FLAGS_json)) {
     // The top-level figures are the worst channel's (all of them when there is one channel).
     v1::SimReport report;
@@ -248,15 +327,28 @@ int RunSim() {
     report.set_host_cpu_ms_per_frame(Rounded(host_cpu_ms_per_frame));
     if (channels > 1) {
       report.set_worst_channel(static_cast<uint32_t>(worst));
-      for (const ChannelReport& r : reports) FillReport(r, rate, *report.add_channels());
+      for (int k = 0; k < channels; ++k) {
+        v1::SimChannelReport& out = *report.add_channels();
+        FillReport(reports[k], rate, out);
+        out.set_name(sim_channels[k].name);
+        out.set_server(sim_channels[k].server);
+        out.set_last_frame(static_cast<uint32_t>(reports[k].last_rendered));
+      }
+      *report.mutable_channel_skew_ms() = LatencyReport(skew);
+      report.set_locked_frames(static_cast<uint32_t>(skews.size()));
     }
     std::printf("%s\n", ReportJson(report).c_str());
   } else if (channels == 1) {
     PrintText(reports[0], rate, "");
   } else {
     for (int k = 0; k < channels; ++k)
-      PrintText(reports[k], rate, absl::StrCat("channel ", k, ": "));
-    std::printf("worst channel: %zu\n", worst);
+      PrintText(reports[k], rate,
+                absl::StrCat(sim_channels[k].name, " on ", sim_channels[k].server, ": "));
+    std::printf("worst channel: %s\n", sim_channels[worst].name.c_str());
+    std::printf(
+        "skew between channels completing the same frame, ms: p50 %.2f  p99 %.2f  max %.2f "
+        "(%zu of %zu frame numbers rendered on every channel)\n",
+        skew.p50, skew.p99, skew.max, skews.size(), path->size());
   }
   if (!absl::GetFlag(FLAGS_json))
     std::printf("host CPU per frame rendered: %.2f ms\n", host_cpu_ms_per_frame);

@@ -63,6 +63,15 @@ inline bool IsKnownFlag(const std::string& name) {
   return flag != nullptr && flag->IsOfType<bool>();
 }
 
+// Whether a flag was defined in this project's sources rather than in absl's. absl names its own
+// files "./absl/flags/parse.cc"; ours are named by their absolute path (absl drops the leading
+// '/'), or relative to the build folder when a compiler launcher rewrites paths (ccache's
+// base_dir).
+inline bool IsOurs(absl::string_view file) {
+  if (absl::StrContains(file, absl::StripPrefix(APERTURE_SOURCE_DIR, "/"))) return true;
+  return absl::StartsWith(file, "../") && !absl::StrContains(file, "absl/");
+}
+
 // --helpfull stays absl's: every flag linked in, absl's own included (deploy's manifest test reads
 // the flags' names and kinds from it).
 inline bool IsHelp(absl::string_view arg) {
@@ -107,8 +116,7 @@ inline void HandleHelpAndVersion(int argc, char** argv, const char* program, con
   };
   std::vector<Entry> entries;
   for (const auto& [name, flag] : absl::GetAllFlags()) {
-    // This project's flags, not absl's (absl keeps the file name without its leading '/').
-    if (!absl::StrContains(flag->Filename(), absl::StripPrefix(APERTURE_SOURCE_DIR, "/"))) continue;
+    if (!cli_usage_internal::IsOurs(flag->Filename())) continue;
     const std::string text = flag->Help();
     const std::vector<std::string> commands = cli_usage_internal::CommandsOf(text);
     if (!command.empty() && !commands.empty() &&

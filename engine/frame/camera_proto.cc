@@ -8,6 +8,9 @@ absl::StatusOr<Camera> CameraFromProto(const v1::Camera& p) {
   c.yaw_deg = p.yaw_deg();
   c.pitch_deg = p.pitch_deg();
   c.roll_deg = p.roll_deg();
+  c.view_yaw_deg = p.view_offset().yaw_deg();
+  c.view_pitch_deg = p.view_offset().pitch_deg();
+  c.view_roll_deg = p.view_offset().roll_deg();
   if (p.vertical_fov_deg() != 0) c.vertical_fov_deg = p.vertical_fov_deg();
   if (p.has_frustum()) {
     c.off_axis = true;
@@ -30,6 +33,11 @@ v1::Camera CameraToProto(const Camera& c) {
   p.set_yaw_deg(c.yaw_deg);
   p.set_pitch_deg(c.pitch_deg);
   p.set_roll_deg(c.roll_deg);
+  if (c.view_yaw_deg != 0 || c.view_pitch_deg != 0 || c.view_roll_deg != 0) {
+    p.mutable_view_offset()->set_yaw_deg(c.view_yaw_deg);
+    p.mutable_view_offset()->set_pitch_deg(c.view_pitch_deg);
+    p.mutable_view_offset()->set_roll_deg(c.view_roll_deg);
+  }
   p.set_vertical_fov_deg(c.vertical_fov_deg);
   if (c.off_axis) {
     p.mutable_frustum()->set_left_deg(c.left_deg);

@@ -27,6 +27,9 @@ std::string CameraText(const Camera& c) {
   std::string text =
       absl::StrFormat("%g,%g,%g,%g,%g,%g fov=%g", c.position.x, c.position.y, c.position.z,
                       c.yaw_deg, c.pitch_deg, c.roll_deg, c.vertical_fov_deg);
+  if (c.view_yaw_deg != 0 || c.view_pitch_deg != 0 || c.view_roll_deg != 0)
+    text +=
+        absl::StrFormat(" view_offset=%g,%g,%g", c.view_yaw_deg, c.view_pitch_deg, c.view_roll_deg);
   if (c.off_axis)
     text +=
         absl::StrFormat(" frustum=%g,%g,%g,%g", c.left_deg, c.right_deg, c.bottom_deg, c.top_deg);

@@ -22,6 +22,8 @@ absl::Status ValidateCamera(const Camera& c) {
     return absl::InvalidArgumentError("camera position is not finite (NaN or infinity)");
   if (!finite(c.yaw_deg) || !finite(c.pitch_deg) || !finite(c.roll_deg))
     return absl::InvalidArgumentError("camera yaw/pitch/roll is not finite");
+  if (!finite(c.view_yaw_deg) || !finite(c.view_pitch_deg) || !finite(c.view_roll_deg))
+    return absl::InvalidArgumentError("camera view_offset yaw/pitch/roll is not finite");
   if (c.off_axis) {
     const double sides[] = {c.left_deg, c.right_deg, c.bottom_deg, c.top_deg};
     for (double s : sides)

@@ -40,6 +40,28 @@ TEST(Camera, PositiveRollTurnsTheImageCounterClockwise) {
   EXPECT_NEAR(world_up_in_camera.y, std::cos(Radians(30)), 1e-12);
 }
 
+// A channel's view offset turns in the eye's frame: an eye pitched up 10 degrees with a channel
+// turned 90 degrees left looks left along the eye's pitched horizon, level with the world's
+// horizon's tilt seen sideways (its view axis is the eye's left, which pitch does not tilt).
+TEST(Camera, ViewOffsetTurnsInTheEyesFrame) {
+  Camera c;
+  c.yaw_deg = 30;
+  c.view_yaw_deg = 60;
+  ExpectNear(Forward(c), {-1, 0, 0});  // yaw 30 + 60
+  c = Camera{};
+  c.pitch_deg = 10;
+  c.view_yaw_deg = 90;
+  ExpectNear(Forward(c), {-1, 0, 0});
+  // The channel's up is the eye's up, tilted back by the eye's pitch.
+  const double t = Radians(10);
+  ExpectNear(Up(c), {0, std::cos(t), std::sin(t)});
+  // A pitched channel on a yawed eye: yaw 90 (looking along -x), the channel 10 degrees up.
+  c = Camera{};
+  c.yaw_deg = 90;
+  c.view_pitch_deg = 10;
+  ExpectNear(Forward(c), {-std::cos(t), std::sin(t), 0});
+}
+
 TEST(Camera, ValidateNamesTheProblem) {
   Camera c;
   c.vertical_fov_deg = 0;
@@ -47,6 +69,9 @@ TEST(Camera, ValidateNamesTheProblem) {
   c = Camera{};
   c.position.x = NAN;
   EXPECT_NE(ValidateCamera(c).message().find("position"), std::string::npos);
+  c = Camera{};
+  c.view_pitch_deg = INFINITY;
+  EXPECT_NE(ValidateCamera(c).message().find("view_offset"), std::string::npos);
 }
 
 }  // namespace
