@@ -195,6 +195,7 @@ void FillReport(const ChannelReport& r, double rate, Report& out) {
   out.set_p50_first_fifth_ms(Rounded(r.first_fifth_p50));
   out.set_p50_last_fifth_ms(Rounded(r.last_fifth_p50));
   out.set_status(r.status.ok() ? "OK" : r.status.error_message());
+  *out.mutable_transport_delay_ms() = TransportDelayReport(r.transport);
 }
 
 void PrintText(const ChannelReport& r, double rate, const std::string& label) {
@@ -323,7 +324,6 @@ int RunSim() {
     // The top-level figures are the worst channel's (all of them when there is one channel).
     v1::SimReport report;
     FillReport(reports[worst], rate, report);
-    *report.mutable_transport_delay_ms() = TransportDelayReport(reports[worst].transport);
     report.set_host_cpu_ms_per_frame(Rounded(host_cpu_ms_per_frame));
     if (channels > 1) {
       report.set_worst_channel(static_cast<uint32_t>(worst));

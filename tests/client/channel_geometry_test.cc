@@ -22,9 +22,9 @@
 #include <string>
 #include <utility>
 
+#include "frame/camera_proto.h"
 #include "raster/projection.h"
 #include "render/frame_renderer.h"
-#include "scene/camera_proto.h"
 #include "scene/scene_builder.h"
 #include "scene/shading.h"
 #include "sim_channels.h"
