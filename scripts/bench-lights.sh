@@ -15,7 +15,8 @@ usage: scripts/bench-lights.sh [--help] [light_blink_bench flags...]
 
 Builds build/tests/light_blink_bench or night_load_bench (installing Debian's libosmesa6-dev first
 when it is missing: a benchmark dependency, not a product one) and runs it once with
-LP_NUM_THREADS=2.
+LP_NUM_THREADS=2 (`load`: with glibc keeping freed memory mapped, GLIBC_TUNABLES, so that frames
+do not pay for each other's page faults).
 
 Without a mode, do light points blink?
 
@@ -104,6 +105,10 @@ else
 fi
 if [ "$mode" = "load" ]; then
   cmake --build build -j "$(nproc)" --target night_load_bench >/dev/null
+  # Both renderers' frame buffers stay mapped from frame to frame (glibc's mmap off, no trim), as
+  # in a long-running process: otherwise each 1920x1080 frame may pay again for pages the last
+  # one gave back, which on some virtual machines swings a variant by tens of milliseconds.
+  GLIBC_TUNABLES="${GLIBC_TUNABLES:-glibc.malloc.mmap_max=0:glibc.malloc.trim_threshold=17179869184}" \
   LP_NUM_THREADS=2 exec build/tests/night_load_bench --threads 2 \
     --sizes "${SIZES:-1280x720,1920x1080}" --rounds "${ROUNDS:-5}" --msaa "${MSAA:-4,1}" \
     --out "${OUT-out/night-load}" "$@"
