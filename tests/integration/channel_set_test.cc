@@ -72,6 +72,10 @@ TEST(ChannelSetTest, ThreeServersRenderOneFrameNumberWithSeamlessSeams) {
     EXPECT_EQ(c.server(), servers[k]->address());
     EXPECT_EQ(c.ok(), 3u) << c.name();
     EXPECT_EQ(c.last_frame(), 2u) << c.name();  // the written frames: one frame number
+    // Its own transport delay: rendered, so more than nothing, and ordered.
+    EXPECT_GT(c.transport_delay_ms().p50(), 0) << c.name();
+    EXPECT_LE(c.transport_delay_ms().p50(), c.transport_delay_ms().max()) << c.name();
+    EXPECT_GT(c.transport_delay_ms().render(), 0) << c.name();
   }
   EXPECT_EQ(report.channels(0).name(), "left");
   EXPECT_EQ(report.locked_frames(), 3u);
