@@ -20,6 +20,7 @@
 // clang-format on
 #include "integration/server_process.h"
 #include "support/checker_dome.h"
+#include "support/exr_pixels.h"
 // After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.
 #include <OpenImageIO/imagebuf.h>
 
@@ -27,16 +28,6 @@ namespace aperture::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::vector<float> Pixels(const std::string& path, int* width, int* height) {
-  OIIO::ImageBuf image(path);
-  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {};
-  *width = image.spec().width;
-  *height = image.spec().height;
-  std::vector<float> pixels(static_cast<size_t>(*width) * *height * image.spec().nchannels);
-  image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pixels.data());
-  return pixels;
-}
 
 TEST(ChannelSetTest, ThreeServersRenderOneFrameNumberWithSeamlessSeams) {
   const fs::path dir =
@@ -95,7 +86,8 @@ TEST(ChannelSetTest, ThreeServersRenderOneFrameNumberWithSeamlessSeams) {
     views.emplace_back(c.view_offset().yaw_deg(), c.frustum(), static_cast<int>(c.width()),
                        static_cast<int>(c.height()));
     int w = 0, h = 0;
-    frames.push_back(Pixels((last / ("channel-" + std::to_string(k) + ".exr")).string(), &w, &h));
+    frames.push_back(
+        ReadPixels((last / ("channel-" + std::to_string(k) + ".exr")).string(), &w, &h));
     ASSERT_EQ(w, views[k].width);
     ASSERT_EQ(h, views[k].height);
     // Pixels well inside a square (a quarter degree, about two pixels, from its edges) show it.

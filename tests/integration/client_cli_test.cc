@@ -28,6 +28,7 @@
 #include "aperture/v1/client_reports.pb.h"
 #include "integration/server_process.h"
 #include "integration/service_fixture.h"
+#include "support/exr_pixels.h"
 #include "support/gltf_test_models.h"
 
 namespace aperture::testing {
@@ -95,17 +96,6 @@ Report ParseReport(const std::string& out) {
   return report;
 }
 
-std::vector<float> Pixels(const std::string& path, int* width, int* height) {
-  OIIO::ImageBuf image(path);
-  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {};
-  const OIIO::ImageSpec& spec = image.spec();
-  *width = spec.width;
-  *height = spec.height;
-  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-  image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pixels.data());
-  return pixels;
-}
-
 TEST_F(ClientTest, FrameEqualsWhatApertureRenderWrites) {
   const std::vector<std::string> frame_flags = {"--size=160x96", "--camera=0,20,300,5,-6,1",
                                                 "--aa=tent2", "--filter=trilinear",
@@ -126,8 +116,8 @@ TEST_F(ClientTest, FrameEqualsWhatApertureRenderWrites) {
   EXPECT_THAT(first.out, HasSubstr("textures uploaded 0, already on the server 0"));
 
   int lw = 0, lh = 0, rw = 0, rh = 0;
-  const std::vector<float> a = Pixels((dir_ / "local.exr").string(), &lw, &lh);
-  const std::vector<float> b = Pixels((dir_ / "remote.exr").string(), &rw, &rh);
+  const std::vector<float> a = ReadPixels((dir_ / "local.exr").string(), &lw, &lh);
+  const std::vector<float> b = ReadPixels((dir_ / "remote.exr").string(), &rw, &rh);
   ASSERT_FALSE(a.empty());
   EXPECT_EQ(lw, 160);
   EXPECT_EQ(lh, 96);
@@ -152,9 +142,9 @@ TEST_F(ClientTest, BuiltinScenesByNameRenderAsTheyDoLocally) {
     ASSERT_EQ(served.exit_code, 0) << scene << ": " << served.err;
     EXPECT_THAT(served.out, HasSubstr("textures uploaded 0, already on the server 0"));
     int lw = 0, lh = 0, rw = 0, rh = 0;
-    const std::vector<float> a = Pixels(local, &lw, &lh);
+    const std::vector<float> a = ReadPixels(local, &lw, &lh);
     ASSERT_FALSE(a.empty());
-    EXPECT_TRUE(a == Pixels(remote, &rw, &rh)) << scene << ": the service's pixels differ";
+    EXPECT_TRUE(a == ReadPixels(remote, &rw, &rh)) << scene << ": the service's pixels differ";
   }
   const std::filesystem::path jobs = dir_ / "builtin_jobs";
   std::filesystem::create_directories(jobs);
@@ -251,8 +241,8 @@ TEST_F(ClientTest, AGltfModelRendersAsItDoesLocally) {
     ASSERT_EQ(sent.exit_code, 0) << sent.err;
     EXPECT_THAT(sent.out, HasSubstr("textures uploaded"));
     int w = 0, h = 0;
-    const std::vector<float> a = Pixels((dir_ / "local.exr").string(), &w, &h);
-    const std::vector<float> b = Pixels((dir_ / "remote.exr").string(), &w, &h);
+    const std::vector<float> a = ReadPixels((dir_ / "local.exr").string(), &w, &h);
+    const std::vector<float> b = ReadPixels((dir_ / "remote.exr").string(), &w, &h);
     ASSERT_FALSE(a.empty());
     EXPECT_TRUE(a == b) << "the service's pixels differ from aperture-render's";
   }
@@ -267,8 +257,8 @@ TEST_F(ClientTest, AGltfModelRendersAsItDoesLocally) {
                                      "--compression=none", "-o=" + (dir_ / "gate.exr").string()});
   ASSERT_EQ(sent.exit_code, 0) << sent.err;
   int w = 0, h = 0;
-  EXPECT_TRUE(Pixels((dir_ / "gate_local.exr").string(), &w, &h) ==
-              Pixels((dir_ / "gate.exr").string(), &w, &h));
+  EXPECT_TRUE(ReadPixels((dir_ / "gate_local.exr").string(), &w, &h) ==
+              ReadPixels((dir_ / "gate.exr").string(), &w, &h));
   const CommandResult unknown =
       Client({"render", scene, "--camera=tower", "-o=" + (dir_ / "x.exr").string()});
   EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
@@ -341,8 +331,8 @@ TEST_F(ClientTest, RaytraceModeFrameEqualsWhatApertureRenderWrites) {
   ASSERT_EQ(traced.exit_code, 0) << traced.err;
 
   int lw = 0, lh = 0, rw = 0, rh = 0;
-  const std::vector<float> a = Pixels((dir_ / "local.exr").string(), &lw, &lh);
-  const std::vector<float> b = Pixels((dir_ / "remote.exr").string(), &rw, &rh);
+  const std::vector<float> a = ReadPixels((dir_ / "local.exr").string(), &lw, &lh);
+  const std::vector<float> b = ReadPixels((dir_ / "remote.exr").string(), &rw, &rh);
   ASSERT_FALSE(a.empty());
   EXPECT_EQ(rw, 80);
   EXPECT_EQ(rh, 60);
@@ -510,7 +500,7 @@ TEST_F(ClientTest, SimRunsTheScenesClockWithTheSlots) {
                 "--last_frames=" + last.string()});
     EXPECT_EQ(result.exit_code, 0) << result.out << result.err;
     int w = 0, h = 0;
-    const std::vector<float> pixels = Pixels((last / "channel-0.exr").string(), &w, &h);
+    const std::vector<float> pixels = ReadPixels((last / "channel-0.exr").string(), &w, &h);
     double sum = 0;
     for (size_t k = 0; k < pixels.size(); k += 4) sum += pixels[k];
     return sum;
@@ -578,13 +568,13 @@ TEST_F(ClientTest, SimChannelsTileOneWideViewAndFlyAJsonPath) {
   const std::string wide_file = (dir_ / "wide.exr").string();
   std::ofstream(wide_file, std::ios::binary) << response.exr();
   int ww = 0, wh = 0;
-  const std::vector<float> whole = Pixels(wide_file, &ww, &wh);
+  const std::vector<float> whole = ReadPixels(wide_file, &ww, &wh);
   ASSERT_EQ(ww, 192);
   double worst = 0, sky_red = 0;
   for (int k = 0; k < 3; ++k) {
     int w = 0, h = 0;
     const std::vector<float> part =
-        Pixels((last / ("channel-" + std::to_string(k) + ".exr")).string(), &w, &h);
+        ReadPixels((last / ("channel-" + std::to_string(k) + ".exr")).string(), &w, &h);
     ASSERT_EQ(w, 64);
     ASSERT_EQ(h, 40);
     for (int y = 0; y < h; ++y)
@@ -666,7 +656,7 @@ TEST_F(ClientTest, BatchSurvivesALostServerAndResumes) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.exr", i);
     int w = 0, h = 0;
-    EXPECT_FALSE(Pixels((out / name).string(), &w, &h).empty()) << name;
+    EXPECT_FALSE(ReadPixels((out / name).string(), &w, &h).empty()) << name;
     EXPECT_EQ(w, 64) << name;
     EXPECT_EQ(h, 48) << name;
   }
@@ -805,8 +795,8 @@ TEST_F(BatchShardTest, ShardsSplitAJobAndCheckFindsGaps) {
   ASSERT_EQ(reference.exit_code, 0) << reference.err;
   for (int i = 0; i < kFrames; ++i) {
     int w = 0, h = 0;
-    EXPECT_TRUE(Pixels((out / FrameName(i)).string(), &w, &h) ==
-                Pixels((whole / FrameName(i)).string(), &w, &h))
+    EXPECT_TRUE(ReadPixels((out / FrameName(i)).string(), &w, &h) ==
+                ReadPixels((whole / FrameName(i)).string(), &w, &h))
         << FrameName(i);
   }
 

@@ -13,6 +13,7 @@
 #include "aperture/v1/render_service.grpc.pb.h"
 #include "integration/server_process.h"
 #include "integration/service_fixture.h"
+#include "support/exr_pixels.h"
 // After the protobuf headers: OpenImageIO's byte-swap macros break protobuf's port.h.
 #include <OpenImageIO/imagebuf.h>
 
@@ -21,16 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-std::vector<float> Pixels(const std::string& path, int* width, int* height) {
-  OIIO::ImageBuf image(path);
-  if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {};
-  *width = image.spec().width;
-  *height = image.spec().height;
-  std::vector<float> pixels(static_cast<size_t>(*width) * *height * image.spec().nchannels);
-  image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pixels.data());
-  return pixels;
-}
 
 class SplitRenderTest : public ::testing::Test {
  protected:
@@ -73,8 +64,8 @@ TEST_F(SplitRenderTest, TheAssembledFrameEqualsOneServersFrame) {
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
 
   int sw = 0, sh = 0, ww = 0, wh = 0;
-  const std::vector<float> p = Pixels((dir_ / "split.exr").string(), &sw, &sh);
-  const std::vector<float> q = Pixels((dir_ / "single.exr").string(), &ww, &wh);
+  const std::vector<float> p = ReadPixels((dir_ / "split.exr").string(), &sw, &sh);
+  const std::vector<float> q = ReadPixels((dir_ / "single.exr").string(), &ww, &wh);
   ASSERT_FALSE(p.empty());
   EXPECT_EQ(sw, 240);
   EXPECT_EQ(sh, 160);
@@ -128,8 +119,8 @@ TEST_F(SplitRenderTest, ARegionOpensAtItsPlaceInTheFrame) {
                  30);
   ASSERT_EQ(paste.exit_code, 0) << paste.err;
   int bw = 0, bh = 0, ww = 0, wh = 0;
-  const std::vector<float> p = Pixels(pasted, &bw, &bh);
-  const std::vector<float> q = Pixels((dir_ / "whole.exr").string(), &ww, &wh);
+  const std::vector<float> p = ReadPixels(pasted, &bw, &bh);
+  const std::vector<float> q = ReadPixels((dir_ / "whole.exr").string(), &ww, &wh);
   ASSERT_EQ(bw, 240);
   ASSERT_EQ(p.size(), q.size());
   size_t differing = 0, outside = 0;
