@@ -85,7 +85,7 @@ template <typename Layout>
 }
 
 // The base probes (kBox false) or the box probes (kBox true) of reading r of a lane
-// (texture/aniso_selection: AddProbesLane, AddBoxProbesLane): visit(u', v', weight) for each,
+// (texture/aniso/selection_kernel.inc: AddProbesLanes, AddBoxProbesLanes): visit(u', v', weight) for each,
 // in order, where it is read (a bilinear read of the base or the first copy, both untilted);
 // `scale` multiplies every weight. A box probe in two rows is two reads of half its weight, the
 // row -d first.
@@ -152,7 +152,7 @@ void AnisoSampler::ForEachRead(const SelectionLanes& s, int lane, float u, float
   }
   const float inv_size = 1.0f / table_.size();
   if (taps) {
-    // The magnified taps (texture/aniso_selection: MagnifiedTaps): the first copy at the
+    // The magnified taps (texture/aniso/selection_kernel.inc: MagnifiedTapsLanes): the first copy at the
     // sample, then the base at +p, -p, +q, -q.
     visit(layouts_[table_.cell(0, 0).first], u, v, 0.0f, s.taps_first[lane] * (1.0f / 255.0f));
     const float w = s.taps_weight[lane] * (1.0f / 255.0f);
@@ -191,7 +191,7 @@ Rgba AnisoSampler::Blend(const SelectionLanes& s, int lane, float u, float v) co
 
 Rgba AnisoSampler::Sample(const TextureFootprint& f) const {
   SelectionLanes lanes;
-  selector_.SelectPortable(&f.dudx, &f.dvdx, &f.dudy, &f.dvdy, 1, lanes);
+  selector_.Select(&f.dudx, &f.dvdx, &f.dudy, &f.dvdy, 1, lanes);
   return Blend(lanes, 0, static_cast<float>(f.u), static_cast<float>(f.v));
 }
 

@@ -1,9 +1,9 @@
 // seed 000's copy selection: from a footprint's derivatives to the table copies a sample reads
 // and their weights (the aperture parallelogram, eq. 2-4, and the three-point interpolation,
-// eq. 5), continuous in the footprint. Eight samples at a time as lanes: a
-// portable lane loop, and an AVX2 kernel chosen at run time that gives the same floats (the
-// same operations in the same order, no fused multiply-add; tests/texture/
-// aniso_selection_test.cc checks it bit for bit).
+// eq. 5), continuous in the footprint. Eight samples at a time as lanes, by one kernel
+// (texture/aniso/selection_kernel.inc, where the formulas are) compiled for the baseline and for
+// AVX2 and chosen at run time; both give the same floats (tests/texture/aniso_selection_test.cc
+// checks it bit for bit).
 #pragma once
 
 #include <cmath>
@@ -23,8 +23,8 @@ struct ApertureShape {
 };
 
 // The readings a sample blends. A footprint has a parallelogram of its second moments along
-// either texture axis (see ReadLane in the .cc); the first reading is along the axis of the
-// larger moment. Where the two moments are nearly equal (the footprint's long side near a
+// either texture axis (see MomentsOfLanes in the kernel); the first reading is along the axis of
+// the larger moment. Where the two moments are nearly equal (the footprint's long side near a
 // diagonal) that choice would jump, so both are read, their weights going linearly from one to
 // the other across the zone |M_uu - M_vv| < kAxisBlendZone D, D = sqrt((M_uu - M_vv)^2 +
 // 4 M_uv^2): |cos 2 phi| < 0.125 for the long axis at angle phi to U, within 3.6 degrees of a
@@ -80,7 +80,7 @@ struct CopyBlend {
   // 1 <= H < 8 and L < 1.375: also `box_probes` bilinear reads of the first copy
   // (the 2 x 2 box) along the long side, `box_probe_step` texels apart, in two rows
   // +-box_probe_rows texels across (one row when that is 0), each read of a pair weighing half
-  // (BoxProbes in the .cc).
+  // (AddBoxProbesLanes in the kernel).
   int box_probes = 0;
   float box_probe_step = 0, box_probe_weight = 0, box_probe_end_weight = 0, box_probe_rows = 0;
 };
@@ -114,7 +114,7 @@ struct SelectionLanes {
   float probe_weight[2][kLanes];
   float probe_end_weight[2][kLanes];
   // The probes' positions are scaled by this (1 but for magnified readings, whose probes lie
-  // along the footprint's principal axis: see MagnifiedInPrincipalAxes in the .cc).
+  // along the footprint's principal axis: see MagnifiedInPrincipalAxesLanes in the kernel).
   alignas(32) float probe_scale[2][kLanes];
   // The box probes (CopyBlend::box_probes): count, spacing, weights and the rows' offset across,
   // in texels (0: one row).
@@ -123,8 +123,8 @@ struct SelectionLanes {
   float box_probe_weight[2][kLanes];
   float box_probe_end_weight[2][kLanes];
   float box_probe_rows[2][kLanes];
-  // The magnified taps (MagnifiedTaps in the .cc), per lane, not per reading: their share w of
-  // the sample (the readings' weights are scaled by 1 - w; 0: none), the first copy's weight
+  // The magnified taps (MagnifiedTapsLanes in the kernel), per lane, not per reading: their share w
+  // of the sample (the readings' weights are scaled by 1 - w; 0: none), the first copy's weight
   // (read at the sample), each of the four base reads' weight, and the reads' offsets +-p and
   // +-q in texels (u, v).
   alignas(32) float taps_share[kLanes];
@@ -142,14 +142,14 @@ class CopySelector {
   // kernel when the processor has it; the base probes included.
   void Select(const float* dudx, const float* dvdx, const float* dudy, const float* dvdy, int n,
               SelectionLanes& out) const;
-  // The same by the portable lane code alone (what the kernel must equal).
+  // The same by the portable kernel alone (what the AVX2 one must equal).
   void SelectPortable(const float* dudx, const float* dvdx, const float* dudy, const float* dvdy,
                       int n, SelectionLanes& out) const;
   bool has_kernel() const { return kernel_; }
 
-  // One reading's six slots (seed 000, eq. 5 with the tilt blend), lane `lane`.
-  void TableSlots(float H, float L, float tg, bool along_v, SelectionLanes& out, int reading,
-                  int lane) const;
+  // Reading 0 of lane 0 for this shape as it is (no principal axes), by the portable kernel:
+  // seed 000, eq. 5 with the tilt blend, and the base and box probes when `probes`.
+  void ShapeSlots(float H, float L, float tg, bool along_v, bool probes, SelectionLanes& out) const;
 
  private:
   int log2_size_ = 0;

@@ -1,4 +1,4 @@
-// The seed 000 copy selection's AVX2 kernel against its portable lane code: the same readings,
+// The seed 000 copy selection's AVX2 build against its portable build: the same readings,
 // copies, weights and probes, bit for bit, on footprints of every class.
 #include "texture/aniso_selection.h"
 
@@ -68,7 +68,7 @@ std::vector<std::array<float, 4>> Footprints(int count, uint32_t seed) {
   return out;
 }
 
-TEST(AnisoSelection, TheKernelEqualsTheLaneCodeBitForBit) {
+TEST(AnisoSelection, TheAvx2KernelEqualsThePortableOneBitForBit) {
   auto block = BuildPrefilteredTable(RandomImage(kN, kN, 31));
   ASSERT_TRUE(block.ok()) << block.status();
   auto table = block->View();
