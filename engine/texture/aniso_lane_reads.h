@@ -1,12 +1,11 @@
-// The copy reads of eight aniso samples at once: AnisoSampler::Blend's reads (the base probes,
-// the box probes, then the table copies of each reading, seed 000, eq. 6-9 inside each copy) with
-// one sample per vector lane, the texels fetched by AVX2 gathers. The same float operations in the
-// same order per sample as Blend, so the sums are equal bit for bit (tests/texture/
-// aniso_sampler_test.cc compares them).
+// The texel reads of eight aniso samples at once: the magnified taps, the base probes, the box
+// probes, then the table copies of each reading (seed 000, eq. 6-9 inside each copy), one sample
+// per vector lane. One kernel (texture/aniso/reads_kernel.inc) compiled for the baseline and for
+// AVX2 (texels fetched by gathers) and chosen at run time; both give the same sums bit for bit
+// (tests/texture/aniso_sampler_test.cc compares them).
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "base/image.h"
@@ -17,14 +16,17 @@ namespace aperture {
 
 class LaneReader {
  public:
-  // Empty when the processor has no AVX2 or the table does not fit the kernel's 32-bit texel
-  // indices (every table up to kTableMaxLog2Size does; the check guards the format).
-  static std::optional<LaneReader> For(const PrefilteredTable& table);
+  // A table that PrefilteredTable::View accepted; it must outlive the reader.
+  explicit LaneReader(const PrefilteredTable& table);
 
-  // out[0, n) for lanes [0, n) of a selection (n <= 8) at texture coordinates u, v (repeats).
+  // out[0, n) for lanes [0, n) of a selection (n <= 8) at texture coordinates u, v (repeats),
+  // by the AVX2 kernel when the processor has it.
   void Read(const SelectionLanes& s, const double* u, const double* v, int n, Rgba* out) const;
+  // The same by the portable kernel alone (what the AVX2 one must equal).
+  void ReadPortable(const SelectionLanes& s, const double* u, const double* v, int n,
+                    Rgba* out) const;
 
-  // A copy's fields as CopySample reads them: broadcast when eight samples read one copy, else
+  // A copy's fields as the skewed bilinear read takes them: broadcast when eight samples read one copy, else
   // `offset` and `shape` gathered (eight 32-bit words a record) and the rest decoded from
   // `shape`.
   struct Copy {
@@ -41,6 +43,7 @@ class LaneReader {
   float inv_size_ = 0;               // 1 / 2^n: one base texel in repeats
   int32_t box_copy_ = 0;             // the first copy's directory index (the box probes')
   std::vector<Copy> copies_;         // per directory entry
+  bool avx2_ = false;                // Read runs the AVX2 kernel
 };
 
 }  // namespace aperture

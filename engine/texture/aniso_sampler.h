@@ -3,10 +3,6 @@
 // eq. 5), read by a skewed bilinear interpolation inside each copy (eq. 6-9). Periodic wrap.
 #pragma once
 
-#include <cstdint>
-#include <optional>
-#include <vector>
-
 #include "texture/aniso_lane_reads.h"
 #include "texture/aniso_selection.h"
 #include "texture/prefiltered_table.h"
@@ -31,30 +27,13 @@ class AnisoSampler final : public TextureSampler {
   Rgba SampleCopy(const CopyEntry& e, double u, double v, double tg) const;
 
  private:
-  // What the skewed bilinear read of a copy needs, precomputed per copy (directory order): the
-  // reads of a sample chain through it, so it is kept small and conversion-free.
-  struct CopyLayout {
-    const uint8_t* texels;
-    float width, height;  // texels along U and V, as floats
-    float lambda;         // the cell's lambda; 0 when untilted (no skew)
-    uint32_t width_mask, height_mask;
-    bool tilt_v;
-  };
-  CopyLayout LayoutOf(const CopyEntry& e) const;
-  // visit(layout, u, v, tg, weight) for each copy read of lane `lane`, in the order they are
-  // summed.
-  template <typename Visit>
-  void ForEachRead(const SelectionLanes& s, int lane, float u, float v, Visit visit) const;
-  Rgba Blend(const SelectionLanes& s, int lane, float u, float v) const;
-  // Up to eight samples from derivative and coordinate arrays.
+  // Up to eight samples from derivative and coordinate arrays: their selection, then their reads.
   void SampleLanes(const float* dudx, const float* dvdx, const float* dudy, const float* dvdy,
                    const double* u, const double* v, int n, Rgba* out) const;
 
   PrefilteredTable table_;
   CopySelector selector_;
-  std::vector<CopyLayout> layouts_;
-  // Blend's reads eight samples at a time (AVX2), when the processor has it.
-  std::optional<LaneReader> lane_reader_;
+  LaneReader reader_;
 };
 
 }  // namespace aperture

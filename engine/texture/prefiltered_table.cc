@@ -81,6 +81,11 @@ absl::StatusOr<PrefilteredTable> PrefilteredTable::View(std::span<const std::byt
     if (e.width != w || e.height != ht) return bad(absl::StrCat("copy ", index, " has wrong size"));
     if (e.offset < h.data_offset || e.offset + uint64_t{w} * ht * 4 > h.total_bytes)
       return bad(absl::StrCat("copy ", index, " out of bounds"));
+    // The samplers address a texel by its 32-bit index from the base's first texel.
+    const uint64_t base = index == 0 ? e.offset : table.directory_[0].offset;
+    if (e.offset < base || (e.offset - base) % 4 != 0 ||
+        (e.offset - base) / 4 + uint64_t{w} * ht > (uint64_t{1} << 31))
+      return bad(absl::StrCat("copy ", index, " is not at a 32-bit texel index of the base's"));
     return absl::OkStatus();
   };
   if (h.copy_count == 0) return bad("empty directory");

@@ -605,8 +605,8 @@ TEST_F(AnisoSamplerTest, AQuarterTurnOfTextureAndFootprintLeavesTheSample) {
   // The texel grid's quarter turn (u, v) -> (-v, u) maps texel (i, j) to (-j - 1, i). Sampling
   // a texture at a footprint, and the texture turned a quarter at the turned footprint, must
   // give the same colour: a view and the same view turned 90 degrees then score alike (the filter
-  // benchmark's yaws 0 and 90). Footprints under 1.5 texels (the magnified taps, their fade, the base
-  // and box probes) agree to float rounding (1.7e-6); longer ones, read from the table's 8-bit
+  // benchmark's yaws 0 and 90). Footprints under 1.5 texels (the magnified taps, their fade, the
+  // base and box probes) agree to float rounding (1.7e-6); longer ones, read from the table's 8-bit
   // copies, within an 8-bit step (6.9e-4 here; why not to rounding is not known yet).
   std::mt19937 rng(5);
   std::uniform_int_distribution<int> level(0, 255);
@@ -949,7 +949,7 @@ TEST_F(AnisoSamplerTest, FootprintsNearADiagonalAreNoFartherFromTheReferenceThan
   }
 }
 
-TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
+TEST_F(AnisoSamplerTest, SampleManySampleBatchAndThePortableBuildEqualSampleBitForBit) {
   // Random texels; footprints of every class (magnification, degenerate, three copies, both
   // tilt axes, the frozen region), anywhere in the plane (wrap), in a batch of 1001 (not a
   // multiple of the sampler's groups).
@@ -1009,8 +1009,29 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
     for (int i = 0; i < batch.count; ++i) batch.Set(i, in[first + i]);
     sampler.SampleBatch(batch, &batched[first]);
   }
-  int differing = 0, differing_batched = 0, probed = 0, boxed = 0, two_rows = 0;
+  // And by the portable build of the selection and the reads alone (the AVX2 one above where
+  // the processor has it), in groups of eight and of fewer.
+  const CopySelector selector(*table_);
+  const LaneReader reader(*table_);
+  std::vector<Rgba> portable(in.size());
+  for (size_t first = 0; first < in.size(); first += 8) {
+    const int n = static_cast<int>(std::min<size_t>(first % 3 == 0 ? 5 : 8, in.size() - first));
+    float dx[2][8], dy[2][8];
+    double u[8], v[8];
+    for (int i = 0; i < n; ++i) {
+      const TextureFootprint& f = in[first + i];
+      dx[0][i] = f.dudx, dx[1][i] = f.dvdx, dy[0][i] = f.dudy, dy[1][i] = f.dvdy, u[i] = f.u,
+      v[i] = f.v;
+    }
+    SelectionLanes lanes;
+    selector.SelectPortable(dx[0], dx[1], dy[0], dy[1], n, lanes);
+    reader.ReadPortable(lanes, u, v, n, &portable[first]);
+    for (int i = n; i < 8 && first + i < in.size(); ++i) portable[first + i] = out[first + i];
+  }
+  int differing = 0, differing_batched = 0, differing_portable = 0, probed = 0, boxed = 0,
+      two_rows = 0;
   for (size_t i = 0; i < in.size(); ++i) {
+    if (std::memcmp(&portable[i], &out[i], sizeof(Rgba)) != 0) ++differing_portable;
     const Rgba a = sampler.Sample(in[i]);
     if (std::memcmp(&a, &out[i], sizeof(Rgba)) != 0) ++differing;
     if (std::memcmp(&a, &batched[i], sizeof(Rgba)) != 0) ++differing_batched;
@@ -1021,6 +1042,7 @@ TEST_F(AnisoSamplerTest, SampleManyAndSampleBatchEqualSampleBitForBit) {
   }
   EXPECT_EQ(differing, 0);
   EXPECT_EQ(differing_batched, 0);
+  EXPECT_EQ(differing_portable, 0);
   EXPECT_GT(probed, 50);  // the base probes of thin apertures are among the reads compared
   EXPECT_GT(boxed, 50);   // and the box probes of short ones, in one row and in two
   EXPECT_GT(two_rows, 10);

@@ -10,7 +10,9 @@
 
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -220,6 +222,62 @@ inline F Lookup8(const float* table, I index) {
   return r;
 }
 inline int32_t First(I a) { return a.v[0]; }
+inline I ShiftRightLogical(I a, int bits) {
+  I r;
+  APERTURE_LANES8_EACH r.v[i] = static_cast<int32_t>(static_cast<uint32_t>(a.v[i]) >> bits);
+  return r;
+}
+inline I IOf(M m) { return std::bit_cast<I>(m); }
+inline M MOf(I a) { return std::bit_cast<M>(a); }
+// 0, 1, ..., 7.
+inline I LaneIndex() {
+  I r;
+  APERTURE_LANES8_EACH r.v[i] = i;
+  return r;
+}
+inline F Floor(F a) {
+  F r;
+  APERTURE_LANES8_EACH r.v[i] = std::floor(a.v[i]);
+  return r;
+}
+inline F FromDoubles(const double* p) {
+  F r;
+  APERTURE_LANES8_EACH r.v[i] = static_cast<float>(p[i]);
+  return r;
+}
+template <int kBits>
+inline I ShiftLeft(I a) {
+  I r;
+  APERTURE_LANES8_EACH r.v[i] = static_cast<int32_t>(static_cast<uint32_t>(a.v[i]) << kBits);
+  return r;
+}
+// a << count per lane (0 for counts above 31, as vpsllvd).
+inline I ShiftLeft(I a, I count) {
+  I r;
+  APERTURE_LANES8_EACH r.v[i] =
+      static_cast<uint32_t>(count.v[i]) > 31
+          ? 0
+          : static_cast<int32_t>(static_cast<uint32_t>(a.v[i]) << count.v[i]);
+  return r;
+}
+// Byte c (0..3) of each lane, as an int 0..255.
+inline I Byte(I a, int c) { return ShiftRightLogical(a, 8 * c) & SetI(0xff); }
+// base[index] where mask is set, 0 elsewhere (nothing read there).
+inline I Gather(const int32_t* base, I index, M mask) {
+  I r;
+  APERTURE_LANES8_EACH r.v[i] = mask.v[i] < 0 ? base[index.v[i]] : 0;
+  return r;
+}
+// The 32-bit words at bytes + 4 index where mask is set, 0 elsewhere.
+inline I GatherWords(const uint8_t* bytes, I index, M mask) {
+  I r;
+  APERTURE_LANES8_EACH {
+    r.v[i] = 0;
+    if (mask.v[i] < 0) std::memcpy(&r.v[i], bytes + 4 * static_cast<size_t>(index.v[i]), 4);
+  }
+  return r;
+}
+inline bool AllEqual(I a) { return Bits(a == SetI(First(a))) == (1 << kLanes) - 1; }
 
 #undef APERTURE_LANES8_EACH
 
@@ -303,6 +361,38 @@ inline F Lookup8(const float* table, I index) {
   return {_mm256_permutevar8x32_ps(_mm256_loadu_ps(table), index.v)};
 }
 inline int32_t First(I a) { return _mm256_cvtsi256_si32(a.v); }
+inline I IOf(M m) { return {_mm256_castps_si256(m.v)}; }
+inline M MOf(I a) { return {_mm256_castsi256_ps(a.v)}; }
+inline I LaneIndex() { return {_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)}; }
+inline F Floor(F a) { return {_mm256_floor_ps(a.v)}; }
+inline F FromDoubles(const double* p) {
+  return {_mm256_set_m128(_mm256_cvtpd_ps(_mm256_loadu_pd(p + 4)),
+                          _mm256_cvtpd_ps(_mm256_loadu_pd(p)))};
+}
+template <int kBits>
+inline I ShiftLeft(I a) {
+  return {_mm256_slli_epi32(a.v, kBits)};
+}
+inline I ShiftLeft(I a, I count) { return {_mm256_sllv_epi32(a.v, count.v)}; }
+inline I Byte(I a, int c) {
+  if (c == 0) return {_mm256_and_si256(a.v, _mm256_set1_epi32(0xff))};
+  if (c == 3) return {_mm256_srli_epi32(a.v, 24)};
+  // Byte c of each 32-bit lane to its lowest byte, zeros above (index bit 7: zero).
+  const char z = -128, b = static_cast<char>(c), b4 = static_cast<char>(c + 4),
+             b8 = static_cast<char>(c + 8), b12 = static_cast<char>(c + 12);
+  return {_mm256_shuffle_epi8(
+      a.v, _mm256_setr_epi8(b, z, z, z, b4, z, z, z, b8, z, z, z, b12, z, z, z, b, z, z, z, b4, z,
+                            z, z, b8, z, z, z, b12, z, z, z))};
+}
+inline I Gather(const int32_t* base, I index, M mask) {
+  return {_mm256_mask_i32gather_epi32(_mm256_setzero_si256(), base, index.v,
+                                      _mm256_castps_si256(mask.v), 4)};
+}
+inline I GatherWords(const uint8_t* bytes, I index, M mask) {
+  return {_mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(bytes),
+                                      index.v, _mm256_castps_si256(mask.v), 4)};
+}
+inline bool AllEqual(I a) { return Bits(a == SetI(First(a))) == (1 << kLanes) - 1; }
 
 }  // namespace avx2
 APERTURE_LANES8_AVX2_END
