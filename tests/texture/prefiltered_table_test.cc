@@ -311,6 +311,28 @@ TEST(PrefilteredTableView, RejectsBadBlocks) {
   e.width *= 2;
   std::memcpy(lying.data() + h.directory_offset + sizeof(CopyEntry) * 3, &e, sizeof(e));
   EXPECT_EQ(PrefilteredTable::View(lying).status().code(), absl::StatusCode::kInvalidArgument);
+  // A copy between texels (its offset not a whole texel from the base's), or a base moved up
+  // a row past another copy: inside the block, but not where the samplers' 32-bit texel
+  // indices from the base reach.
+  for (const bool before_base : {false, true}) {
+    std::vector<std::byte> moved = bytes;
+    const size_t at = h.directory_offset + sizeof(CopyEntry) * 5, base_at = h.directory_offset;
+    CopyEntry copy, base;
+    std::memcpy(&copy, moved.data() + at, sizeof(copy));
+    std::memcpy(&base, moved.data() + base_at, sizeof(base));
+    if (before_base) {
+      copy.offset = base.offset;
+      base.offset += 4 * base.width;
+    } else {
+      copy.offset += 2;
+    }
+    std::memcpy(moved.data() + at, &copy, sizeof(copy));
+    std::memcpy(moved.data() + base_at, &base, sizeof(base));
+    const auto view = PrefilteredTable::View(moved);
+    EXPECT_EQ(view.status().code(), absl::StatusCode::kInvalidArgument) << before_base;
+    EXPECT_NE(view.status().message().find("32-bit texel index"), std::string::npos)
+        << view.status();
+  }
   // Version from the future.
   std::vector<std::byte> future = bytes;
   h.version = kTableVersion + 1;
