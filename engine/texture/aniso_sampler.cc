@@ -6,8 +6,8 @@
 
 namespace aperture {
 
-AnisoSampler::AnisoSampler(PrefilteredTable table)
-    : table_(std::move(table)), selector_(table_), reader_(table_) {}
+AnisoSampler::AnisoSampler(PrefilteredTable table, const AnisoOptions& options)
+    : table_(std::move(table)), selector_(table_, options), reader_(table_) {}
 
 Rgba AnisoSampler::SampleCopy(const CopyEntry& e, double u, double v, double tg) const {
   // One reading of one copy, weight 1: the reader's plain skewed bilinear read.

@@ -12,8 +12,8 @@ namespace aperture {
 
 class AnisoSampler final : public TextureSampler {
  public:
-  // The table must outlive the sampler.
-  explicit AnisoSampler(PrefilteredTable table);
+  // The table must outlive the sampler; the options are valid (AnisoOptions::Validate).
+  explicit AnisoSampler(PrefilteredTable table, const AnisoOptions& options = {});
   Rgba Sample(const TextureFootprint& f) const override;
   // The same results as Sample, in two phases over groups of samples (the apertures and copy
   // selections of the group, then its texel reads), so that independent samples overlap in the

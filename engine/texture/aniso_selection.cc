@@ -15,19 +15,9 @@ namespace {
 constexpr float kMaxTexels = 0x1p40f;
 // Below this second moment (texels^2) the footprint is a point: the base, bilinear.
 constexpr float kMinMoment = 1e-30f;
-// Base probes carry the thin apertures up to this half-extent, fading out to twice it.
-constexpr float kProbeHalfExtent = 4.0f;
 // Probes are this many texels apart along the long side once more than two are needed (1.125
 // read 0.4-0.6 dB worse on the asphalt photo at pitch 5, a = 1, and saved 2-4 % of a frame).
 constexpr float kProbeSpacing = 1.0f;
-// The box probes (AddBoxProbesLanes): apertures thinner than this half-thickness, whole up to
-// kBoxProbeThickness - 1 / kBoxProbeFade = 1.25 and fading into the table's copies above it.
-// Their two rows double the reads. The demo frame's aniso time over the sampler without box
-// probes, in trilinear frames: +1.8 % with these constants, +5.6 % fading out up to 1.5 instead
-// (thickness 1.5, fade 4) and +18 % whole up to 1.75 (thickness 2), for 0.06 and 0.43 dB more
-// on the asphalt photo at pitch 20, a = 2 (aperture-bench filter).
-constexpr float kBoxProbeThickness = 1.375f;
-constexpr float kBoxProbeFade = 8.0f;
 // The box probes' spacing: the first copy's box is 2 texels wide.
 constexpr float kBoxProbeSpacing = 2.0f;
 
@@ -55,9 +45,12 @@ constexpr ProbeTable MakeProbeTable() {
 constexpr ProbeTable kProbeTable = MakeProbeTable();
 static_assert(SelectionLanes::kMaxProbes / 2 - 2 < 8, "J - 2 indexes eight entries");
 static_assert(SelectionLanes::kLanes == lanes8::kLanes);
+static_assert(SelectionLanes::kMaxProbes >= 2 * static_cast<int>(2 * 4.0f / kProbeSpacing + 1),
+              "the probe lists hold the probes of AnisoOptions::probe_half_extent <= 4");
 
-// The table's cells as the kernel reads them (CopySelector's members).
+// The table's cells as the kernel reads them (CopySelector's members), and the options.
 struct CellTable {
+  const AnisoOptions& options;
   int log2_size;
   uint32_t first_copy;    // cell (0, 0)'s copy, the 2 x 2 box
   const uint32_t* first;  // per cell j * n + i: its first directory index
@@ -89,8 +82,9 @@ struct PaddedLanes {
 
 }  // namespace
 
-CopySelector::CopySelector(const PrefilteredTable& table)
-    : log2_size_(table.log2_size()),
+CopySelector::CopySelector(const PrefilteredTable& table, const AnisoOptions& options)
+    : options_(options),
+      log2_size_(table.log2_size()),
       half_size_(0.5f * static_cast<float>(table.size())),
       first_copy_(table.cell(0, 0).first),
       kernel_(lanes8::HasAvx2()) {
@@ -109,7 +103,7 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
     Select(p.d[0], p.d[1], p.d[2], p.d[3], SelectionLanes::kLanes, out);
     return;
   }
-  const CellTable cells{log2_size_, first_copy_, first_.data(), tilts_.data()};
+  const CellTable cells{options_, log2_size_, first_copy_, first_.data(), tilts_.data()};
 #if defined(APERTURE_LANES8_AVX2)
   if (kernel_) {
     avx2_kernel::SelectLanes(dudx, dvdx, dudy, dvdy, half_size_, cells, out);
@@ -122,7 +116,7 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
 void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const float* dudy,
                                   const float* dvdy, int n, SelectionLanes& out) const {
   const PaddedLanes p(dudx, dvdx, dudy, dvdy, n);
-  const CellTable cells{log2_size_, first_copy_, first_.data(), tilts_.data()};
+  const CellTable cells{options_, log2_size_, first_copy_, first_.data(), tilts_.data()};
   portable_kernel::SelectLanes(p.d[0], p.d[1], p.d[2], p.d[3], half_size_, cells, out);
 }
 
@@ -134,7 +128,7 @@ void CopySelector::ShapeSlots(float H, float L, float tg, bool along_v, bool pro
   alignas(32) float t[8] = {}, lane0[8] = {1};
   h[0] = H, l[0] = L, t[0] = tg;
   std::fill(std::begin(out.probe_scale[0]), std::end(out.probe_scale[0]), 1.0f);
-  const CellTable cells{log2_size_, first_copy_, first_.data(), tilts_.data()};
+  const CellTable cells{options_, log2_size_, first_copy_, first_.data(), tilts_.data()};
   portable_kernel::ReadingSlotsLanes(cells, 0, Load(lane0) > Set(0.0f), Load(h), Load(l), Load(t),
                                      SetI(along_v ? 1 : 0), probes, out);
 }
@@ -145,7 +139,8 @@ ApertureReadings ReadingsOfFootprint(const TextureFootprint& f, int texture_size
   using namespace lanes8::portable;
   const PaddedLanes p(&f.dudx, &f.dvdx, &f.dudy, &f.dvdy, 1);
   const portable_kernel::Moments m = portable_kernel::MomentsOfLanes(
-      p.d[0], p.d[1], p.d[2], p.d[3], 0.5f * static_cast<float>(texture_size));
+      p.d[0], p.d[1], p.d[2], p.d[3], 0.5f * static_cast<float>(texture_size),
+      AnisoOptions{}.axis_blend_zone);
   ApertureReadings out;
   if (m.valid.v[0] == 0) return out;
   out.weight[0] = m.first.v[0];

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "texture/aniso/aniso_options.h"
 #include "texture/prefiltered_table.h"
 #include "texture/texture_sampler.h"
 
@@ -23,13 +24,10 @@ struct ApertureShape {
 };
 
 // The readings a sample blends. A footprint has a parallelogram of its second moments along
-// either texture axis (see MomentsOfLanes in the kernel); the first reading is along the axis of
-// the larger moment. Where the two moments are nearly equal (the footprint's long side near a
+// either texture axis (see MomentsOfLanes in the kernel); the first reading is along the axis
+// of the larger moment. Where the two moments are nearly equal (the footprint's long side near a
 // diagonal) that choice would jump, so both are read, their weights going linearly from one to
-// the other across the zone |M_uu - M_vv| < kAxisBlendZone D, D = sqrt((M_uu - M_vv)^2 +
-// 4 M_uv^2): |cos 2 phi| < 0.125 for the long axis at angle phi to U, within 3.6 degrees of a
-// diagonal whatever the footprint's elongation (a round footprint's readings agree).
-inline constexpr float kAxisBlendZone = 0.125f;
+// the other across a zone (AnisoOptions::axis_blend_zone).
 struct ApertureReadings {
   int count = 0;  // 0: degenerate derivatives
   ApertureShape shape[2];
@@ -57,7 +55,7 @@ ApertureShape ApertureFromFootprint(const TextureFootprint& f, int texture_size)
 // optima. aperture-bench filter scores it +1.4 dB on the checkerboard at pitches 3-20, the
 // photos within 0.1 dB. Below x = 1 (magnification, or the thin side,
 // which the base probes filter) the extent is x.
-inline constexpr float kCopyExtentScale = 0.8f;
+inline constexpr float kCopyExtentScale = AnisoOptions{}.copy_extent_scale;
 inline float CopyExtent(float x) {
   return x < 1.0f ? x : std::sqrt(kCopyExtentScale * x * x + (1.0f - kCopyExtentScale));
 }
@@ -136,7 +134,7 @@ struct SelectionLanes {
 
 class CopySelector {
  public:
-  explicit CopySelector(const PrefilteredTable& table);
+  explicit CopySelector(const PrefilteredTable& table, const AnisoOptions& options = {});
 
   // Lanes [0, n) of `out` (n <= 8) for the footprints with these derivatives, by the AVX2
   // kernel when the processor has it; the base probes included.
@@ -152,6 +150,7 @@ class CopySelector {
   void ShapeSlots(float H, float L, float tg, bool along_v, bool probes, SelectionLanes& out) const;
 
  private:
+  AnisoOptions options_;
   int log2_size_ = 0;
   float half_size_ = 0;  // 2^n / 2: one step of the paper's 2 x 2 aperture, in texels per repeat
   uint32_t first_copy_ = 0;      // cell (0, 0)'s copy, the 2 x 2 box

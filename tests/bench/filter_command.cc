@@ -34,10 +34,10 @@ namespace {
 constexpr int kModes = 4;
 
 int RunFilter(int argc, char** argv) {
-  auto args = ParseArgs(
-      argc, argv,
-      {"--textures", "--data", "--angles", "--apertures", "--out", "--cache", "--ref-density",
-       "--ref-max", "--ref-min", "--timing-rows", "--threads", "--yaws", "--positions"});
+  auto args = ParseArgs(argc, argv,
+                        {"--textures", "--data", "--angles", "--apertures", "--out", "--cache",
+                         "--ref-density", "--ref-max", "--ref-min", "--timing-rows", "--threads",
+                         "--yaws", "--positions", "--aniso-options"});
   if (!args.ok()) return Fail("filter", std::string(args.status().message()));
   if (args->help || !args->positional.empty()) {
     std::fprintf(
@@ -45,7 +45,7 @@ int RunFilter(int argc, char** argv) {
         "usage: aperture-bench filter [--textures checker,NAME...] [--data DIR]\n"
         "         [--angles 5,20,60] [--yaws 0] [--apertures 2,1] [--out DIR] [--cache DIR]\n"
         "         [--ref-density D] [--ref-max K] [--ref-min K] [--timing-rows S] [--threads N]\n"
-        "         [--positions P]\n"
+        "         [--positions P] [--aniso-options NAME=VALUE,...]\n"
         "The grazing-plane benchmark (DESIGN.md): PSNR of trilinear, aniso, oiio (OpenImageIO's\n"
         "defaults) and oiio16 (OpenImageIO, anisotropic 16, bilinear) against the supersampled\n"
         "reference of the same aperture, and ns per sample single-threaded; then PSNR by band\n"
@@ -63,7 +63,10 @@ int RunFilter(int argc, char** argv) {
         "Writes every image as EXR under --out (default out/bench-filter), and per view a plot\n"
         "of PSNR by row (_rows.png: trilinear blue, aniso red, oiio green, oiio16 grey; grid\n"
         "every 10 dB, rows from the first measured one, left, to the bottom); references are\n"
-        "cached under --cache (default: the cache folder in --out).\n");
+        "cached under --cache (default: the cache folder in --out).\n"
+        "--aniso-options sets fields of the aniso sampler's AnisoOptions over their defaults\n"
+        "(texture/aniso/aniso_options.h, docs/ANISO.md), e.g. box_probes=false or\n"
+        "box_probe_thickness=1.5,box_probe_fade=4: an experiment on a regime.\n");
     return args->help ? 0 : 2;
   }
   const std::string out_dir = args->Get("--out", "out/bench-filter");
@@ -88,6 +91,10 @@ int RunFilter(int argc, char** argv) {
     if (a <= 0 || a > 16) return Fail("filter", "apertures must be in (0, 16]");
   for (double t : *angles)
     if (t <= 0 || t >= 90) return Fail("filter", "angles must be in (0, 90) degrees");
+  const auto aniso_options = AnisoOptions::Parse(args->Get("--aniso-options", ""));
+  if (!aniso_options.ok()) return Fail("filter", std::string(aniso_options.status().message()));
+  if (const std::string changed = aniso_options->ChangedFields(); !changed.empty())
+    std::fprintf(stderr, "aniso options: %s (the rest at their defaults)\n", changed.c_str());
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -122,7 +129,7 @@ int RunFilter(int argc, char** argv) {
     if (!table.ok()) return Fail("filter", std::string(table.status().message()));
     MipPyramid pyramid(tex.image);
     TrilinearSampler trilinear(pyramid);
-    AnisoSampler aniso(*table);
+    AnisoSampler aniso(*table, *aniso_options);
     auto oiio = OiioSampler::Create(tex.image);
     if (!oiio.ok()) return Fail("filter", std::string(oiio.status().message()));
     auto oiio16 = OiioSampler::Create(tex.image, "", kOiioAniso16Bilinear);
