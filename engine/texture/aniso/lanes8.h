@@ -129,34 +129,24 @@ inline int Bits(M m) {
   APERTURE_LANES8_EACH bits |= (m.v[i] < 0 ? 1 : 0) << i;
   return bits;
 }
-inline F Select(M m, F yes, F no) {
-  F r;
+// yes where m is set, else no (F or I).
+template <typename T>
+inline T Select(M m, T yes, T no) {
+  T r;
   APERTURE_LANES8_EACH r.v[i] = m.v[i] < 0 ? yes.v[i] : no.v[i];
   return r;
 }
-inline I Select(M m, I yes, I no) {
-  I r;
-  APERTURE_LANES8_EACH r.v[i] = m.v[i] < 0 ? yes.v[i] : no.v[i];
-  return r;
-}
-// a < b ? a : b and a > b ? a : b, as minps and maxps (b where either is NaN).
-inline F Min(F a, F b) {
-  F r;
+// a < b ? a : b and a > b ? a : b, as minps and maxps (b where either is NaN), and pminsd and
+// pmaxsd for I.
+template <typename T>
+inline T Min(T a, T b) {
+  T r;
   APERTURE_LANES8_EACH r.v[i] = a.v[i] < b.v[i] ? a.v[i] : b.v[i];
   return r;
 }
-inline F Max(F a, F b) {
-  F r;
-  APERTURE_LANES8_EACH r.v[i] = a.v[i] > b.v[i] ? a.v[i] : b.v[i];
-  return r;
-}
-inline I Min(I a, I b) {
-  I r;
-  APERTURE_LANES8_EACH r.v[i] = a.v[i] < b.v[i] ? a.v[i] : b.v[i];
-  return r;
-}
-inline I Max(I a, I b) {
-  I r;
+template <typename T>
+inline T Max(T a, T b) {
+  T r;
   APERTURE_LANES8_EACH r.v[i] = a.v[i] > b.v[i] ? a.v[i] : b.v[i];
   return r;
 }
