@@ -75,7 +75,11 @@ void RefusalLog::StartFlushing() {
     std::mutex mutex;
     std::condition_variable_any wake;
     std::unique_lock lock(mutex);
-    while (!wake.wait_for(lock, stop, interval_, [&] { return stop.stop_requested(); })) Flush();
+    // Four looks an interval: a tail comes due an interval after its kind's last line, whatever
+    // the thread's phase, and is written within a quarter interval of that (every interval, a
+    // tail due just after a look waited almost two).
+    while (!wake.wait_for(lock, stop, interval_ / 4, [&] { return stop.stop_requested(); }))
+      Flush();
   });
 }
 

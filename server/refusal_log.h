@@ -6,7 +6,8 @@
 // (or `refused 1 frame: queue full; req=...` for a refusal alone).
 // The first refusal of a kind after a quiet interval is written at once; those that follow within
 // the interval are counted, and written by the first refusal after it or by Flush, which a
-// flushing thread (StartFlushing) calls every interval so that a burst's tail is not held back.
+// flushing thread (StartFlushing) calls four times an interval so that a burst's tail is not
+// held back (it is written at most 1.25 intervals after its kind's last line).
 #pragma once
 
 #include <chrono>
@@ -40,7 +41,7 @@ class RefusalLog {
   // Writes the counts of the kinds whose interval has passed since their last line; with `all`,
   // every count not yet written.
   void Flush(Clock::time_point now = Clock::now(), bool all = false);
-  // Calls Flush every interval on a thread of its own, until the log is destroyed.
+  // Calls Flush four times an interval on a thread of its own, until the log is destroyed.
   void StartFlushing();
 
  private:
