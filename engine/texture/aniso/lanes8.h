@@ -117,6 +117,12 @@ APERTURE_LANES8_COMPARE(I, >)
 APERTURE_LANES8_COMPARE(I, ==)
 #undef APERTURE_LANES8_COMPARE
 
+// x where m is set, else 0.
+inline F Keep(M m, F x) {
+  F r;
+  APERTURE_LANES8_EACH r.v[i] = m.v[i] < 0 ? x.v[i] : 0.0f;
+  return r;
+}
 // ~a & b.
 inline M AndNot(M a, M b) {
   M r;
@@ -150,21 +156,17 @@ inline T Max(T a, T b) {
   APERTURE_LANES8_EACH r.v[i] = a.v[i] > b.v[i] ? a.v[i] : b.v[i];
   return r;
 }
-inline F Sqrt(F a) {
-  F r;
-  APERTURE_LANES8_EACH r.v[i] = std::sqrt(a.v[i]);
-  return r;
-}
-inline F Abs(F a) {
-  F r;
-  APERTURE_LANES8_EACH r.v[i] = std::abs(a.v[i]);
-  return r;
-}
-inline F Ceil(F a) {
-  F r;
-  APERTURE_LANES8_EACH r.v[i] = std::ceil(a.v[i]);
-  return r;
-}
+#define APERTURE_LANES8_UNARY(name, function)       \
+  inline F name(F a) {                              \
+    F r;                                            \
+    APERTURE_LANES8_EACH r.v[i] = function(a.v[i]); \
+    return r;                                       \
+  }
+APERTURE_LANES8_UNARY(Sqrt, std::sqrt)
+APERTURE_LANES8_UNARY(Abs, std::abs)
+APERTURE_LANES8_UNARY(Ceil, std::ceil)
+APERTURE_LANES8_UNARY(Floor, std::floor)
+#undef APERTURE_LANES8_UNARY
 // Truncation; INT32_MIN out of range and for NaN, as cvttps2dq.
 inline I Truncate(F a) {
   I r;
@@ -223,11 +225,6 @@ inline M MOf(I a) { return std::bit_cast<M>(a); }
 inline I LaneIndex() {
   I r;
   APERTURE_LANES8_EACH r.v[i] = i;
-  return r;
-}
-inline F Floor(F a) {
-  F r;
-  APERTURE_LANES8_EACH r.v[i] = std::floor(a.v[i]);
   return r;
 }
 inline F FromDoubles(const double* p) {
@@ -320,6 +317,7 @@ inline M operator==(F a, F b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ)}; }
 inline M operator>(I a, I b) { return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(a.v, b.v))}; }
 inline M operator==(I a, I b) { return {_mm256_castsi256_ps(_mm256_cmpeq_epi32(a.v, b.v))}; }
 
+inline F Keep(M m, F x) { return {_mm256_and_ps(m.v, x.v)}; }
 inline M AndNot(M a, M b) { return {_mm256_andnot_ps(a.v, b.v)}; }
 inline int Bits(M m) { return _mm256_movemask_ps(m.v); }
 inline F Select(M m, F yes, F no) { return {_mm256_blendv_ps(no.v, yes.v, m.v)}; }
