@@ -159,11 +159,15 @@ double NanosecondsPerSample(const GrazingPlaneView& view, const TextureSampler& 
 }
 
 Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, double density,
-                            int max_per_side, int min_per_side) {
+                            int max_per_side, int min_per_side, int first_row, int end_row) {
   Image out(view.width, view.height);
   const double a = view.aperture, n = texture.width();
   const Frame frame = MakeFrame(view);
-  tbb::parallel_for(0, view.height, [&](int j) {
+  const int end = end_row < 0 ? view.height : std::min(end_row, view.height);
+  for (int j = 0; j < view.height; ++j)
+    if (j < first_row || j >= end)
+      for (int i = 0; i < view.width; ++i) out.at(i, j) = {0, 0, 0, 1};
+  tbb::parallel_for(std::max(0, first_row), std::max(0, end), [&](int j) {
     TextureFootprint f;
     for (int i = 0; i < view.width; ++i) {
       if (!GroundFootprint(view, i, j, &f)) {

@@ -53,9 +53,11 @@ double NanosecondsPerSample(const GrazingPlaneView& view, const TextureSampler& 
                             int rows_step = 1);
 // The reference: per pixel, the average of the bilinear texture over the a x a square by
 // stratified jittered samples, `density` strata per texel of extent per side
-// (min_per_side..max_per_side).
+// (min_per_side..max_per_side). Only rows [first_row, end_row) (end_row < 0: to the bottom); the
+// others are black.
 Image RenderGroundReference(const GrazingPlaneView& view, const Image& texture, double density,
-                            int max_per_side, int min_per_side = 2);
+                            int max_per_side, int min_per_side = 2, int first_row = 0,
+                            int end_row = -1);
 // Moves the camera `world_units` forward along its heading (the turned view axis, on the ground):
 // the view's texture origin moves with it (aperture-bench flicker's fly-over).
 void MoveForward(GrazingPlaneView* view, double world_units);

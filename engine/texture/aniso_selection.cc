@@ -55,6 +55,7 @@ struct CellTable {
   uint32_t first_copy;    // cell (0, 0)'s copy, the 2 x 2 box
   const uint32_t* first;  // per cell j * n + i: its first directory index
   const int32_t* tilts;   // per cell: TiltsPerAxis, 0 for the one untilted copy
+  const int32_t* ends;    // per cell: 1 where its end tilts are read
 };
 
 namespace portable_kernel {
@@ -93,6 +94,13 @@ CopySelector::CopySelector(const PrefilteredTable& table, const AnisoOptions& op
     for (int i = 0; i < n; ++i) {
       first_.push_back(table.cell(j, i).first);
       tilts_.push_back(static_cast<int32_t>(table.cell(j, i).copies / 2));
+      // Beyond a period (H = 2^(i + j) >= 2^n, lambda frozen) a cell's tilts lie far apart for
+      // its apertures, and a footprint between two reads copies sheared by up to hundreds of
+      // texels. The paper's tilts wrap many times around the texture and average it, as such a
+      // footprint does; an end tilt's copy is a line along the texture's diagonal that wraps onto
+      // itself and keeps that diagonal's pattern, which a footprint merely near the diagonal
+      // does not have (docs/ANISO.md).
+      ends_.push_back(i + j < n || options.end_tilts_beyond_period ? 1 : 0);
     }
 }
 
@@ -103,7 +111,8 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
     Select(p.d[0], p.d[1], p.d[2], p.d[3], SelectionLanes::kLanes, out);
     return;
   }
-  const CellTable cells{options_, log2_size_, first_copy_, first_.data(), tilts_.data()};
+  const CellTable cells{options_,      log2_size_,    first_copy_,
+                        first_.data(), tilts_.data(), ends_.data()};
 #if defined(APERTURE_LANES8_AVX2)
   if (kernel_) {
     avx2_kernel::SelectLanes(dudx, dvdx, dudy, dvdy, half_size_, cells, out);
@@ -116,7 +125,8 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
 void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const float* dudy,
                                   const float* dvdy, int n, SelectionLanes& out) const {
   const PaddedLanes p(dudx, dvdx, dudy, dvdy, n);
-  const CellTable cells{options_, log2_size_, first_copy_, first_.data(), tilts_.data()};
+  const CellTable cells{options_,      log2_size_,    first_copy_,
+                        first_.data(), tilts_.data(), ends_.data()};
   portable_kernel::SelectLanes(p.d[0], p.d[1], p.d[2], p.d[3], half_size_, cells, out);
 }
 
@@ -128,7 +138,8 @@ void CopySelector::ShapeSlots(float H, float L, float tg, bool along_v, bool pro
   alignas(32) float t[8] = {}, lane0[8] = {1};
   h[0] = H, l[0] = L, t[0] = tg;
   std::fill(std::begin(out.probe_scale[0]), std::end(out.probe_scale[0]), 1.0f);
-  const CellTable cells{options_, log2_size_, first_copy_, first_.data(), tilts_.data()};
+  const CellTable cells{options_,      log2_size_,    first_copy_,
+                        first_.data(), tilts_.data(), ends_.data()};
   portable_kernel::ReadingSlotsLanes(cells, 0, Load(lane0) > Set(0.0f), Load(h), Load(l), Load(t),
                                      SetI(along_v ? 1 : 0), probes, out);
 }

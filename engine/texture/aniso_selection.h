@@ -156,6 +156,7 @@ class CopySelector {
   uint32_t first_copy_ = 0;      // cell (0, 0)'s copy, the 2 x 2 box
   std::vector<uint32_t> first_;  // per cell j * n + i: its first directory index
   std::vector<int32_t> tilts_;   // per cell: TiltsPerAxis, 0 for the one untilted copy
+  std::vector<int32_t> ends_;    // per cell: 1 where its end tilts are read
   bool kernel_ = false;
 };
 

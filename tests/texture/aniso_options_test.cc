@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "testing/random_image.h"
 #include "texture/aniso_selection.h"
 #include "texture/prefiltered_table_builder.h"
@@ -89,6 +91,20 @@ TEST_F(AnisoOptionsSelection, EachSwitchTurnsItsRegimeOff) {
   EXPECT_GT(Select(defaults, 4, 3.9f, -0.5f, 0.5f).reading_weight[1][0], 0.0f);
   off = defaults, off.axis_blend_zone = 0;
   EXPECT_EQ(Select(off, 4, 3.9f, -0.5f, 0.5f).reading_weight[1][0], 0.0f);
+  // A footprint of half-extent 100 texels (past the 64-texel period) along tg = -0.8: its cells'
+  // paper tilts are -0.75 and -0.25, and the end tilt tg = -1 is read only when switched on.
+  auto reads_an_end = [&](const AnisoOptions& o) {
+    const SelectionLanes l = Select(o, 100, -80, 2.4f, 3);
+    for (int r = 0; r < 2; ++r)
+      for (int slot = 0; slot < SelectionLanes::kSlots; ++slot)
+        if (l.reading_weight[r][0] > 0 && l.weight[r][slot][0] > 0 &&
+            std::abs(table_.copy(l.copy[r][slot][0]).tg) == 1.0f)
+          return true;
+    return false;
+  };
+  EXPECT_FALSE(reads_an_end(defaults));
+  off = defaults, off.end_tilts_beyond_period = true;
+  EXPECT_TRUE(reads_an_end(off));
 }
 
 TEST_F(AnisoOptionsSelection, TheCopyExtentScaleChoosesTheCells) {

@@ -34,6 +34,7 @@ constexpr BoolField kBoolFields[] = {
     {"principal_axes", &AnisoOptions::principal_axes},
     {"base_probes", &AnisoOptions::base_probes},
     {"box_probes", &AnisoOptions::box_probes},
+    {"end_tilts_beyond_period", &AnisoOptions::end_tilts_beyond_period},
 };
 
 }  // namespace

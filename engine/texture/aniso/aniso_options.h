@@ -33,6 +33,9 @@ struct AnisoOptions {
   bool principal_axes = true;
   bool base_probes = true;
   bool box_probes = true;
+  // The end tilts tg = +-1 read beyond a period too (the cells of H >= 2^n, where lambda is
+  // frozen); false: only the paper's tilts there.
+  bool end_tilts_beyond_period = false;
 
   // An error naming the first field out of its range.
   absl::Status Validate() const;
