@@ -1,6 +1,8 @@
 #include "scene/light_points.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "absl/strings/str_cat.h"
 
@@ -26,10 +28,15 @@ absl::StatusOr<uint64_t> RowCount(const v1::LightRow& row, const std::string& wh
     return Invalid(where + ".spacing_m",
                    absl::StrCat("must be > 0 (or give count), is ", row.spacing_m()));
   const double lights = std::floor(Length(end - start) / row.spacing_m() + 1e-9) + 1;
-  if (max_lights > 0 && lights > static_cast<double>(max_lights))
-    return Invalid(where, absl::StrCat("spacing_m ", row.spacing_m(), " over ", Length(end - start),
-                                       " m makes ", lights, " lights, above the limit of ",
-                                       max_lights, " lights per scene"));
+  // With no limit a row still holds at most what its count could say (a uint32), so the count
+  // converts exactly.
+  constexpr uint64_t kMaxRowLights = UINT32_MAX;
+  const uint64_t limit = max_lights > 0 ? std::min(max_lights, kMaxRowLights) : kMaxRowLights;
+  if (lights > static_cast<double>(limit))
+    return Invalid(where,
+                   absl::StrCat("spacing_m ", row.spacing_m(), " over ", Length(end - start),
+                                " m makes ", lights, " lights, above the limit of ", limit,
+                                limit == max_lights ? " lights per scene" : " lights a row"));
   return static_cast<uint64_t>(lights);
 }
 

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "render/frame_renderer.h"
+#include "scene/light_points.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_update.h"
 #include "scene/triangulate.h"
@@ -424,6 +425,15 @@ TEST(LightPass, BadLightsAreRefusedNamingTheField) {
   EXPECT_NE(huge.message().find("light_rows[0]: spacing_m 0.01 over 1e+06 m makes"),
             std::string::npos)
       << huge;
+  // With no limit (0) too: a row 3e23 m long (the fuzzer's) makes more lights than a row holds.
+  r.mutable_end()->set_z(-3e23);
+  r.set_spacing_m(60);
+  options.limits.lights = 0;
+  const absl::Status endless = BuildScene(row, options).status();
+  EXPECT_TRUE(absl::IsInvalidArgument(endless));
+  EXPECT_NE(endless.message().find("above the limit of 4294967295 lights a row"), std::string::npos)
+      << endless;
+  EXPECT_FALSE(CountSceneLights(row, 0).ok());
   r.set_spacing_m(0);
   EXPECT_EQ(error(row), "light_rows[0].spacing_m: must be > 0 (or give count), is 0");
   v1::Scene object = OneLight(0, 0, -10, 1);
