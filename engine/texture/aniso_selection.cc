@@ -8,6 +8,17 @@
 #include "texture/aniso/lanes8.h"
 
 namespace aperture {
+
+// The table's cells as the kernel reads them (CopySelector's members), and the options.
+struct CellTable {
+  const AnisoOptions& options;
+  int log2_size;
+  uint32_t first_copy;    // cell (0, 0)'s copy, the 2 x 2 box
+  const uint32_t* first;  // per cell j * n + i: its first directory index
+  const int32_t* tilts;   // per cell: TiltsPerAxis, 0 for the one untilted copy
+  const int32_t* ends;    // per cell: 1 where its end tilts are read
+};
+
 namespace {
 
 // Derivatives are clamped to this many texels: a footprint past 2^(3n) (n <= 13) is capped by
@@ -47,16 +58,6 @@ static_assert(SelectionLanes::kMaxProbes / 2 - 2 < 8, "J - 2 indexes eight entri
 static_assert(SelectionLanes::kLanes == lanes8::kLanes);
 static_assert(SelectionLanes::kMaxProbes >= 2 * static_cast<int>(2 * 4.0f / kProbeSpacing + 1),
               "the probe lists hold the probes of AnisoOptions::probe_half_extent <= 4");
-
-// The table's cells as the kernel reads them (CopySelector's members), and the options.
-struct CellTable {
-  const AnisoOptions& options;
-  int log2_size;
-  uint32_t first_copy;    // cell (0, 0)'s copy, the 2 x 2 box
-  const uint32_t* first;  // per cell j * n + i: its first directory index
-  const int32_t* tilts;   // per cell: TiltsPerAxis, 0 for the one untilted copy
-  const int32_t* ends;    // per cell: 1 where its end tilts are read
-};
 
 namespace portable_kernel {
 using namespace lanes8::portable;
@@ -104,6 +105,10 @@ CopySelector::CopySelector(const PrefilteredTable& table, const AnisoOptions& op
     }
 }
 
+CellTable CopySelector::Cells() const {
+  return {options_, log2_size_, first_copy_, first_.data(), tilts_.data(), ends_.data()};
+}
+
 void CopySelector::Select(const float* dudx, const float* dvdx, const float* dudy,
                           const float* dvdy, int n, SelectionLanes& out) const {
   if (n < SelectionLanes::kLanes) {
@@ -111,8 +116,7 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
     Select(p.d[0], p.d[1], p.d[2], p.d[3], SelectionLanes::kLanes, out);
     return;
   }
-  const CellTable cells{options_,      log2_size_,    first_copy_,
-                        first_.data(), tilts_.data(), ends_.data()};
+  const CellTable cells = Cells();
 #if defined(APERTURE_LANES8_AVX2)
   if (kernel_) {
     avx2_kernel::SelectLanes(dudx, dvdx, dudy, dvdy, half_size_, cells, out);
@@ -125,8 +129,7 @@ void CopySelector::Select(const float* dudx, const float* dvdx, const float* dud
 void CopySelector::SelectPortable(const float* dudx, const float* dvdx, const float* dudy,
                                   const float* dvdy, int n, SelectionLanes& out) const {
   const PaddedLanes p(dudx, dvdx, dudy, dvdy, n);
-  const CellTable cells{options_,      log2_size_,    first_copy_,
-                        first_.data(), tilts_.data(), ends_.data()};
+  const CellTable cells = Cells();
   portable_kernel::SelectLanes(p.d[0], p.d[1], p.d[2], p.d[3], half_size_, cells, out);
 }
 
@@ -138,8 +141,7 @@ void CopySelector::ShapeSlots(float H, float L, float tg, bool along_v, bool pro
   alignas(32) float t[8] = {}, lane0[8] = {1};
   h[0] = H, l[0] = L, t[0] = tg;
   std::fill(std::begin(out.probe_scale[0]), std::end(out.probe_scale[0]), 1.0f);
-  const CellTable cells{options_,      log2_size_,    first_copy_,
-                        first_.data(), tilts_.data(), ends_.data()};
+  const CellTable cells = Cells();
   portable_kernel::ReadingSlotsLanes(cells, 0, Load(lane0) > Set(0.0f), Load(h), Load(l), Load(t),
                                      SetI(along_v ? 1 : 0), probes, out);
 }

@@ -132,6 +132,8 @@ struct SelectionLanes {
   alignas(32) float tap_q[2][kLanes];
 };
 
+struct CellTable;  // the kernels' view of a CopySelector's cells (aniso_selection.cc)
+
 class CopySelector {
  public:
   explicit CopySelector(const PrefilteredTable& table, const AnisoOptions& options = {});
@@ -150,6 +152,8 @@ class CopySelector {
   void ShapeSlots(float H, float L, float tg, bool along_v, bool probes, SelectionLanes& out) const;
 
  private:
+  CellTable Cells() const;
+
   AnisoOptions options_;
   int log2_size_ = 0;
   float half_size_ = 0;  // 2^n / 2: one step of the paper's 2 x 2 aperture, in texels per repeat
