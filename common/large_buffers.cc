@@ -1,5 +1,7 @@
 #include "large_buffers.h"
 
+#include <cstdlib>  // defines __GLIBC__ (through <features.h>) where the C library is glibc's
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
