@@ -48,6 +48,7 @@ Environment (defaults in brackets):
   QUICK_ROW_S    seconds per row with --quick               [8]
   TARGET_P99_MS  the transport delay's p99 target           [50]
   CORES          cores for "cores allow"                    [nproc]
+  SIM_FLAGS      more flags for every `aperture sim` (e.g. --compression none)  []
   SERVER_BIN     [build/server/aperture-server]   CLIENT_BIN [build/client/aperture]
 EOF
 }
@@ -70,6 +71,7 @@ scenes="${SCENES:-airport demo}"
 sizes="${SIZES:-1280x720 1920x1080}"
 target="${TARGET_P99_MS:-50}"
 cores="${CORES:-$(nproc)}"
+read -r -a sim_flags <<<"${SIM_FLAGS:-}"
 server_bin="${SERVER_BIN:-build/server/aperture-server}"
 client_bin="${CLIENT_BIN:-build/client/aperture}"
 for bin in "$server_bin" "$client_bin"; do
@@ -122,11 +124,11 @@ for scene in $scenes; do
     for rate in $rates; do
       frames=$(awk -v r="$rate" -v s="$seconds" 'BEGIN {printf "%d", r * s}')
       "$client_bin" sim --server "$address" --scene "$scene" --size "$size" --rate 10 \
-        --frames 3 --json >/dev/null || true
+        --frames 3 --json "${sim_flags[@]}" >/dev/null || true
       before=$(server_ticks)
       status=0
       "$client_bin" sim --server "$address" --scene "$scene" --size "$size" --rate "$rate" \
-        --frames "$frames" --json >"$work/row.json" 2>"$work/row.err" || status=$?
+        --frames "$frames" --json "${sim_flags[@]}" >"$work/row.json" 2>"$work/row.err" || status=$?
       after=$(server_ticks)
       if [ ! -s "$work/row.json" ]; then
         echo "bench-ig.sh: $scene $size $rate Hz: aperture sim failed ($status):" \
