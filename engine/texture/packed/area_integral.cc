@@ -46,6 +46,9 @@ int SplitPeriodic(double a, double b, double n, Piece out[3]) {
   return count;
 }
 
+// The last texel a coordinate range [lo, hi) reaches (hi > 0).
+uint32_t LastTexel(double hi) { return static_cast<uint32_t>(std::ceil(hi) - 1); }
+
 }  // namespace
 
 AreaIntegrator::AreaIntegrator(const PackedTextureView& texture) : texture_(texture) {
@@ -275,6 +278,43 @@ void AreaIntegrator::IntegrateBlock(const Block& b, double x0, double y0, double
   }
 }
 
+bool AreaIntegrator::IntegrateOverCells(double x0, double y0, double x1, double y1,
+                                        std::array<double, 4>& sum) const {
+  if (index_ == nullptr) return false;
+  const int bits = index_->cell_bits();
+  const uint32_t columns = (LastTexel(x1) >> bits) - (static_cast<uint32_t>(x0) >> bits) + 1;
+  const uint32_t rows = (LastTexel(y1) >> bits) - (static_cast<uint32_t>(y0) >> bits) + 1;
+  if (columns * rows > kMaxCells) return false;
+  IntegrateOverBlocks(bits, x0, y0, x1, y1, sum);
+  return true;
+}
+
+void AreaIntegrator::IntegrateOverBlocks(int level, double x0, double y0, double x1, double y1,
+                                         std::array<double, 4>& sum) const {
+  const double side = static_cast<double>(uint32_t{1} << level);
+  for (uint32_t by = static_cast<uint32_t>(y0) >> level; by <= LastTexel(y1) >> level; ++by) {
+    const double ry0 = std::max(y0, by * side), ry1 = std::min(y1, (by + 1) * side);
+    for (uint32_t bx = static_cast<uint32_t>(x0) >> level; bx <= LastTexel(x1) >> level; ++bx) {
+      const double rx0 = std::max(x0, bx * side), rx1 = std::min(x1, (bx + 1) * side);
+      uint32_t lo, hi;
+      if (index_->RunsAround(bx << level, by << level, level, lo, hi)) {
+        if (lo == hi) {  // one colour: colour x overlap area
+          const uint32_t colour = texture_.palette()[texture_.indices()[lo]];
+          const double area = (rx1 - rx0) * (ry1 - ry0);
+          for (int c = 0; c < 4; ++c) sum[c] += area * Channel(colour, c);
+          continue;
+        }
+      } else if (level == index_->cell_bits()) {  // a cell with a detail record: its subcells
+        IntegrateOverBlocks(level - 2, rx0, ry0, rx1, ry1, sum);
+        continue;
+      }
+      const Block start = Enclosing(static_cast<uint32_t>(rx0), static_cast<uint32_t>(ry0),
+                                    LastTexel(rx1), LastTexel(ry1));
+      IntegrateBlock(start, rx0, ry0, rx1, ry1, sum);
+    }
+  }
+}
+
 AreaSum AreaIntegrator::Integrate(double x0, double y0, double x1, double y1) const {
   AreaSum result;
   Piece px[3], py[3];
@@ -288,8 +328,7 @@ AreaSum AreaIntegrator::Integrate(double x0, double y0, double x1, double y1) co
       std::array<double, 4> s;
       if (whole) {
         for (int c = 0; c < 4; ++c) s[c] = static_cast<double>(total_[c]);
-      } else {
-        s = {};
+      } else if (s = {}; !IntegrateOverCells(px[i].lo, py[j].lo, px[i].hi, py[j].hi, s)) {
         const auto last_texel = [](double hi, uint32_t n) {
           return static_cast<uint32_t>(std::min<double>(std::ceil(hi) - 1, n - 1));
         };

@@ -81,6 +81,19 @@ class AreaIntegrator {
   void IntegrateBlock(const Block& b, double x0, double y0, double x1, double y1,
                       std::array<double, 4>& sum) const;
 
+  // A rectangle inside the texture that reaches at most kMaxCells cells of the run index: each
+  // cell (or, in a cell with a detail record, each subcell) inside a single run adds its colour x
+  // overlap area from the index alone, and only the others are descended into, each from the
+  // smallest block holding its part. Most footprints lie over cells of one colour each: the
+  // airport's map at 1280x720, 81 % of them. False (`sum` untouched) for a larger rectangle.
+  static constexpr uint32_t kMaxCells = 16;
+  bool IntegrateOverCells(double x0, double y0, double x1, double y1,
+                          std::array<double, 4>& sum) const;
+  // The part of a rectangle over each aligned block of 2^level texels a side (the index's cells or
+  // subcells) it reaches.
+  void IntegrateOverBlocks(int level, double x0, double y0, double x1, double y1,
+                           std::array<double, 4>& sum) const;
+
   PackedTextureView texture_;
   const RunIndex* index_ = nullptr;
   // prefix_[i] = sum over runs < i of length x colour (length in steps; used only for runs wholly
