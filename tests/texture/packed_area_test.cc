@@ -62,8 +62,9 @@ TEST(PackedArea, IntegralsEqualBruteForceSums) {
         // Every run searched, and with the run index (cells of one colour summed from the index,
         // the others descended into).
         const RunIndex index(packed->view());
-        for (const AreaIntegrator& area :
-             {AreaIntegrator(packed->view()), AreaIntegrator(packed->view(), &index)}) {
+        const AreaIntegrator plain(packed->view()), indexed(packed->view(), &index);
+        for (const AreaIntegrator* integrator : {&plain, &indexed}) {
+          const AreaIntegrator& area = *integrator;
           // Whole texture, one texel, random rectangles inside, wrapping, and over many periods.
           ExpectNear(area.Integrate(0, 0, w, h), BruteForce(image, 0, 0, w, h), "whole");
           for (int i = 0; i < 40; ++i) {

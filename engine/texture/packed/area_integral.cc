@@ -253,9 +253,7 @@ void AreaIntegrator::IntegrateBlock(const Block& b, double x0, double y0, double
   const double iy0 = std::max<double>(b.y, y0), iy1 = std::min<double>(b.y + size, y1);
   if (ix0 >= ix1 || iy0 >= iy1) return;
   if (b.run_lo == b.run_hi) {  // one colour: colour x overlap area, fractional edges included
-    const uint32_t colour = texture_.palette()[texture_.indices()[b.run_lo]];
-    const double area = (ix1 - ix0) * (iy1 - iy0);
-    for (int c = 0; c < 4; ++c) sum[c] += area * Channel(colour, c);
+    AddRunColour(b.run_lo, (ix1 - ix0) * (iy1 - iy0), sum);
     return;
   }
   if (ix1 - ix0 == size && iy1 - iy0 == size) {  // whole block, every texel fully covered
@@ -299,20 +297,29 @@ void AreaIntegrator::IntegrateOverBlocks(int level, double x0, double y0, double
       uint32_t lo, hi;
       if (index_->RunsAround(bx << level, by << level, level, lo, hi)) {
         if (lo == hi) {  // one colour: colour x overlap area
-          const uint32_t colour = texture_.palette()[texture_.indices()[lo]];
-          const double area = (rx1 - rx0) * (ry1 - ry0);
-          for (int c = 0; c < 4; ++c) sum[c] += area * Channel(colour, c);
+          AddRunColour(lo, (rx1 - rx0) * (ry1 - ry0), sum);
           continue;
         }
       } else if (level == index_->cell_bits()) {  // a cell with a detail record: its subcells
         IntegrateOverBlocks(level - 2, rx0, ry0, rx1, ry1, sum);
         continue;
       }
-      const Block start = Enclosing(static_cast<uint32_t>(rx0), static_cast<uint32_t>(ry0),
-                                    LastTexel(rx1), LastTexel(ry1));
-      IntegrateBlock(start, rx0, ry0, rx1, ry1, sum);
+      IntegrateByDescent(rx0, ry0, rx1, ry1, sum);
     }
   }
+}
+
+void AreaIntegrator::IntegrateByDescent(double x0, double y0, double x1, double y1,
+                                        std::array<double, 4>& sum) const {
+  const Block start = Enclosing(static_cast<uint32_t>(x0), static_cast<uint32_t>(y0),
+                                std::min(LastTexel(x1), texture_.width() - 1),
+                                std::min(LastTexel(y1), texture_.height() - 1));
+  IntegrateBlock(start, x0, y0, x1, y1, sum);
+}
+
+void AreaIntegrator::AddRunColour(size_t run, double area, std::array<double, 4>& sum) const {
+  const uint32_t colour = texture_.palette()[texture_.indices()[run]];
+  for (int c = 0; c < 4; ++c) sum[c] += area * Channel(colour, c);
 }
 
 AreaSum AreaIntegrator::Integrate(double x0, double y0, double x1, double y1) const {
@@ -329,13 +336,7 @@ AreaSum AreaIntegrator::Integrate(double x0, double y0, double x1, double y1) co
       if (whole) {
         for (int c = 0; c < 4; ++c) s[c] = static_cast<double>(total_[c]);
       } else if (s = {}; !IntegrateOverCells(px[i].lo, py[j].lo, px[i].hi, py[j].hi, s)) {
-        const auto last_texel = [](double hi, uint32_t n) {
-          return static_cast<uint32_t>(std::min<double>(std::ceil(hi) - 1, n - 1));
-        };
-        const Block start = Enclosing(
-            static_cast<uint32_t>(px[i].lo), static_cast<uint32_t>(py[j].lo),
-            last_texel(px[i].hi, texture_.width()), last_texel(py[j].hi, texture_.height()));
-        IntegrateBlock(start, px[i].lo, py[j].lo, px[i].hi, py[j].hi, s);
+        IntegrateByDescent(px[i].lo, py[j].lo, px[i].hi, py[j].hi, s);
       }
       for (int c = 0; c < 4; ++c) result.channels[c] += times * s[c];
       result.area += times * (px[i].hi - px[i].lo) * (py[j].hi - py[j].lo);

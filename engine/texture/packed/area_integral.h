@@ -94,6 +94,11 @@ class AreaIntegrator {
   // subcells) it reaches.
   void IntegrateOverBlocks(int level, double x0, double y0, double x1, double y1,
                            std::array<double, 4>& sum) const;
+  // A rectangle inside the texture, descended into from the smallest block holding it.
+  void IntegrateByDescent(double x0, double y0, double x1, double y1,
+                          std::array<double, 4>& sum) const;
+  // Adds run `run`'s colour x `area` to `sum`.
+  void AddRunColour(size_t run, double area, std::array<double, 4>& sum) const;
 
   PackedTextureView texture_;
   const RunIndex* index_ = nullptr;
